@@ -1,0 +1,155 @@
+"""Typed exceptions of dhlb, all in one place.
+
+Every error raised by dhlb on bad input is a subclass of :class:`DhlbError`;
+where the problem is a bad *value* it is also a :class:`ValueError`, so code
+written against the standard library keeps working.  Messages name the
+offending simplex, vertex, edge, file line, ... and say what to do about it.
+
+Examples
+--------
+>>> import dhlb
+>>> try:
+...     dhlb.SimplicialComplex([(0, 1, 1)])
+... except dhlb.errors.InvalidSimplexError as err:
+...     print(type(err).__name__)
+InvalidSimplexError
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "DhlbError",
+    "InvalidSimplexError",
+    "EmptyComplexError",
+    "RaggedInputError",
+    "SimplexNotFoundError",
+    "NonFiniteError",
+    "MeshParseError",
+    "NonManifoldError",
+    "NonOrientableError",
+    "InconsistentOrientationError",
+    "DegenerateSimplexError",
+    "UnreferencedVertexError",
+    "NotClosedError",
+    "NotExactError",
+    "NotAPathError",
+    "InvalidConnectionError",
+    "CurvatureMismatchError",
+    "IntegralityError",
+    "SectionZeroError",
+    "InvalidMetricError",
+    "ConvergenceError",
+    "UnreferencedVertexWarning",
+    "DhlbWarning",
+]
+
+
+class DhlbError(Exception):
+    """Base class of every exception raised deliberately by dhlb."""
+
+
+class InvalidSimplexError(DhlbError, ValueError):
+    """A simplex is malformed: repeated, negative or non-integer vertex labels."""
+
+
+class EmptyComplexError(InvalidSimplexError):
+    """No simplices were given where at least one is needed."""
+
+
+class RaggedInputError(InvalidSimplexError):
+    """Rows of an array-like input have different lengths where equal ones are needed."""
+
+
+class SimplexNotFoundError(DhlbError, KeyError):
+    """A simplex looked up in a complex is not part of it."""
+
+    def __str__(self) -> str:  # KeyError quotes its message; keep it readable
+        return str(self.args[0]) if self.args else ""
+
+
+class NonFiniteError(DhlbError, ValueError):
+    """Coordinates or values contain NaN or infinity."""
+
+
+class MeshParseError(DhlbError, ValueError):
+    """A file cannot be parsed; the message names the file and the line."""
+
+    def __init__(self, message: str, path: str | None = None, line: int | None = None):
+        where = ""
+        if path is not None:
+            where = f"{path}"
+            if line is not None:
+                where += f", line {line}"
+            where += ": "
+        super().__init__(where + message)
+        self.path = path
+        self.line = line
+
+
+class NonManifoldError(DhlbError, ValueError):
+    """The complex is not a (pseudo)manifold where one is required."""
+
+
+class NonOrientableError(DhlbError, ValueError):
+    """The complex is not orientable where an orientation is required."""
+
+
+class InconsistentOrientationError(DhlbError, ValueError):
+    """Top simplices are not consistently oriented (a shared face is traversed twice the same way)."""
+
+
+class DegenerateSimplexError(DhlbError, ValueError):
+    """A simplex has zero (or numerically zero) volume."""
+
+
+class UnreferencedVertexError(DhlbError, ValueError):
+    """A vertex is referenced by no simplex where every vertex must be used."""
+
+
+class NotClosedError(DhlbError, ValueError):
+    """A form that must be closed is not; the message names a violating simplex or cycle."""
+
+
+class NotExactError(DhlbError, ValueError):
+    """A closed form is not exact; the message names a cycle with a nonzero period."""
+
+
+class NotAPathError(DhlbError, ValueError):
+    """A vertex sequence is not an edge path of the complex."""
+
+
+class InvalidConnectionError(DhlbError, ValueError):
+    """Transport matrices are not invertible / unitary / orthogonal, or have the wrong shape."""
+
+
+class CurvatureMismatchError(DhlbError, ValueError):
+    """A curvature 2-form does not match the holonomy of the connection."""
+
+
+class IntegralityError(DhlbError, ValueError):
+    """A 2-form is not integral (Weil): some integer 2-cycle has a period outside 2πZ."""
+
+    def __init__(self, message: str, cycle=None, defect: float | None = None):
+        super().__init__(message)
+        self.cycle = cycle
+        self.defect = defect
+
+
+class SectionZeroError(DhlbError, ValueError):
+    """A section vanishes at a vertex where a nowhere-vanishing section is required."""
+
+
+class InvalidMetricError(DhlbError, ValueError):
+    """A discrete metric is not positive definite on some simplex."""
+
+
+class ConvergenceError(DhlbError, RuntimeError):
+    """An iterative solver did not reach its tolerance."""
+
+
+class DhlbWarning(UserWarning):
+    """Base class of dhlb's warnings."""
+
+
+class UnreferencedVertexWarning(DhlbWarning):
+    """Vertices that no simplex uses were dropped (the map to the input indices is kept)."""

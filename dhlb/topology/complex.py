@@ -1,0 +1,364 @@
+"""Abstract simplicial complexes of any dimension: storage, look-up, boundary maps.
+
+The structural operations (star, link, skeleta, components, subdivision) live in
+:mod:`dhlb.topology.structure`, the manifold and orientation checks in
+:mod:`dhlb.topology.manifold`, integer homology in :mod:`dhlb.topology.homology`;
+:class:`SimplicialComplex` exposes them as methods.
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+
+import numpy as np
+import scipy.sparse as sp
+
+from dhlb.errors import InvalidSimplexError, SimplexNotFoundError
+from dhlb.topology import _keys
+from dhlb.topology._input import parse_rows, parse_simplices
+
+__all__ = ["SimplicialComplex"]
+
+
+class SimplicialComplex:
+    """A finite abstract simplicial complex, closed under taking faces.
+
+    Parameters
+    ----------
+    simplices : iterable of vertex tuples, or int array of shape (m, k+1)
+        The generating simplices (mixed dimensions allowed). All their faces are added.
+        Vertex labels are non-negative integers; they are compacted to ``0 .. N-1`` in
+        increasing order and the input labels are kept in :attr:`vertex_labels`.
+
+    Notes
+    -----
+    The k-simplices are stored as sorted rows in lexicographic order (see
+    ``docs/conventions.md``); the row number is the simplex's index everywhere.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1, 2), (2, 3)])
+    >>> X.counts
+    (4, 4, 1)
+    >>> X.simplices(1)
+    array([[0, 1],
+           [0, 2],
+           [1, 2],
+           [2, 3]])
+    >>> X.boundary(2).toarray().ravel().tolist()
+    [1, -1, 1, 0]
+    >>> X.euler_characteristic
+    1
+    """
+
+    def __init__(self, simplices):
+        blocks = parse_simplices(simplices)
+        labels = np.unique(np.concatenate([b.ravel() for b in blocks.values()]))
+        self._labels = labels
+        self._labels.setflags(write=False)
+        n = labels.size
+        self._n = n
+        blocks = {k: np.searchsorted(labels, b).astype(np.int64) for k, b in blocks.items()}
+        self._dim = max(blocks)
+        self._rows: list[np.ndarray] = [np.arange(n, dtype=np.int64).reshape(-1, 1)]
+        self._key_list: list[np.ndarray] = [np.arange(n, dtype=np.int64)]
+        for k in range(1, self._dim + 1):
+            cands = []
+            for m, block in blocks.items():
+                if m < k:
+                    continue
+                if m == k:
+                    cands.append(block)
+                    continue
+                for cols in _keys.combination_columns(m + 1, k + 1):
+                    cands.append(block[:, cols])
+            cand = np.concatenate(cands) if len(cands) > 1 else cands[0]
+            keys = self._key_of(k, cand)
+            ukeys, first = np.unique(keys, return_index=True)
+            rows = cand[first]
+            rows.setflags(write=False)
+            self._rows.append(rows)
+            self._key_list.append(ukeys)
+        self._rows[0].setflags(write=False)
+
+    # ------------------------------------------------------------------ keys and look-up
+    def _key_of(self, k: int, rows: np.ndarray) -> np.ndarray:
+        """Keys of sorted k-rows whose (k-1)-prefix faces are in the complex."""
+        if k <= 1:
+            return _keys.row_keys(rows, None, self._n)
+        prefix = self._row_index(k - 1, rows[:, :k])
+        return prefix * self._n + rows[:, k]
+
+    def _row_index(self, k: int, rows: np.ndarray, missing: str = "raise") -> np.ndarray:
+        """Row indices of sorted k-rows (compact labels); -1 for missing if ``missing='mark'``."""
+        if k == 0:
+            return rows[:, 0].astype(np.int64)
+        if k == 1:
+            keys = rows[:, 0] * self._n + rows[:, 1]
+        else:
+            prefix = self._row_index(k - 1, rows[:, :k], missing="mark")
+            keys = np.where(prefix >= 0, prefix * self._n + rows[:, k], -1)
+        pos, found = _keys.lookup(self._key_list[k], keys)
+        if missing == "mark":
+            return np.where(found, pos, -1)
+        if not np.all(found):
+            bad = rows[np.argmin(found)]
+            shown = tuple(int(v) for v in self._labels[bad])
+            raise SimplexNotFoundError(f"the {k}-simplex {shown} (input labels) is not in the complex")
+        return pos
+
+    def _compact_rows(self, rows, k: int | None) -> tuple[np.ndarray, np.ndarray]:
+        """Validated rows in compact labels (sorted) and the original row parity."""
+        arr = parse_rows(rows, k)
+        if arr.shape[0] == 0:
+            return arr.reshape(0, arr.shape[1] if arr.ndim == 2 else 0), np.zeros(0, np.int64)
+        srt = np.sort(arr, axis=1)
+        if srt.shape[1] > 1 and np.any(srt[:, 1:] == srt[:, :-1]):
+            bad = arr[np.nonzero(np.any(srt[:, 1:] == srt[:, :-1], axis=1))[0][0]]
+            raise InvalidSimplexError(f"the simplex {tuple(int(v) for v in bad)} repeats a vertex")
+        return srt, _keys.permutation_parity(arr)
+
+    def _labels_to_compact(self, srt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        pos, found = _keys.lookup(self._labels, srt.ravel())
+        return pos.reshape(srt.shape), found.reshape(srt.shape).all(axis=1)
+
+    def index(self, k: int, rows) -> np.ndarray:
+        """Row indices in :meth:`simplices` of k-simplices given by input vertex labels.
+
+        The vertices of each row may be in any order.
+
+        Examples
+        --------
+        >>> X = SimplicialComplex([(0, 1, 2)])
+        >>> X.index(1, [(2, 1), (0, 1)]).tolist()
+        [2, 0]
+        """
+        srt, _ = self._compact_rows(rows, k)
+        if srt.shape[0] == 0:
+            return np.zeros(0, np.int64)
+        if k > self._dim:
+            raise SimplexNotFoundError(f"the complex has dimension {self._dim}; it has no {k}-simplices")
+        comp, ok = self._labels_to_compact(srt)
+        if not np.all(ok):
+            bad = srt[np.argmin(ok)]
+            raise SimplexNotFoundError(f"the {k}-simplex {tuple(int(v) for v in bad)} is not in the complex (unknown vertex)")
+        return self._row_index(k, comp)
+
+    def contains(self, k: int, rows) -> np.ndarray:
+        """Boolean mask: which of the given k-simplices (input labels) belong to the complex."""
+        srt, _ = self._compact_rows(rows, k)
+        if srt.shape[0] == 0 or k > self._dim:
+            return np.zeros(srt.shape[0], bool)
+        comp, ok = self._labels_to_compact(srt)
+        out = np.zeros(srt.shape[0], bool)
+        if np.any(ok):
+            out[ok] = self._row_index(k, comp[ok], missing="mark") >= 0
+        return out
+
+    @staticmethod
+    def orientation_of(rows) -> np.ndarray:
+        """+1/-1 per row: the orientation of the vertex order relative to the canonical (sorted) one.
+
+        Examples
+        --------
+        >>> SimplicialComplex.orientation_of([(0, 1, 2), (1, 0, 2), (2, 0, 1)]).tolist()
+        [1, -1, 1]
+        """
+        arr = parse_rows(rows)
+        return _keys.permutation_parity(arr)
+
+    # ------------------------------------------------------------------ basic data
+    @property
+    def dim(self) -> int:
+        """Dimension: the largest k with a k-simplex."""
+        return self._dim
+
+    @property
+    def n_vertices(self) -> int:
+        """Number of vertices N (they are labelled ``0 .. N-1`` internally)."""
+        return self._n
+
+    @property
+    def vertex_labels(self) -> np.ndarray:
+        """Input label of each compact vertex, increasing (read-only)."""
+        return self._labels
+
+    def simplices(self, k: int) -> np.ndarray:
+        """The k-simplices as sorted rows in lexicographic order, shape ``(n_k, k+1)`` (read-only)."""
+        if k < 0:
+            raise ValueError(f"k must be non-negative, got {k}")
+        if k > self._dim:
+            return np.zeros((0, k + 1), np.int64)
+        return self._rows[k]
+
+    def n_simplices(self, k: int) -> int:
+        """Number of k-simplices (0 above the dimension)."""
+        return 0 if k > self._dim or k < 0 else self._rows[k].shape[0]
+
+    @property
+    def counts(self) -> tuple[int, ...]:
+        """``(n_0, ..., n_dim)``."""
+        return tuple(r.shape[0] for r in self._rows)
+
+    @cached_property
+    def euler_characteristic(self) -> int:
+        """χ = Σ_k (−1)^k n_k."""
+        return int(sum((-1) ** k * c for k, c in enumerate(self.counts)))
+
+    # ------------------------------------------------------------------ incidence
+    def faces(self, k: int) -> np.ndarray:
+        """Shape ``(n_k, k+1)``: row in ``simplices(k-1)`` of the face omitting vertex ``i``."""
+        if k < 1 or k > self._dim:
+            raise ValueError(f"faces(k) needs 1 <= k <= dim = {self._dim}, got {k}")
+        return self._faces[k]
+
+    @cached_property
+    def _faces(self) -> dict[int, np.ndarray]:
+        out = {}
+        for k in range(1, self._dim + 1):
+            rows = self._rows[k]
+            f = np.empty(rows.shape, np.int64)
+            for i in range(k + 1):
+                if i == k:
+                    f[:, i] = self._key_list[k] // self._n if k > 1 else rows[:, 0]
+                else:
+                    f[:, i] = self._row_index(k - 1, np.delete(rows, i, axis=1))
+            f.setflags(write=False)
+            out[k] = f
+        return out
+
+    def boundary(self, k: int) -> sp.csr_matrix:
+        """∂_k as an integer sparse matrix of shape ``(n_{k-1}, n_k)``, entries ``(−1)^i``.
+
+        Examples
+        --------
+        >>> X = SimplicialComplex([(0, 1, 2, 3)])
+        >>> d2, d3 = X.boundary(2), X.boundary(3)
+        >>> abs(d2 @ d3).sum()
+        0
+        """
+        if k < 0 or k > self._dim + 1:
+            raise ValueError(f"boundary(k) needs 0 <= k <= dim + 1 = {self._dim + 1}, got {k}")
+        return self._boundaries[k]
+
+    def coboundary(self, k: int) -> sp.csr_matrix:
+        """d_k = ∂_{k+1}ᵀ, shape ``(n_{k+1}, n_k)``."""
+        return self.boundary(k + 1).T.tocsr()
+
+    @cached_property
+    def _boundaries(self) -> list[sp.csr_matrix]:
+        mats = [sp.csr_matrix((0, self.n_simplices(0)), dtype=np.int64)]
+        for k in range(1, self._dim + 1):
+            f = self._faces[k]
+            n_k = f.shape[0]
+            signs = np.tile((-1) ** np.arange(k + 1, dtype=np.int64), n_k)
+            cols = np.repeat(np.arange(n_k, dtype=np.int64), k + 1)
+            mats.append(sp.csc_matrix((signs, (f.ravel(), cols)), shape=(self.n_simplices(k - 1), n_k)).tocsr())
+        mats.append(sp.csr_matrix((self.n_simplices(self._dim), 0), dtype=np.int64))
+        return mats
+
+    def maximal_simplices(self) -> list[np.ndarray]:
+        """For each k, the k-simplices that are faces of no (k+1)-simplex."""
+        out = []
+        for k in range(self._dim + 1):
+            if k == self._dim:
+                out.append(self._rows[k])
+            else:
+                used = np.zeros(self.n_simplices(k), bool)
+                used[self._faces[k + 1].ravel()] = True
+                out.append(self._rows[k][~used])
+        return out
+
+    @property
+    def is_pure(self) -> bool:
+        """True if every maximal simplex has dimension :attr:`dim`."""
+        return all(m.shape[0] == 0 for m in self.maximal_simplices()[:-1])
+
+
+    # ------------------------------------------------------------------ delegated operations
+    # Implemented in sibling modules (one room per concern); these are thin entry points.
+    def skeleton(self, k: int) -> "SimplicialComplex":
+        """The k-skeleton: all simplices of dimension <= k (see :func:`dhlb.topology.structure.skeleton`)."""
+        from dhlb.topology.structure import skeleton
+
+        return skeleton(self, k)
+
+    def star(self, k: int, index: int):
+        """Star of the k-simplex with row ``index`` (see :func:`dhlb.topology.structure.star`)."""
+        from dhlb.topology.structure import star
+
+        return star(self, k, index)
+
+    def link(self, k: int, index: int):
+        """Link of the k-simplex with row ``index`` (see :func:`dhlb.topology.structure.link`)."""
+        from dhlb.topology.structure import link
+
+        return link(self, k, index)
+
+    def connected_components(self):
+        """Component label per vertex (see :func:`dhlb.topology.structure.connected_components`)."""
+        from dhlb.topology.structure import connected_components
+
+        return connected_components(self)
+
+    def boundary_complex(self):
+        """The boundary subcomplex (see :func:`dhlb.topology.structure.boundary_complex`)."""
+        from dhlb.topology.structure import boundary_complex
+
+        return boundary_complex(self)
+
+    def barycentric_subdivision(self):
+        """Barycentric subdivision (see :func:`dhlb.topology.structure.barycentric_subdivision`)."""
+        from dhlb.topology.structure import barycentric_subdivision
+
+        return barycentric_subdivision(self)
+
+    def is_pseudomanifold(self) -> bool:
+        """See :func:`dhlb.topology.manifold.is_pseudomanifold`."""
+        from dhlb.topology.manifold import is_pseudomanifold
+
+        return is_pseudomanifold(self)
+
+    def is_manifold(self) -> bool:
+        """See :func:`dhlb.topology.manifold.is_manifold`."""
+        from dhlb.topology.manifold import is_manifold
+
+        return is_manifold(self)
+
+    def is_orientable(self) -> bool:
+        """See :func:`dhlb.topology.manifold.is_orientable`."""
+        from dhlb.topology.manifold import is_orientable
+
+        return is_orientable(self)
+
+    def orientation(self) -> np.ndarray:
+        """±1 per top simplex, a consistent orientation (see :func:`dhlb.topology.manifold.orientation`)."""
+        from dhlb.topology.manifold import orientation
+
+        return orientation(self)
+
+    def homology(self):
+        """Integer homology H_0..H_dim with torsion (see :func:`dhlb.topology.homology.homology`)."""
+        from dhlb.topology.homology import homology
+
+        return homology(self)
+
+    def cohomology(self, coefficients="Z"):
+        """Cohomology with coefficients Z, R, ("Z", m) or S1 (see :func:`dhlb.topology.homology.cohomology`)."""
+        from dhlb.topology.homology import cohomology
+
+        return cohomology(self, coefficients)
+
+    # ------------------------------------------------------------------ dunder
+    def __repr__(self) -> str:
+        return f"SimplicialComplex(dim={self._dim}, counts={self.counts})"
+
+    def __eq__(self, other) -> bool:
+        if not isinstance(other, SimplicialComplex):
+            return NotImplemented
+        if self.counts != other.counts or not np.array_equal(self._labels, other._labels):
+            return False
+        return all(np.array_equal(a, b) for a, b in zip(self._rows, other._rows))
+
+    __hash__ = None  # mutable-free but array-valued: compare, don't hash
