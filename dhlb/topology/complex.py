@@ -235,7 +235,7 @@ class SimplicialComplex:
         --------
         >>> X = SimplicialComplex([(0, 1, 2, 3)])
         >>> d2, d3 = X.boundary(2), X.boundary(3)
-        >>> abs(d2 @ d3).sum()
+        >>> int(abs(d2 @ d3).sum())
         0
         """
         if k < 0 or k > self._dim + 1:
