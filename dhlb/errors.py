@@ -41,6 +41,7 @@ __all__ = [
     "ConvergenceError",
     "UnreferencedVertexWarning",
     "DhlbWarning",
+    "InvalidCochainError",
 ]
 
 
@@ -153,3 +154,34 @@ class DhlbWarning(UserWarning):
 
 class UnreferencedVertexWarning(DhlbWarning):
     """Vertices that no simplex uses were dropped (the map to the input indices is kept)."""
+
+
+class ShapeError(DhlbError, ValueError):
+    """An array or matrix has the wrong shape or size (e.g. a non-square matrix, a length mismatch)."""
+
+
+class InvalidOperatorError(DhlbError, ValueError):
+    """A matrix is not Hermitian, not (semi)definite, or singular where the operation needs otherwise."""
+
+
+__all__ += ["ShapeError", "InvalidOperatorError"]
+
+
+class InvalidMatrixError(DhlbError, ValueError):
+    """A matrix or vector argument has the wrong shape, a non-integer entry, or does not fit the operation
+    (e.g. boundary matrices whose product is not zero)."""
+
+
+__all__.append("InvalidMatrixError")
+
+
+class InvalidParameterError(DhlbError, ValueError):
+    """A numeric parameter (a dimension, a grid size, a lens-space pair, ...) is out of its range."""
+
+
+__all__.append("InvalidParameterError")
+
+
+class InvalidCochainError(DhlbError, ValueError):
+    """Values of a discrete form or chain do not fit it: wrong length, not integers (group Z),
+    zero (group C*), an unknown coefficient group, or forms on different complexes/degrees combined."""

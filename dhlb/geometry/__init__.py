@@ -1,0 +1,5 @@
+"""Layer 2: Euclidean simplicial complexes (discrete metrics, volumes, cotangent weights, P1 matrices)."""
+from dhlb.geometry.euclidean import EuclideanComplex
+from dhlb.geometry.simplex import SimplexStack, metric_from_squared_lengths, squared_lengths_from_points
+
+__all__ = ["EuclideanComplex", "SimplexStack", "metric_from_squared_lengths", "squared_lengths_from_points"]

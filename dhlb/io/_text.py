@@ -11,16 +11,19 @@ import os
 
 import numpy as np
 
-from dhlb.errors import MeshParseError, NonFiniteError
+from dhlb.errors import InvalidSimplexError, MeshParseError, NonFiniteError
 
 __all__ = [
     "read_text",
     "content_lines",
     "to_array",
+    "to_flat_int",
     "check_finite",
     "check_cells",
     "fan_triangulate",
     "format_number_rows",
+    "prepare_write",
+    "normalize_cells",
 ]
 
 
@@ -94,6 +97,29 @@ def to_array(rows, lines, dtype, path, what: str) -> np.ndarray:
                 raise MeshParseError(f"cannot read {tok!r} as {kind} {what}", path, int(line)) from None
             if kind == "an integer" and abs(int(tok)) >= 2**63:
                 raise MeshParseError(f"{what} {tok} is too large", path, int(line))
+    raise MeshParseError(f"cannot read the {what}s", path)  # pragma: no cover - defensive
+
+
+def to_flat_int(rows, lines, path, what: str) -> np.ndarray:
+    """Concatenate rows of integer tokens (lengths may differ) into one int64 array.
+
+    Examples
+    --------
+    >>> to_flat_int([["1", "2", "3"], ["4", "5"]], [1, 2], "f.txt", "index").tolist()
+    [1, 2, 3, 4, 5]
+    >>> to_flat_int([["1", "2", "3"], ["4", "5.5"]], [1, 2], "f.txt", "index")
+    Traceback (most recent call last):
+    ...
+    dhlb.errors.MeshParseError: f.txt, line 2: cannot read '5.5' as an integer index
+    """
+    flat = [t for row in rows for t in row]
+    if not flat:
+        return np.zeros(0, dtype=np.int64)
+    try:
+        return np.array(flat, dtype=np.int64)
+    except (ValueError, OverflowError, TypeError):
+        for row, line in zip(rows, lines):
+            to_array([row], [line], np.int64, path, what)
     raise MeshParseError(f"cannot read the {what}s", path)  # pragma: no cover - defensive
 
 
@@ -202,10 +228,81 @@ def fan_triangulate(flat: np.ndarray, sizes: np.ndarray):
     return tris, polygon
 
 
-def format_number_rows(array: np.ndarray, fmt: str) -> str:
-    """Format a 2-d array as text, one row per line, every entry with ``fmt`` (``'%.17g'``, ``'%d'``)."""
+def format_number_rows(array: np.ndarray, fmt: str, prefix: str = "") -> str:
+    """Format a 2-d array as text, one row per line, every entry with ``fmt``.
+
+    ``'%r'`` writes floats exactly (shortest round-trip representation), ``'%d'`` integers.
+
+    Examples
+    --------
+    >>> format_number_rows(np.array([[0.1, 2.0]]), "%r", prefix="v ")
+    'v 0.1 2.0\\n'
+    """
     array = np.asarray(array)
     if array.shape[0] == 0:
         return ""
-    row_fmt = " ".join([fmt] * array.shape[1]) + "\n"
+    row_fmt = prefix + " ".join([fmt] * array.shape[1]) + "\n"
     return "".join(row_fmt % tuple(row) for row in array.tolist())
+
+
+def prepare_write(V, F, min_corners: int = 1) -> tuple[np.ndarray, np.ndarray]:
+    """Validate arrays handed to a writer; return float64 ``(n, 3)`` and int64 ``(m, k)`` arrays.
+
+    Raises :class:`~dhlb.errors.InvalidSimplexError` on a wrong shape, dtype or index range and
+    :class:`~dhlb.errors.NonFiniteError` on NaN/inf coordinates, so that nothing unreadable is
+    ever written.
+
+    Examples
+    --------
+    >>> prepare_write([[0, 0, 0], [1, 0, 0]], [[0, 2]])
+    Traceback (most recent call last):
+    ...
+    dhlb.errors.InvalidSimplexError: cell indices must lie in 0 .. 1 (the vertex rows), found 0 .. 2
+    """
+    V = np.asarray(V, dtype=np.float64)
+    F = np.asarray(F)
+    if V.ndim != 2 or V.shape[1] != 3:
+        raise InvalidSimplexError(f"vertex array must have shape (n, 3), got {V.shape}")
+    check_finite(V, "vertex array")
+    if F.ndim != 2 or F.shape[1] < min_corners:
+        raise InvalidSimplexError(f"cell array must have shape (m, k) with k >= {min_corners}, got {F.shape}")
+    if F.size and not np.issubdtype(F.dtype, np.integer):
+        raise InvalidSimplexError(f"cell array must hold integers, got dtype {F.dtype}")
+    F = F.astype(np.int64)
+    if F.size and (F.min() < 0 or F.max() >= len(V)):
+        raise InvalidSimplexError(
+            f"cell indices must lie in 0 .. {len(V) - 1} (the vertex rows), found {F.min()} .. {F.max()}"
+        )
+    return V, F
+
+
+def normalize_cells(V, cells, dims=(0, 1, 2, 3)) -> tuple[np.ndarray, dict[int, np.ndarray]]:
+    """Validate writer input: ``cells`` is one ``(m, k+1)`` array or a dict ``{k: array}``.
+
+    Examples
+    --------
+    >>> V, blocks = normalize_cells(np.eye(3), [[0, 1, 2]])
+    >>> {k: b.tolist() for k, b in blocks.items()}
+    {2: [[0, 1, 2]]}
+    """
+    if isinstance(cells, dict):
+        items = list(cells.items())
+    else:
+        arr = np.asarray(cells)
+        if arr.ndim != 2:
+            raise InvalidSimplexError(f"cells must be an (m, k+1) array or a dict {{k: array}}, got shape {arr.shape}")
+        items = [(arr.shape[1] - 1, arr)]
+    V = np.asarray(V, dtype=np.float64)
+    blocks = {}
+    for k, T in items:
+        T = np.asarray(T)
+        if T.size == 0:
+            T = T.reshape(0, k + 1).astype(np.int64)
+        if int(k) not in dims:
+            raise InvalidSimplexError(f"this format stores simplices of dimension {dims}, not {k}")
+        if T.ndim != 2 or T.shape[1] != k + 1:
+            raise InvalidSimplexError(f"{k}-simplices need an (m, {k + 1}) array, got shape {T.shape}")
+        V, blocks[int(k)] = prepare_write(V, T, min_corners=k + 1)
+    if not items:
+        V, _ = prepare_write(V, np.zeros((0, 1), np.int64))
+    return V, blocks

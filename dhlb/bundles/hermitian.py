@@ -1,0 +1,311 @@
+"""Discrete hermitian line bundles with curvature (seed part 3, §7–§8; Definition 8).
+
+Conventions (``docs/conventions.md``): one unit complex ``r_ij`` per canonical edge ``i < j``
+with ``η_ij(X_i) = r_ij X_j``; a section ``ψ_i = z_i X_i`` is parallel along ``ij`` iff
+``z_j = r_ij z_i``.  The curvature is one real ``Ω`` per canonical triangle ``i < j < k`` with
+``exp(iΩ_ijk) = r_ij r_jk r_ki`` and ``dΩ = 0``.
+
+Examples
+--------
+>>> import numpy as np
+>>> from dhlb import SimplicialComplex
+>>> from dhlb.bundles import HermitianLineBundle
+>>> X = SimplicialComplex([(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)])   # a 2-sphere
+>>> L = HermitianLineBundle(X, np.ones(6), [0, 0, 0, 2 * np.pi])
+>>> L.degree()            # the fundamental cycle is [1, -1, 1, -1]
+-1
+>>> L.index_form(np.ones(4)).tolist()
+[0, 0, 0, 1]
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+
+import numpy as np
+
+from dhlb.bundles import paths
+from dhlb.bundles._util import simplex_name, wrap_angle
+from dhlb.bundles.vector_bundle import VectorBundle
+from dhlb.errors import (
+    CurvatureMismatchError,
+    IntegralityError,
+    InvalidConnectionError,
+    NonFiniteError,
+    NonManifoldError,
+    NotClosedError,
+)
+
+__all__ = ["HermitianLineBundle"]
+
+
+def _real_vector(values, n: int, what: str) -> np.ndarray:
+    arr = np.asarray(values)
+    if np.iscomplexobj(arr):
+        if np.any(arr.imag != 0):
+            raise InvalidConnectionError(f"{what} must be real")
+        arr = arr.real
+    try:
+        arr = arr.astype(np.float64).reshape(-1)
+    except (TypeError, ValueError):
+        raise InvalidConnectionError(f"{what} must be a real array of length {n}") from None
+    if arr.size != n:
+        raise InvalidConnectionError(f"{what} must have length {n}, got {arr.size}")
+    if not np.all(np.isfinite(arr)):
+        raise NonFiniteError(f"{what} contains NaN or infinity (entry {int(np.argmin(np.isfinite(arr)))})")
+    return arr
+
+
+class HermitianLineBundle:
+    """A hermitian line bundle with connection ``r`` and curvature ``Ω``.
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+    connection : (n_1,) complex, unit modulus, one per canonical edge
+    curvature : (n_2,) real, one per canonical triangle
+    atol : float
+        Tolerance for ``|r| = 1``, ``exp(iΩ) = holonomy`` (mod 2π, relative to ``max(1, |Ω|)``)
+        and ``dΩ = 0``.
+
+    Raises
+    ------
+    InvalidConnectionError
+        wrong length or a non-unit ``r`` (names the edge).
+    CurvatureMismatchError
+        ``exp(iΩ_t) ≠ r_ij r_jk r_ki`` (names the triangle and the mismatch).
+    NotClosedError
+        ``dΩ ≠ 0`` on a tetrahedron (names it).
+    """
+
+    def __init__(self, X, connection, curvature, *, atol: float = 1e-8):
+        self._X = X
+        self._atol = float(atol)
+        n1, n2 = X.n_simplices(1), X.n_simplices(2)
+        r = np.asarray(connection)
+        try:
+            r = r.astype(np.complex128).reshape(-1)
+        except (TypeError, ValueError):
+            raise InvalidConnectionError(f"the connection must be a complex array of length n_1 = {n1}") from None
+        if r.size != n1:
+            raise InvalidConnectionError(f"the connection needs one unit complex number per edge: length n_1 = {n1}, got {r.size}")
+        if not np.all(np.isfinite(r)):
+            raise NonFiniteError(f"the connection contains NaN or infinity (edge {simplex_name(X, 1, int(np.argmin(np.isfinite(r))))})")
+        dev = np.abs(np.abs(r) - 1.0)
+        if np.any(dev > atol):
+            e = int(np.argmax(dev))
+            raise InvalidConnectionError(
+                f"the connection on edge {simplex_name(X, 1, e)} is not unitary: |r| = {abs(r[e]):.6g}; "
+                "a hermitian connection needs |r_ij| = 1"
+            )
+        r = r / np.abs(r)
+        Om = _real_vector(curvature, n2, "the curvature")
+        if n2:
+            f = X.faces(2)
+            hol = np.angle(r[f[:, 2]] * r[f[:, 0]] * np.conj(r[f[:, 1]]))
+            mis = wrap_angle(Om - hol)
+            badc = np.abs(mis) > atol * np.maximum(1.0, np.abs(Om))
+            if np.any(badc):
+                t = int(np.argmax(badc))
+                raise CurvatureMismatchError(
+                    f"triangle {simplex_name(X, 2, t)}: exp(iΩ) does not match the holonomy r_ij r_jk r_ki of "
+                    f"the connection: Ω = {Om[t]:.6g}, holonomy angle = {hol[t]:.6g}, mismatch = {mis[t]:.3g} (mod 2π)"
+                )
+        if X.dim >= 3 and X.n_simplices(3):
+            dOm = X.coboundary(2) @ Om
+            scale = np.abs(X.coboundary(2)) @ np.abs(Om)
+            badd = np.abs(dOm) > atol * np.maximum(1.0, scale)
+            if np.any(badd):
+                s = int(np.argmax(badd))
+                raise NotClosedError(
+                    f"the curvature is not closed: dΩ = {dOm[s]:.6g} on the tetrahedron {simplex_name(X, 3, s)}"
+                )
+        r.setflags(write=False)
+        Om.setflags(write=False)
+        self._r = r
+        self._Om = Om
+
+    # ------------------------------------------------------------------ construction
+    @classmethod
+    def from_angles(cls, X, angles, curvature, **kw) -> "HermitianLineBundle":
+        """From connection angles ``ω_ij`` (``r = exp(iω)``)."""
+        w = _real_vector(angles, X.n_simplices(1), "the connection angles")
+        return cls(X, np.exp(1j * w), curvature, **kw)
+
+    @classmethod
+    def trivial(cls, X, **kw) -> "HermitianLineBundle":
+        """The product bundle: ``r = 1``, ``Ω = 0``."""
+        return cls(X, np.ones(X.n_simplices(1)), np.zeros(X.n_simplices(2)), **kw)
+
+    # ------------------------------------------------------------------ data
+    @property
+    def X(self):
+        return self._X
+
+    @property
+    def connection(self) -> np.ndarray:
+        """``(n_1,)`` unit complex ``r_ij`` per canonical edge (read-only)."""
+        return self._r
+
+    @property
+    def curvature(self) -> np.ndarray:
+        """``(n_2,)`` real curvature Ω per canonical triangle (read-only)."""
+        return self._Om
+
+    @property
+    def atol(self) -> float:
+        return self._atol
+
+    @cached_property
+    def connection_angles(self) -> np.ndarray:
+        """The S¹-valued connection form ``ω = angle(r)`` in (−π, π]."""
+        return wrap_angle(np.angle(self._r))
+
+    def holonomy_angles(self) -> np.ndarray:
+        """``(dω)`` wrapped to (−π, π]: the angle of ``r_ij r_jk r_ki`` per triangle."""
+        return wrap_angle(self._X.coboundary(1) @ self.connection_angles)
+
+    def vector_bundle(self) -> VectorBundle:
+        """The rank-1 complex hermitian :class:`VectorBundle` with transports ``r``."""
+        return VectorBundle(self._X, self._r, "C", metric=True, atol=self._atol)
+
+    def __repr__(self) -> str:
+        return f"HermitianLineBundle(X={self._X!r})"
+
+    # ------------------------------------------------------------------ operations
+    def gauge(self, g) -> "HermitianLineBundle":
+        """New frames ``X'_i = g_i X_i`` (``g`` unit complex per vertex): ``r'_ij = conj(g_j) r_ij g_i``."""
+        g = np.asarray(g, dtype=np.complex128).reshape(-1)
+        if g.size != self._X.n_vertices or np.any(np.abs(np.abs(g) - 1) > self._atol):
+            raise InvalidConnectionError(f"a gauge transformation is one unit complex number per vertex ({self._X.n_vertices})")
+        E = self._X.simplices(1)
+        return HermitianLineBundle(self._X, np.conj(g[E[:, 1]]) * self._r * g[E[:, 0]], self._Om, atol=self._atol)
+
+    def _check_same(self, other) -> None:
+        if not isinstance(other, HermitianLineBundle) or (other.X is not self._X and other.X != self._X):
+            raise InvalidConnectionError("both line bundles must live over the same complex")
+
+    def tensor(self, other: "HermitianLineBundle") -> "HermitianLineBundle":
+        """``L ⊗ L'``: connections multiply, curvatures add."""
+        self._check_same(other)
+        return HermitianLineBundle(self._X, self._r * other._r, self._Om + other._Om, atol=self._atol)
+
+    __mul__ = tensor
+
+    def dual(self) -> "HermitianLineBundle":
+        """``L*``: conjugate connection, curvature ``−Ω``."""
+        return HermitianLineBundle(self._X, np.conj(self._r), -self._Om, atol=self._atol)
+
+    def power(self, n: int) -> "HermitianLineBundle":
+        """``L^{⊗n}`` for an integer ``n`` (negative: powers of the dual)."""
+        n = int(n)
+        return HermitianLineBundle(self._X, self._r**n, n * self._Om, atol=self._atol)
+
+    # ------------------------------------------------------------------ classification
+    @cached_property
+    def _forest(self) -> paths.SpanningForest:
+        return paths.spanning_forest(self._X)
+
+    def class_angles(self) -> np.ndarray:
+        """The class in Hom(ker ∂₁, S¹): holonomy angle around each fundamental cycle of the BFS forest."""
+        T = self._forest
+        w = self.connection_angles
+        child = np.nonzero(T.parent >= 0)[0]
+        step = np.zeros(self._X.n_vertices)
+        step[child] = np.where(T.parent[child] < child, 1.0, -1.0) * w[T.parent_edge[child]]
+        phi = paths.tree_accumulate(T, step, np.add, 0.0)
+        E = self._X.simplices(1)[T.nontree]
+        return wrap_angle(phi[E[:, 0]] + w[T.nontree] - phi[E[:, 1]])
+
+    def holonomy(self, cycle) -> float:
+        """Holonomy angle ``Σ c_e ω_e`` (mod 2π) around an integer 1-cycle ``c``.
+
+        Raises
+        ------
+        NotClosedError
+            if ``c`` is not a cycle (names a vertex of its boundary).
+        """
+        c = self._chain(cycle, 1)
+        return float(wrap_angle(c @ self.connection_angles))
+
+    def find_isomorphism(self, other: "HermitianLineBundle"):
+        """Unit ``g`` per vertex with ``other = self.gauge(g)``, or None (needs equal curvature)."""
+        self._check_same(other)
+        if not np.allclose(self._Om, other._Om, rtol=0, atol=self._atol * max(1.0, float(np.max(np.abs(self._Om), initial=0)))):
+            return None
+        d = wrap_angle(self.class_angles() - other.class_angles())
+        if np.any(np.abs(d) > self._atol * 100):
+            return None
+        # gauge: r'_ij = conj(g_j) r_ij g_i  <=>  g_j = g_i r_ij / r'_ij along the tree
+        T = self._forest
+        child = np.nonzero(T.parent >= 0)[0]
+        ratio = self.connection_angles - other.connection_angles
+        step = np.zeros(self._X.n_vertices)
+        step[child] = np.where(T.parent[child] < child, 1.0, -1.0) * ratio[T.parent_edge[child]]
+        return np.exp(1j * paths.tree_accumulate(T, step, np.add, 0.0))
+
+    def is_isomorphic(self, other: "HermitianLineBundle") -> bool:
+        """Isomorphic as bundles with curvature: equal Ω and equal class in Hom(ker ∂₁, S¹)."""
+        return self.find_isomorphism(other) is not None
+
+    # ------------------------------------------------------------------ curvature integrals
+    def _chain(self, chain, k: int) -> np.ndarray:
+        c = np.asarray(chain)
+        n = self._X.n_simplices(k)
+        if c.ndim != 1 or c.size != n or not (np.issubdtype(c.dtype, np.integer) or np.all(c == np.round(c))):
+            raise NotClosedError(f"a {k}-cycle is an integer vector of length n_{k} = {n}")
+        c = c.astype(np.int64)
+        b = self._X.boundary(k) @ c
+        if np.any(b != 0):
+            s = int(np.nonzero(b)[0][0])
+            raise NotClosedError(
+                f"the {k}-chain is not a cycle: its boundary has coefficient {int(b[s])} on {simplex_name(self._X, k - 1, s)}"
+            )
+        return c
+
+    def integrate_curvature(self, cycle) -> float:
+        """``∫_C Ω = Σ C_t Ω_t`` over an integral 2-cycle ``C`` (checked: ``∂C = 0``)."""
+        return float(self._chain(cycle, 2) @ self._Om)
+
+    def degree(self) -> int:
+        """``deg L = (1/2π) Σ_t o_t Ω_t`` over a closed oriented surface (``o = X.orientation()``).
+
+        Raises
+        ------
+        NonManifoldError
+            X is not a closed surface (names an edge with one triangle).
+        NonOrientableError
+            X is not orientable.
+        """
+        X = self._X
+        if X.dim != 2:
+            raise NonManifoldError(f"the degree is defined over closed oriented surfaces; X has dimension {X.dim}")
+        cnt = np.bincount(X.faces(2).ravel(), minlength=X.n_simplices(1))
+        if np.any(cnt == 1):
+            e = int(np.argmax(cnt == 1))
+            raise NonManifoldError(f"the degree needs a closed surface, but edge {simplex_name(X, 1, e)} lies in one triangle only")
+        o = X.orientation()
+        total = float(o @ self._Om) / (2 * np.pi)
+        deg = int(np.round(total))
+        if abs(total - deg) > 1e-6 * max(1.0, float(np.abs(self._Om).sum()) / (2 * np.pi)):
+            raise IntegralityError(f"∫Ω/2π = {total:.9g} is not an integer", cycle=o, defect=2 * np.pi * (total - deg))
+        return deg
+
+    def check_integrality(self) -> np.ndarray:
+        """Theorem 7: periods ``∫_C Ω / 2π`` over an integer basis of 2-cycles (see :func:`weil.check_integrality`)."""
+        from dhlb.bundles.weil import check_integrality
+
+        return check_integrality(self._X, self._Om, atol=self._atol)
+
+    # ------------------------------------------------------------------ sections and indices
+    def rotation_form(self, section) -> np.ndarray:
+        """Rotation form ξ of a nowhere-vanishing section (see :func:`dhlb.bundles.index.rotation_form`)."""
+        from dhlb.bundles.index import rotation_form
+
+        return rotation_form(self, section)
+
+    def index_form(self, section) -> np.ndarray:
+        """Index form ``(dξ + Ω)/2π`` as int64 per triangle (see :func:`dhlb.bundles.index.index_form`)."""
+        from dhlb.bundles.index import index_form
+
+        return index_form(self, section)

@@ -1,0 +1,221 @@
+"""Morphisms of discrete vector bundles: gauge, direct sum, tensor, dual, Hom, isomorphism search.
+
+Proposition 2 of the seed: ``f: E → F`` is a morphism iff ``f_j η_ij = θ_ij f_i`` on every
+edge, i.e. iff ``f`` is a parallel section of ``Hom(E, F) = F ⊗ E*``.  Theorem 2: E ≅ F iff
+their monodromy representations at a base vertex are conjugate; :func:`find_isomorphism`
+solves the linear intertwining equations ``M^F_g f = f M^E_g`` for ``f`` at the root of each
+component, picks an invertible solution and propagates it along the spanning tree.
+
+Matrices of ``Hom(E, F)`` are flattened row-major (``vec(f)[a K_E + b] = f[a, b]``); then
+``vec(θ f η⁻¹) = (θ ⊗ η⁻ᵀ) vec(f)``, which is the transport of ``F ⊗ E*``.
+
+Examples
+--------
+>>> import numpy as np
+>>> from dhlb import SimplicialComplex
+>>> from dhlb.bundles import VectorBundle, find_isomorphism
+>>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])
+>>> E = VectorBundle(X, [[[2.0]], [[1.0]], [[1.0]]])
+>>> F = E.gauge(np.array([1.0, 3.0, -1.0]))
+>>> f = find_isomorphism(E, F)
+>>> is_morphism(E, F, f), find_isomorphism(E, VectorBundle.trivial(X, 1)) is None
+(True, True)
+>>> E.tensor(E.dual()).is_trivial()
+True
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from dhlb.bundles._util import simplex_name
+from dhlb.bundles.vector_bundle import VectorBundle
+from dhlb.errors import ConvergenceError, InvalidConnectionError
+
+__all__ = [
+    "gauge",
+    "direct_sum",
+    "tensor",
+    "dual",
+    "hom",
+    "is_morphism",
+    "find_isomorphism",
+    "is_isomorphic",
+]
+
+
+def _vertex_matrices(E: VectorBundle, g, what: str) -> np.ndarray:
+    n0, K = E.X.n_vertices, E.rank
+    arr = np.asarray(g)
+    if arr.ndim == 1 and arr.shape[0] == n0 and K == 1:
+        arr = arr.reshape(n0, 1, 1)
+    if arr.shape != (n0, K, K):
+        raise InvalidConnectionError(f"{what} must have shape (n_0, K, K) = ({n0}, {K}, {K}), got {np.shape(g)}")
+    return E.ops.asarray(arr, what)
+
+
+def gauge(E: VectorBundle, g) -> VectorBundle:
+    """The gauge-transformed bundle ``η'_ij = g_j η_ij g_i⁻¹``; ``g`` is an isomorphism E → E'.
+
+    ``g`` has shape (n_0, K, K) (or (n_0,) for rank 1).  The result keeps ``metric=True``
+    only if every ``g_i`` is orthogonal / unitary.
+
+    Raises
+    ------
+    InvalidConnectionError
+        if some ``g_i`` is singular (names the vertex).
+    """
+    ops = E.ops
+    G = _vertex_matrices(E, g, "the gauge transformation")
+    Ginv, bad = ops.inv(G)
+    if np.any(bad):
+        v = int(np.argmax(bad))
+        raise InvalidConnectionError(f"the gauge transformation is singular at vertex {int(E.X.vertex_labels[v])}")
+    Ed = E.X.simplices(1)
+    eta = ops.matmul(G[Ed[:, 1]], ops.matmul(E.transports, Ginv[Ed[:, 0]]))
+    metric = E.metric and bool(np.all(ops.unitary_defect(G) <= 10 * E.atol))
+    return VectorBundle(E.X, eta, E.field, metric=metric, atol=E.atol)
+
+
+def _check_pair(E: VectorBundle, F: VectorBundle, same_rank: bool = False) -> None:
+    if E.X is not F.X and E.X != F.X:
+        raise InvalidConnectionError("the two bundles live over different complexes")
+    if E.ops.name != F.ops.name:
+        raise InvalidConnectionError(f"the two bundles have different fields: {E.field!r} and {F.field!r}")
+    if same_rank and E.rank != F.rank:
+        raise InvalidConnectionError(f"the two bundles have different ranks: {E.rank} and {F.rank}")
+
+
+def direct_sum(E: VectorBundle, F: VectorBundle) -> VectorBundle:
+    """``E ⊕ F`` with the block-diagonal connection ``η ⊕ θ``."""
+    _check_pair(E, F)
+    n1, a, b = E.X.n_simplices(1), E.rank, F.rank
+    eta = np.zeros((n1, a + b, a + b), E.ops.dtype)
+    eta[:, :a, :a] = E.transports
+    eta[:, a:, a:] = F.transports
+    return VectorBundle(E.X, eta, E.field, metric=E.metric and F.metric, atol=E.atol)
+
+
+def _kron(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    n, a, _ = A.shape
+    b = B.shape[1]
+    return np.einsum("eij,ekl->eikjl", A, B).reshape(n, a * b, a * b)
+
+
+def tensor(E: VectorBundle, F: VectorBundle) -> VectorBundle:
+    """``E ⊗ F`` with ``(η ⊗ θ)_ij = η_ij ⊗ θ_ij`` (Kronecker product, row-major)."""
+    _check_pair(E, F)
+    eta = _kron(E.transports, F.transports)
+    if E.ops.exact:
+        eta = eta % E.ops.p
+    return VectorBundle(E.X, eta, E.field, metric=E.metric and F.metric, atol=E.atol)
+
+
+def dual(E: VectorBundle) -> VectorBundle:
+    """``E*`` with the contragredient connection ``(η_ij⁻¹)ᵀ`` (complex-linear dual)."""
+    return VectorBundle(E.X, np.swapaxes(E.inverse_transports, 1, 2), E.field, metric=E.metric, atol=E.atol)
+
+
+def hom(E: VectorBundle, F: VectorBundle) -> VectorBundle:
+    """``Hom(E, F) = F ⊗ E*``; its parallel sections, reshaped to (K_F, K_E), are the morphisms."""
+    return tensor(F, dual(E))
+
+
+def is_morphism(E: VectorBundle, F: VectorBundle, f) -> bool:
+    """True if ``f`` (shape (n_0, K_F, K_E)) makes every edge diagram commute: ``f_j η_ij = θ_ij f_i``."""
+    _check_pair(E, F)
+    ops = E.ops
+    f = ops.asarray(np.asarray(f), "the morphism")
+    if f.shape != (E.X.n_vertices, F.rank, E.rank):
+        raise InvalidConnectionError(f"a morphism has shape (n_0, K_F, K_E) = {(E.X.n_vertices, F.rank, E.rank)}, got {f.shape}")
+    Ed = E.X.simplices(1)
+    lhs = ops.matmul(f[Ed[:, 1]], E.transports)
+    rhs = ops.matmul(F.transports, f[Ed[:, 0]])
+    return bool(np.all(ops.close(lhs, rhs)))
+
+
+def _invertible_in_span(ops, N: np.ndarray, K: int, rng, max_enumeration: int):
+    """An invertible K×K matrix in the column span of N (columns = vec(f)), or None."""
+    d = N.shape[1]
+    if not ops.exact:
+        for _ in range(12):
+            f = (N @ ops.random(d, rng)).reshape(K, K)
+            if ops.is_invertible(f):
+                return f
+        return None
+    p = ops.p
+    if p**d <= max_enumeration:
+        coeffs = np.indices((p,) * d).reshape(d, -1).T.astype(np.int64)
+        cand = (coeffs @ N.T % p).reshape(-1, K, K)
+        _, singular = ops.inv(cand)
+        ok = np.nonzero(~singular)[0]
+        return cand[ok[0]] if ok.size else None
+    for _ in range(200):
+        f = (N @ ops.random(d, rng) % p).reshape(K, K)
+        if ops.is_invertible(f):
+            return f
+    if p > K:
+        # Schwartz–Zippel: if an invertible solution exists, each trial fails with
+        # probability <= K/p, so 200 failures happen with probability <= (K/p)^200.
+        return None
+    raise ConvergenceError(
+        f"could not decide isomorphism over GF({p}): the intertwiner space has dimension {d} "
+        f"(p^d > {max_enumeration} is too large to enumerate) and p <= rank; raise max_enumeration"
+    )
+
+
+def find_isomorphism(E: VectorBundle, F: VectorBundle, *, rng=None, max_enumeration: int = 2**16):
+    """An isomorphism ``f: E → F`` (array (n_0, K, K), ``f_j η_ij = θ_ij f_i``) or ``None``.
+
+    Per component: solve ``M^F_g f = f M^E_g`` for all loop generators g (a linear system in
+    ``vec f``), take an invertible element of the solution space (random combination over R/C;
+    exhaustive enumeration over GF(p) when ``p^dim <= max_enumeration``, random search with
+    a Schwartz–Zippel bound otherwise) and propagate along the spanning tree
+    (``f_v = T^F_v f T^E_v⁻¹``).  The result is verified on every edge.
+
+    Raises
+    ------
+    InvalidConnectionError
+        if the bundles have different complexes, fields or ranks.
+    """
+    _check_pair(E, F, same_rank=True)
+    ops = E.ops
+    K = E.rank
+    rng = np.random.default_rng(0) if rng is None else rng
+    T = E.forest
+    ME, MF = E.monodromy_representation(), F.monodromy_representation()
+    comp_g = E._component_generators()
+    I = ops.eye(K)
+    roots = []
+    for c in range(T.n_components):
+        sel = comp_g == c
+        if not np.any(sel):
+            roots.append(I)
+            continue
+        A = (_kron(MF[sel], np.broadcast_to(I, MF[sel].shape)) - _kron(np.broadcast_to(I, ME[sel].shape), np.swapaxes(ME[sel], 1, 2))).reshape(-1, K * K)
+        if ops.exact:
+            A = A % ops.p
+        N = ops.nullspace(A)
+        if N.shape[1] == 0:
+            return None
+        f = _invertible_in_span(ops, N, K, rng, max_enumeration)
+        if f is None:
+            return None
+        roots.append(f)
+    roots = np.stack(roots).astype(ops.dtype)
+    TEinv, _ = ops.inv(E.tree_transports)
+    f = ops.matmul(F.tree_transports, ops.matmul(roots[T.component], TEinv))
+    return f if is_morphism(E, F, f) else None
+
+
+def is_isomorphic(E: VectorBundle, F: VectorBundle, **kwargs) -> bool:
+    """True if :func:`find_isomorphism` finds an isomorphism."""
+    return find_isomorphism(E, F, **kwargs) is not None
+
+
+def first_failing_edge(E: VectorBundle, F: VectorBundle, f) -> str | None:
+    """Name of the first edge whose diagram does not commute under ``f`` (None if all do)."""
+    ops = E.ops
+    Ed = E.X.simplices(1)
+    ok = ops.close(ops.matmul(f[Ed[:, 1]], E.transports), ops.matmul(F.transports, f[Ed[:, 0]]))
+    return None if np.all(ok) else simplex_name(E.X, 1, int(np.argmin(ok)))

@@ -1,0 +1,261 @@
+"""Weil's theorem for discrete hermitian line bundles (seed part 3, §7).
+
+* Theorem 7: the curvature of a hermitian line bundle is *integral*: ``∫_C Ω ∈ 2πZ`` for every
+  integer 2-cycle C.  :func:`check_integrality` tests this on an integer basis of ker ∂₂.
+* Theorem 8: every closed integral Ω is the curvature of some bundle.
+  :func:`line_bundle_with_curvature` constructs one (:mod:`dhlb.bundles._mod2pi`: collapses of
+  the complex plus a small Smith form) and keeps Ω exactly as given.
+* Remark 7: bundles with curvature Ω, up to isomorphism, form a torsor over
+  ``H¹(X; S¹) = Hom(H₁(X), S¹) ≅ (S¹)^{b₁} × ⊕ Z/d``.  :class:`BundlesWithCurvature` makes this
+  explicit: free part = holonomy angles around the free generators of H₁, torsion part = one
+  residue ``k mod d`` per torsion generator (holonomy ``h₀ + 2πk/d``, with ``h₀`` that of the base
+  bundle; for flat bundles ``h₀ = 0``).
+
+Integer basis of ker ∂₂: for 2-complexes in which every edge has at most two triangles it is
+read off the dual graph in ``O(n log n)`` (one fundamental cycle per closed orientable
+component); other 2-complexes use :func:`dhlb.topology.intlinalg.integer_kernel_basis`; with
+3-simplices, ``ker ∂₂ = im ∂₃ + ⟨H₂ generators⟩``, so the tetrahedron boundaries (``dΩ`` mod 2π)
+and the generators of :func:`dhlb.topology.homology.homology` are checked.
+
+Examples
+--------
+>>> import numpy as np
+>>> from dhlb.examples import projective_plane
+>>> X = projective_plane()
+>>> A, B = flat_line_bundles(X)                          # H¹(RP²; S¹) = Z/2
+>>> A.is_isomorphic(B), bundles_with_curvature(X, np.zeros(X.n_simplices(2))).torsion_orders
+(False, (2,))
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import scipy.sparse as sp
+
+from dhlb.bundles._mod2pi import solve_mod_2pi
+from dhlb.bundles._surface import surface_cycles
+from dhlb.bundles._util import simplex_name, wrap_angle
+from dhlb.bundles.hermitian import HermitianLineBundle, _real_vector
+from dhlb.errors import CurvatureMismatchError, IntegralityError, NotClosedError
+
+__all__ = [
+    "integer_cycle_basis",
+    "check_integrality",
+    "line_bundle_with_curvature",
+    "BundlesWithCurvature",
+    "bundles_with_curvature",
+    "flat_line_bundles",
+]
+
+
+def integer_cycle_basis(X):
+    """An integer basis of the 2-cycles to test, ``(n_2, ℓ)`` sparse int64.
+
+    For complexes without 3-simplices this is a Z-basis of ker ∂₂.  With 3-simplices it is
+    the list of H₂ generators (free and torsion); together with the tetrahedron boundaries
+    they generate ker ∂₂.
+    """
+    S = surface_cycles(X)
+    if S is not None:
+        return S.basis()
+    if X.dim == 2:
+        from dhlb.topology.intlinalg import integer_kernel_basis
+
+        return sp.csc_matrix(integer_kernel_basis(X.boundary(2).tocsc()), dtype=np.int64)
+    from dhlb.topology.homology import homology
+
+    return sp.csc_matrix(np.asarray(homology(X)[2].generators, dtype=np.int64))
+
+
+def _raise_defect(X, cycle, period, defect, what):
+    raise IntegralityError(
+        f"Ω is not integral: its integral over {what} is {period:.9g}, which is {defect:+.3g} away from "
+        "2πZ (Weil's condition ∫_C Ω ∈ 2πZ fails); the attributes .cycle and .defect hold the cycle and the defect",
+        cycle=cycle,
+        defect=float(defect),
+    )
+
+
+def check_integrality(X, Omega, atol: float = 1e-8) -> np.ndarray:
+    """Check ``∫_C Ω ∈ 2πZ`` for an integer basis of 2-cycles; return the periods ``∫_C Ω / 2π``.
+
+    Returns
+    -------
+    ndarray of int64, one per cycle of :func:`integer_cycle_basis` (for a closed connected
+    orientable surface: ``[deg]``, for the fundamental cycle with ``o = +1`` on triangle 0).
+
+    Raises
+    ------
+    IntegralityError
+        for the first violating cycle, with ``.cycle`` (int64 2-chain, length n_2) and
+        ``.defect`` (``∫_C Ω − 2πn``, the distance to the nearest multiple of 2π).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)])
+    >>> check_integrality(X, [np.pi, -np.pi, np.pi, -np.pi]).tolist()
+    [2]
+    >>> try:
+    ...     check_integrality(X, [0.5, 0, 0, 0])
+    ... except IntegralityError as err:
+    ...     print(err.cycle.tolist(), round(err.defect, 3))
+    [1, -1, 1, -1] 0.5
+    """
+    Om = _real_vector(Omega, X.n_simplices(2), "Ω")
+    if Om.size == 0:
+        return np.zeros(0, np.int64)
+    if X.dim >= 3 and X.n_simplices(3):
+        d3 = X.coboundary(2)
+        per = d3 @ Om
+        dfc = per - 2 * np.pi * np.round(per / (2 * np.pi))
+        bad = np.abs(dfc) > atol * np.maximum(1.0, np.abs(d3) @ np.abs(Om))
+        if np.any(bad):
+            s = int(np.argmax(bad))
+            cyc = np.asarray(X.boundary(3)[:, [s]].toarray()).ravel().astype(np.int64)
+            _raise_defect(X, cyc, per[s], dfc[s], f"the boundary of the tetrahedron {simplex_name(X, 3, s)}")
+    C = integer_cycle_basis(X)
+    per = C.T @ Om
+    n = np.round(per / (2 * np.pi))
+    dfc = per - 2 * np.pi * n
+    bad = np.abs(dfc) > atol * np.maximum(1.0, abs(C).T @ np.abs(Om))
+    if np.any(bad):
+        a = int(np.argmax(bad))
+        cyc = np.asarray(C[:, [a]].toarray()).ravel().astype(np.int64)
+        _raise_defect(X, cyc, per[a], dfc[a], f"the integer 2-cycle number {a} of the basis (attribute .cycle)")
+    return n.astype(np.int64)
+
+
+def _check_closed(X, Om: np.ndarray, atol: float) -> None:
+    if X.dim >= 3 and X.n_simplices(3):
+        d3 = X.coboundary(2)
+        dOm = d3 @ Om
+        bad = np.abs(dOm) > atol * np.maximum(1.0, np.abs(d3) @ np.abs(Om))
+        if np.any(bad):
+            s = int(np.argmax(bad))
+            raise NotClosedError(f"Ω is not closed: dΩ = {dOm[s]:.6g} on the tetrahedron {simplex_name(X, 3, s)}")
+
+
+def line_bundle_with_curvature(X, Omega, holonomy=None, *, atol: float = 1e-8) -> HermitianLineBundle:
+    """A hermitian line bundle whose curvature is exactly ``Omega`` (Theorem 8).
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+    Omega : (n_2,) real, closed and integral
+    holonomy : None or ``(free_angles, torsion)``
+        Which bundle in the H¹(X; S¹)-torsor (see :class:`BundlesWithCurvature`); ``None``
+        returns the base bundle of the construction.
+
+    Raises
+    ------
+    NotClosedError
+        ``dΩ ≠ 0`` on a tetrahedron (named).
+    IntegralityError
+        Ω is not integral; ``.cycle`` is a violating integer 2-cycle, ``.defect`` its defect.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.examples import torus
+    >>> X = torus()
+    >>> Om = np.full(X.n_simplices(2), 2 * np.pi * 3 / X.n_simplices(2)) * X.orientation()
+    >>> L = line_bundle_with_curvature(X, Om)
+    >>> L.degree(), bool(np.array_equal(L.curvature, Om))
+    (3, True)
+    """
+    Om = _real_vector(Omega, X.n_simplices(2), "Ω")
+    _check_closed(X, Om, atol)
+    if holonomy is not None:
+        return BundlesWithCurvature(X, Om, atol=atol).bundle(*_split_holonomy(holonomy))
+    check_integrality(X, Om, atol=atol)
+    sol = solve_mod_2pi(X, Om)
+    if not sol.consistent:  # pragma: no cover - excluded by check_integrality
+        raise IntegralityError(f"Ω is not integral (residual {sol.defect:.3g} in the deferred equations)", defect=sol.defect)
+    return HermitianLineBundle.from_angles(X, sol.omega(), Om, atol=atol)
+
+
+def _split_holonomy(holonomy):
+    if isinstance(holonomy, dict):
+        return holonomy.get("free"), holonomy.get("torsion")
+    free, torsion = holonomy
+    return free, torsion
+
+
+class BundlesWithCurvature:
+    """All hermitian line bundles with curvature Ω up to isomorphism: a torsor over H¹(X; S¹).
+
+    Attributes
+    ----------
+    base : HermitianLineBundle
+        The bundle of :func:`line_bundle_with_curvature`.
+    b1 : int
+        Dimension of the torus part (first Betti number).
+    torsion_orders : tuple of int
+        Orders ``d`` of the torsion generators of H₁(X; Z).
+    generators : (n_1, b1 + t) int
+        H₁ generators (free first, then torsion), from :func:`dhlb.topology.homology.homology`.
+    cocycles : (n_1, b1 + t) float
+        Their dual S¹ cocycles (from :func:`dhlb.topology.homology.cohomology` with ``"S1"``).
+    """
+
+    def __init__(self, X, Omega, *, atol: float = 1e-8):
+        from dhlb.topology.homology import cohomology, homology
+
+        self.X = X
+        self.atol = atol
+        self.base = line_bundle_with_curvature(X, Omega, atol=atol)
+        H1 = homology(X)[1] if X.dim >= 1 else None
+        C1 = cohomology(X, "S1")[1] if X.dim >= 1 else None
+        n1 = X.n_simplices(1)
+        self.b1 = H1.rank if H1 else 0
+        self.torsion_orders = tuple(int(t) for t in H1.torsion) if H1 else ()
+        self.generators = np.asarray(H1.generators, dtype=np.int64) if H1 else np.zeros((n1, 0), np.int64)
+        self.cocycles = np.asarray(C1.cocycles, dtype=np.float64) if C1 else np.zeros((n1, 0))
+        self._h0 = np.array([self.base.holonomy(g) for g in self.generators.T])
+
+    def __repr__(self) -> str:
+        return f"BundlesWithCurvature(b1={self.b1}, torsion_orders={self.torsion_orders})"
+
+    def bundle(self, free_angles=None, torsion=None) -> HermitianLineBundle:
+        """The bundle with holonomy ``free_angles[i]`` around free generator i and
+        ``h₀ + 2π torsion[j] / d_j`` around torsion generator j."""
+        b, t = self.b1, len(self.torsion_orders)
+        theta = np.zeros(b) if free_angles is None else np.asarray(free_angles, dtype=np.float64).reshape(-1)
+        k = np.zeros(t, np.int64) if torsion is None else np.asarray(torsion, dtype=np.int64).reshape(-1)
+        if theta.size != b or k.size != t:
+            raise CurvatureMismatchError(f"holonomy needs {b} free angles and {t} torsion residues, got {theta.size} and {k.size}")
+        shift = self.cocycles[:, :b] @ (theta - self._h0[:b]) + self.cocycles[:, b:] @ k
+        return HermitianLineBundle.from_angles(self.X, self.base.connection_angles + shift, self.base.curvature, atol=self.atol)
+
+    def coordinates(self, L: HermitianLineBundle) -> tuple[np.ndarray, tuple]:
+        """``(free_angles, torsion)`` of a bundle with the same curvature (inverse of :meth:`bundle`)."""
+        if not np.allclose(L.curvature, self.base.curvature, rtol=0, atol=self.atol * 10):
+            raise CurvatureMismatchError("the bundle has a different curvature; it is not in this family")
+        h = np.array([L.holonomy(g) for g in self.generators.T])
+        b = self.b1
+        d = np.array(self.torsion_orders, dtype=np.float64)
+        k = np.round(wrap_angle(h[b:] - self._h0[b:]) * d / (2 * np.pi)).astype(np.int64) % np.maximum(d, 1).astype(np.int64)
+        return wrap_angle(h[:b]), tuple(int(x) for x in k)
+
+    def enumerate_torsion(self, free_angles=None) -> list:
+        """One bundle per torsion residue vector (``Π d`` of them) with the given free angles."""
+        ranges = [range(d) for d in self.torsion_orders]
+        return [self.bundle(free_angles, ks) for ks in itertools.product(*ranges)]
+
+
+def bundles_with_curvature(X, Omega, *, atol: float = 1e-8) -> BundlesWithCurvature:
+    """The H¹(X; S¹)-parametrized family of bundles with curvature Ω (Remark 7)."""
+    return BundlesWithCurvature(X, Omega, atol=atol)
+
+
+def flat_line_bundles(X, free_angles=None, *, atol: float = 1e-8) -> list:
+    """The flat hermitian line bundles with the given free holonomies, one per torsion class.
+
+    Over RP² there are exactly two (holonomy 0 and π); over the torus the list has one
+    element for each choice of the two free angles.
+    """
+    return BundlesWithCurvature(X, np.zeros(X.n_simplices(2)), atol=atol).enumerate_torsion(free_angles)

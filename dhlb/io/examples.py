@@ -1,0 +1,37 @@
+"""Small meshes bundled with dhlb (``dhlb/data/``), for examples, doctests and ``dhlb info``."""
+
+from __future__ import annotations
+
+from importlib import resources
+
+__all__ = ["EXAMPLES", "example_path"]
+
+#: file name -> one-line description
+EXAMPLES = {
+    "torus.obj": "closed torus surface, 288 vertices, 576 triangles (genus 1, H = Z, Z^2, Z)",
+    "solid-torus.mesh": "solid torus, 144 vertices, 384 tetrahedra, boundary triangles included (H = Z, Z, 0, 0)",
+}
+
+
+def example_path(name: str = "torus.obj") -> str:
+    """Path of a bundled example mesh.
+
+    Parameters
+    ----------
+    name : str
+        One of :data:`EXAMPLES` (``"torus.obj"``, ``"solid-torus.mesh"``).
+
+    Raises
+    ------
+    FileNotFoundError
+        Unknown name (the message lists the available ones).
+
+    Examples
+    --------
+    >>> from dhlb.io import example_path
+    >>> example_path("torus.obj").endswith("torus.obj")
+    True
+    """
+    if name not in EXAMPLES:
+        raise FileNotFoundError(f"no bundled example {name!r}; available: {', '.join(EXAMPLES)}")
+    return str(resources.files("dhlb").joinpath("data", name))

@@ -1,0 +1,110 @@
+"""Tetrahedral (and general simplicial) meshes: dispatch over Medit, Gmsh and VTK files."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+from dhlb.errors import InvalidSimplexError, MeshParseError
+from dhlb.io.formats import format_of
+from dhlb.io.gmsh import read_gmsh, write_gmsh
+from dhlb.io.medit import read_medit, write_medit
+from dhlb.io.vtk import read_vtk, write_vtk
+
+__all__ = ["read_volume", "write_volume", "read_cells", "write_cells"]
+
+
+def read_cells(path, fmt: str | None = None) -> tuple[np.ndarray, dict[int, np.ndarray]]:
+    """Read points and simplices by dimension from a ``.mesh``, ``.msh`` or ``.vtk`` file.
+
+    Returns
+    -------
+    V : (n, 3) float64
+    cells : dict {k: (m_k, k+1) int64}, 0-based, only the dimensions present in the file.
+
+    Examples
+    --------
+    >>> from dhlb.io import read_cells, example_path
+    >>> V, cells = read_cells(example_path("solid-torus.mesh"))
+    >>> {k: T.shape for k, T in cells.items()}
+    {2: (256, 3), 3: (384, 4)}
+    """
+    fmt = format_of(path, fmt)
+    if fmt == "mesh":
+        return read_medit(path)
+    if fmt == "msh":
+        return read_gmsh(path)
+    if fmt == "vtk":
+        return read_vtk(path)
+    raise MeshParseError(f"{fmt!r} is not a volume format (use mesh, msh, vtk)", os.fspath(path))
+
+
+def read_volume(path, fmt: str | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Read a tetrahedral mesh from a ``.mesh`` (Medit), ``.msh`` (Gmsh) or ``.vtk`` (legacy) file.
+
+    Returns
+    -------
+    V : (n, 3) float64
+    T : (m, 4) int64, 0-based, in file order. Unreferenced vertices are kept
+        (see :func:`dhlb.io.compact_mesh`); lower-dimensional cells in the file are ignored.
+
+    Raises
+    ------
+    MeshParseError
+        Unparsable file, or a file without tetrahedra.
+
+    Examples
+    --------
+    >>> from dhlb.io import read_volume, example_path
+    >>> V, T = read_volume(example_path("solid-torus.mesh"))
+    >>> V.shape, T.shape
+    ((144, 3), (384, 4))
+    """
+    V, cells = read_cells(path, fmt)
+    if 3 not in cells or len(cells[3]) == 0:
+        have = ", ".join(f"{len(c)} {k}-simplices" for k, c in sorted(cells.items())) or "no cells"
+        raise MeshParseError(f"the file contains no tetrahedra ({have}); use read_surface for surfaces", os.fspath(path))
+    return V, cells[3]
+
+
+def write_cells(path, V, cells, fmt: str | None = None, **kwargs) -> None:
+    """Write points and simplices to ``.mesh``, ``.msh`` or ``.vtk`` (format from the extension or ``fmt``).
+
+    Examples
+    --------
+    >>> import os, tempfile, numpy as np
+    >>> from dhlb.io import read_cells, write_cells
+    >>> V = np.eye(3); cells = {1: np.array([[0, 1]]), 2: np.array([[0, 1, 2]])}
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     write_cells(os.path.join(d, "t.msh"), V, cells)
+    ...     print(sorted(read_cells(os.path.join(d, "t.msh"))[1]))
+    [1, 2]
+    """
+    fmt = format_of(path, fmt)
+    if fmt == "mesh":
+        return write_medit(path, V, cells, **kwargs)
+    if fmt == "msh":
+        return write_gmsh(path, V, cells, **kwargs)
+    if fmt == "vtk":
+        return write_vtk(path, V, cells, **kwargs)
+    raise MeshParseError(f"cannot write cells as {fmt!r} (use mesh, msh, vtk)", os.fspath(path))
+
+
+def write_volume(path, V, T, fmt: str | None = None, **kwargs) -> None:
+    """Write a tetrahedral mesh ``(V, T)`` to ``.mesh``, ``.msh`` or ``.vtk``.
+
+    Examples
+    --------
+    >>> import os, tempfile, numpy as np
+    >>> from dhlb.io import read_volume, write_volume
+    >>> V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]); T = np.array([[0, 1, 2, 3]])
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     write_volume(os.path.join(d, "t.vtk"), V, T)
+    ...     print(read_volume(os.path.join(d, "t.vtk"))[1])
+    [[0 1 2 3]]
+    """
+    T = np.asarray(T)
+    if T.ndim != 2 or T.shape[1] != 4:
+        raise InvalidSimplexError(f"tetrahedra need an (m, 4) array, got shape {T.shape}")
+    write_cells(path, V, {3: T}, fmt, **kwargs)

@@ -1,0 +1,380 @@
+"""Sparse unit-pivot elimination of integer chain complexes (internal).
+
+A pivot ``(a, b)`` with ``∂_k[a, b] = u = ±1`` splits off the contractible summand
+``b -> ∂b``: in the new bases (``a' = ∂b`` replaces ``a`` in ``C_{k-1}``, ``c' = c - λ_c b`` with
+``λ_c = u ∂_k[a, c]`` replaces ``c`` in ``C_k``) the complex is the direct sum of ``{b -> a'}`` and a
+reduced complex with
+
+* ``∂'_k``: the Schur complement ``∂_k - ∂_k[:, b] u ∂_k[a, :]`` without row ``a`` and column ``b``,
+* ``∂'_{k-1}``: ``∂_{k-1}`` without column ``a``,
+* ``∂'_{k+1}``: ``∂_{k+1}`` without row ``b``.
+
+The reduced complex has the same homology.  ``ι`` (reduced chains -> chains) and ``π`` (chains ->
+reduced chains) are chain maps with ``π ι = id``; ``ι`` is a back-substitution over the stored
+pivot rows, and ``π^T`` (reduced cochains -> cochains) one over the stored pivot columns.  So
+cycles lift with ``ι``, cocycles with ``π^T``, and Kronecker pairings are preserved:
+``⟨π^T φ, ι z⟩ = ⟨φ, z⟩``.  Pivots are chosen Markowitz-style (shortest line first, then the
+unit entry whose other line is shortest) to limit fill; entries are exact Python ints.
+"""
+
+from __future__ import annotations
+
+import heapq
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse import csgraph
+
+from dhlb.errors import InvalidMatrixError
+
+_I64 = np.iinfo(np.int64)
+
+
+def _to_dicts(A) -> tuple[dict, dict]:
+    """Row and column dicts ``{i: {j: v}}`` of a sparse integer matrix (exact Python ints)."""
+    A = sp.csr_matrix(A)
+    if A.dtype.kind == "f":
+        if not np.all(np.isfinite(A.data)) or np.any(A.data != np.round(A.data)):
+            raise InvalidMatrixError("matrix has non-integer entries; pass an integer matrix.")
+    elif A.dtype.kind not in "iub":
+        raise InvalidMatrixError(f"matrix has dtype {A.dtype}, expected integers.")
+    A = A.astype(np.int64)
+    A.eliminate_zeros()
+    A.sum_duplicates()
+    R, C = {}, {}
+    ip, ind, dat = A.indptr, A.indices.tolist(), A.data.tolist()
+    for i in range(A.shape[0]):
+        s, e = ip[i], ip[i + 1]
+        if s < e:
+            R[i] = dict(zip(ind[s:e], dat[s:e]))
+    At = A.tocsc()
+    ip, ind, dat = At.indptr, At.indices.tolist(), At.data.tolist()
+    for j in range(A.shape[1]):
+        s, e = ip[j], ip[j + 1]
+        if s < e:
+            C[j] = dict(zip(ind[s:e], dat[s:e]))
+    return R, C
+
+
+class ChainReduction:
+    """Unit-pivot reduction of a chain complex ``C_n -> ... -> C_0``.
+
+    Parameters
+    ----------
+    mats : list
+        ``mats[k]`` is ``∂_k`` (sparse, shape ``(sizes[k-1], sizes[k])``) for ``k = 1..n``;
+        ``mats[0]`` is ignored.
+    sizes : sequence of int
+        ``(n_0, ..., n_n)``.
+    """
+
+    def __init__(self, mats, sizes):
+        self.sizes = [int(s) for s in sizes]
+        self.n = len(self.sizes) - 1
+        self.R = [None] * (self.n + 1)
+        self.C = [None] * (self.n + 1)
+        for k in range(1, self.n + 1):
+            self.R[k], self.C[k] = _to_dicts(mats[k])
+        self.alive = [np.ones(s, dtype=bool) for s in self.sizes]
+        self.row_steps = [[] for _ in self.sizes]  # row_steps[j]: pivots in ∂_j (b ∈ C_j): (b, u, row_a, a)
+        self.col_steps = [[] for _ in self.sizes]  # col_steps[j]: pivots in ∂_{j+1} (a ∈ C_j): (a, u, col_b, b)
+
+    # ------------------------------------------------------------------ elimination
+    def eliminate(self, k: int) -> int:
+        """Eliminate unit pivots of ``∂_k`` until none is left; return the number of pivots."""
+        R, C = self.R[k], self.C[k]
+        # heap of columns keyed by (length << 32 | column); rows are reached through their columns
+        heap = [(len(v) << 32) | j for j, v in C.items()]
+        heapq.heapify(heap)
+        push, pop = heapq.heappush, heapq.heappop
+        count = 0
+        while heap:
+            item = pop(heap)
+            L, key = item >> 32, item & 0xFFFFFFFF
+            line = C.get(key)
+            if line is None or len(line) != L:
+                continue
+            best, bl = None, None
+            for k2, v in line.items():
+                if v == 1 or v == -1:
+                    l2 = len(R[k2])
+                    if bl is None or l2 < bl:
+                        best, bl = k2, l2
+                        if l2 <= 1:
+                            break
+            if best is None:
+                continue
+            a, b = best, key
+            row_a = R.pop(a)
+            u = row_a.pop(b)
+            col_b = C.pop(b)
+            del col_b[a]
+            for c in row_a:
+                del C[c][a]
+            for x in col_b:
+                del R[x][b]
+            for x, vx in col_b.items():
+                f = vx * u
+                rx = R[x]
+                for c, vc in row_a.items():
+                    nv = rx.get(c, 0) - f * vc
+                    if nv:
+                        rx[c] = nv
+                        C[c][x] = nv
+                    else:
+                        del rx[c]
+                        del C[c][x]
+            for c in row_a:
+                push(heap, (len(C[c]) << 32) | c)
+            if k > 1:  # column a of ∂_{k-1} and row b of ∂_{k+1} disappear
+                col = self.C[k - 1].pop(a, None)
+                if col:
+                    Rl = self.R[k - 1]
+                    for y in col:
+                        del Rl[y][a]
+            if k < self.n:
+                row = self.R[k + 1].pop(b, None)
+                if row:
+                    Cu = self.C[k + 1]
+                    for c in row:
+                        del Cu[c][b]
+            self.alive[k][b] = False
+            self.alive[k - 1][a] = False
+            self.row_steps[k].append((b, u, row_a, a))
+            self.col_steps[k - 1].append((a, u, col_b, b))
+            count += 1
+        return count
+
+    def reduce_all(self) -> None:
+        """Eliminate in ``∂_1`` (spanning forest), then ``∂_n, ∂_{n-1}, ..., ∂_2``."""
+        if self.n >= 1:
+            self.eliminate(1)
+        for k in range(self.n, 1, -1):
+            self.eliminate(k)
+
+    # ------------------------------------------------------------------ residual and lifting
+    def alive_index(self, j: int) -> np.ndarray:
+        """Original indices of the cells of ``C_j`` that survive (the reduced basis)."""
+        return np.flatnonzero(self.alive[j])
+
+    def residual(self, k: int) -> np.ndarray:
+        """Dense object matrix of ``∂'_k`` on the surviving cells."""
+        rows, cols = self.alive_index(k - 1), self.alive_index(k)
+        M = np.zeros((len(rows), len(cols)), dtype=object)
+        if len(rows) and len(cols):
+            rpos = {int(r): i for i, r in enumerate(rows)}
+            cpos = {int(c): j for j, c in enumerate(cols)}
+            for r, line in self.R[k].items():
+                i = rpos[r]
+                for c, v in line.items():
+                    M[i, cpos[c]] = v
+        return M
+
+    def residual_core(self, k: int):
+        """``(rows, cols, M)``: the nonzero rows/columns of ``∂'_k`` (original indices) and the dense
+        object matrix on them; every other surviving row and column of ``∂'_k`` is zero."""
+        rows = sorted(r for r, line in self.R[k].items() if line)
+        cols = sorted({c for r in rows for c in self.R[k][r]})
+        cpos = {c: j for j, c in enumerate(cols)}
+        M = np.zeros((len(rows), len(cols)), dtype=object)
+        for i, r in enumerate(rows):
+            for c, v in self.R[k][r].items():
+                M[i, cpos[c]] = v
+        return np.asarray(rows, dtype=np.int64), np.asarray(cols, dtype=np.int64), M
+
+    @staticmethod
+    def _backsolve(steps, start: dict) -> dict:
+        """``vals[p] = -u Σ_c line[c] vals[c]`` over ``steps`` in reverse; vals are sparse dicts."""
+        vals = dict(start)
+        for p, u, line, _ in reversed(steps):
+            acc: dict = {}
+            for c, v in line.items():
+                zc = vals.get(c)
+                if zc:
+                    for g, w in zc.items():
+                        nv = acc.get(g, 0) + v * w
+                        if nv:
+                            acc[g] = nv
+                        else:
+                            del acc[g]
+            if acc:
+                vals[p] = {g: -u * w for g, w in acc.items()} if u == 1 else acc
+        return vals
+
+    def _lift(self, steps, j: int, Z) -> np.ndarray:
+        Z = np.asarray(Z, dtype=object)
+        idx = self.alive_index(j)
+        r = Z.shape[1]
+        start = {}
+        for t, i in enumerate(idx):
+            d = {g: int(w) for g, w in enumerate(Z[t]) if w != 0}
+            if d:
+                start[int(i)] = d
+        vals = self._backsolve(steps, start)
+        out = np.zeros((self.sizes[j], r), dtype=object)
+        for p, d in vals.items():
+            for g, w in d.items():
+                out[p, g] = w
+        return out
+
+    def lift_chains(self, j: int, Z) -> np.ndarray:
+        """``ι``: reduced j-chains (rows = surviving cells) -> chains on all of ``C_j``."""
+        return self._lift(self.row_steps[j], j, Z)
+
+    def lift_cochains(self, j: int, Phi) -> np.ndarray:
+        """``π^T``: reduced j-cochains -> cochains on all of ``C_j``."""
+        return self._lift(self.col_steps[j], j, Phi)
+
+
+# ---------------------------------------------------------------------------- single matrices
+def _int_sparse(entries, shape) -> sp.csc_matrix:
+    rows, cols, vals = entries
+    vals = list(vals)
+    if vals and any(not (_I64.min <= v <= _I64.max) for v in vals):
+        raise InvalidMatrixError("an entry of the result does not fit in int64; use the dense functions.")
+    return sp.csc_matrix((np.asarray(vals, dtype=np.int64), (np.asarray(rows, dtype=np.int64),
+                                                               np.asarray(cols, dtype=np.int64))), shape=shape)
+
+
+def _graph_kernel(A: sp.csc_matrix):
+    """Fundamental cycles of a breadth-first spanning forest, or None if A is no incidence matrix."""
+    m, n = A.shape
+    nnz = np.diff(A.indptr)
+    if np.any((nnz != 2) & (nnz != 0)) or m == 0:
+        return None
+    two = np.flatnonzero(nnz == 2)
+    start = A.indptr[two]
+    d0, d1 = A.data[start], A.data[start + 1]
+    if not np.all(d0 + d1 == 0) or not np.all(np.abs(d0) == 1):
+        return None
+    r0, r1 = A.indices[start], A.indices[start + 1]
+    head = np.where(d0 == 1, r0, r1)
+    tail = np.where(d0 == 1, r1, r0)
+    # breadth-first forest from a virtual root m joined to the smallest vertex of each component
+    G = sp.coo_matrix((np.ones(len(two)), (head, tail)), shape=(m, m)).tocsr()
+    ncomp, lab = csgraph.connected_components(G, directed=False)
+    roots = np.unique(lab, return_index=True)[1]
+    ext = sp.coo_matrix((np.ones(len(two) + ncomp),
+                         (np.r_[head, np.full(ncomp, m)], np.r_[tail, roots])), shape=(m + 1, m + 1)).tocsr()
+    order, pred = csgraph.breadth_first_order(ext, m, directed=False, return_predecessors=True)
+    depth = np.zeros(m + 1, dtype=np.int64)
+    for v in order[1:]:  # numpy-free alternative is slower; depth by order is a single pass
+        depth[v] = depth[pred[v]] + 1
+    # tree edge of each non-root vertex v: a column joining v and pred[v]
+    key = np.minimum(head, tail).astype(np.int64) * (m + 1) + np.maximum(head, tail)
+    srt = np.argsort(key, kind="stable")
+    is_tree = np.zeros(len(two), dtype=bool)
+    tree_col = np.full(m + 1, -1, dtype=np.int64)
+    sign = np.zeros(m + 1, dtype=np.int64)
+    verts = np.flatnonzero((pred[:m] >= 0) & (pred[:m] < m))
+    if len(verts):
+        p = pred[verts]
+        vk = np.minimum(verts, p).astype(np.int64) * (m + 1) + np.maximum(verts, p)
+        pos = srt[np.searchsorted(key[srt], vk)]
+        is_tree[pos] = True
+        tree_col[verts] = two[pos]
+        sign[verts] = np.where(head[pos] == p, 1, -1)  # +1: the column points from v up to pred[v]
+    nt = np.flatnonzero(~is_tree)
+    zero_cols = np.flatnonzero(nnz == 0)
+    K = len(nt) + len(zero_cols)
+    rows = [two[nt], zero_cols]
+    cols = [np.arange(len(nt)), len(nt) + np.arange(len(zero_cols))]
+    vals = [np.ones(len(nt), dtype=np.int64), np.ones(len(zero_cols), dtype=np.int64)]
+    gid = np.arange(len(nt))
+    ch, ct = head[nt].astype(np.int64), tail[nt].astype(np.int64)
+    while len(gid):
+        done = ch == ct
+        gid, ch, ct = gid[~done], ch[~done], ct[~done]
+        if not len(gid):
+            break
+        dh, dt = depth[ch], depth[ct]
+        uh, ut = dh >= dt, dt >= dh
+        rows += [tree_col[ch[uh]], tree_col[ct[ut]]]
+        cols += [gid[uh], gid[ut]]
+        vals += [sign[ch[uh]], -sign[ct[ut]]]
+        ch = np.where(uh, pred[ch], ch)
+        ct = np.where(ut, pred[ct], ct)
+    rows, cols, vals = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
+    order_cols = np.argsort(np.r_[two[nt], zero_cols], kind="stable")  # basis in column order
+    inv = np.empty(K, dtype=np.int64)
+    inv[order_cols] = np.arange(K)
+    return sp.csc_matrix((vals, (rows, inv[cols])), shape=(n, K), dtype=np.int64)
+
+
+def sparse_kernel_basis(A) -> sp.csc_matrix:
+    """Z-basis of ``ker A`` for a sparse integer matrix (see :func:`integer_kernel_basis`)."""
+    from dhlb.topology.intlinalg import dense_kernel_basis
+
+    A = sp.csc_matrix(A)
+    m, n = A.shape
+    if A.dtype.kind in "iu":
+        G = A.astype(np.int64)
+        G.eliminate_zeros()
+        G.sort_indices()
+        K = _graph_kernel(G)
+        if K is not None:
+            return K
+    red = ChainReduction([None, A], [m, n])
+    red.eliminate(1)
+    _, core_cols, M = red.residual_core(1)
+    start = {}  # reduced kernel: unit vectors of the zero columns, then the kernel of the core
+    g, core = 0, set(core_cols.tolist())
+    for c in red.alive_index(1).tolist():
+        if c not in core:
+            start[c] = {g: 1}
+            g += 1
+    if M.size:
+        Kd = dense_kernel_basis(M)
+        for t, c in enumerate(core_cols.tolist()):
+            d = {g + j: int(w) for j, w in enumerate(Kd[t]) if w != 0}
+            if d:
+                start[c] = d
+        g += Kd.shape[1]
+    vals = red._backsolve(red.row_steps[1], start)
+    rows, cols, data = [], [], []
+    for p, d in vals.items():
+        for j, w in d.items():
+            rows.append(p)
+            cols.append(j)
+            data.append(w)
+    return _int_sparse((rows, cols, data), (n, g))
+
+
+def sparse_solve_integer(A, B: np.ndarray):
+    """Integer solution of ``A X = B`` (object array B, shape (m, p)) or None."""
+    from dhlb.topology.intlinalg import dense_solve_integer, to_int_array
+
+    m, n = A.shape
+    if B.shape[0] != m:
+        from dhlb.errors import ShapeError
+
+        raise ShapeError(f"b has {B.shape[0]} rows but A has {m}; they must match.")
+    red = ChainReduction([None, A], [m, n])
+    red.eliminate(1)
+    core_rows, core_cols, M = red.residual_core(1)
+    zero_rows = np.setdiff1d(red.alive_index(0), core_rows).tolist()
+    core_rows = core_rows.tolist()
+    X = np.zeros((n, B.shape[1]), dtype=object)
+    for q in range(B.shape[1]):
+        b = [int(v) for v in B[:, q]]
+        for a, u, col, _ in red.col_steps[0]:  # forward elimination on the right-hand side
+            f = u * b[a]
+            if f:
+                for x, vx in col.items():
+                    b[x] -= vx * f
+        if any(b[i] for i in zero_rows):
+            return None
+        y = np.zeros((0, 1), dtype=object)
+        if M.size:
+            y = dense_solve_integer(M, np.array([b[i] for i in core_rows], dtype=object).reshape(-1, 1))
+            if y is None:
+                return None
+        cols = core_cols
+        x = {int(c): int(v) for c, v in zip(cols, y[:, 0]) if v}
+        for bb, u, row, a in reversed(red.row_steps[1]):
+            s = b[a] - sum(v * x[c] for c, v in row.items() if c in x)
+            if s:
+                x[bb] = u * s
+        for c, v in x.items():
+            X[c, q] = v
+    return to_int_array(X)

@@ -1,0 +1,434 @@
+"""Exact integer linear algebra: Hermite and Smith normal forms, integer kernels, integer solving.
+
+All arithmetic is exact (Python integers in numpy object arrays).  Results are returned as
+``int64`` arrays when every entry fits, otherwise as ``object`` arrays of Python ints.
+
+Dense algorithms are meant for small matrices (up to a few hundred rows/columns).  Large sparse
+matrices (boundary matrices of big complexes) go through the sparse unit-pivot elimination of
+:mod:`dhlb.topology._sparse_elim` first, so only a small residual is treated densely:
+:func:`integer_kernel_basis` and :func:`solve_integer` do that automatically for
+``scipy.sparse`` input.
+
+Examples
+--------
+>>> import numpy as np
+>>> from dhlb.topology.intlinalg import smith_normal_form
+>>> U, D, V = smith_normal_form(np.array([[2, 4], [6, 8]]))
+>>> np.diag(D).tolist()
+[2, 4]
+>>> bool((U @ np.array([[2, 4], [6, 8]]) @ V == D).all())
+True
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from dhlb.errors import InvalidMatrixError, ShapeError
+
+__all__ = [
+    "hermite_normal_form",
+    "smith_normal_form",
+    "integer_kernel_basis",
+    "solve_integer",
+    "is_unimodular",
+    "integer_determinant",
+]
+
+_I64 = np.iinfo(np.int64)
+
+
+# ----------------------------------------------------------------------------- conversion helpers
+def as_object_matrix(A, name: str = "A", ndim: int = 2) -> np.ndarray:
+    """Validate an integer matrix (dense or sparse) and return it as an object array of Python ints."""
+    if sp.issparse(A):
+        A = A.toarray()
+    try:
+        arr = np.asarray(A)
+    except Exception as exc:  # ragged input
+        raise InvalidMatrixError(f"{name} is not a rectangular integer array ({exc}); pass a 2-D array.") from None
+    if ndim == 2 and arr.ndim == 1 and arr.size == 0:
+        arr = arr.reshape(0, 0)
+    if arr.ndim != ndim:
+        raise ShapeError(f"{name} must be {ndim}-dimensional, got shape {arr.shape}.")
+    if arr.dtype == object:
+        flat = arr.ravel()
+        for i, x in enumerate(flat):
+            if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, np.integer)):
+                if isinstance(x, (float, np.floating)) and np.isfinite(x) and float(x).is_integer():
+                    continue
+                idx = np.unravel_index(i, arr.shape)
+                raise InvalidMatrixError(f"{name}{list(map(int, idx))} = {x!r} is not an integer; pass integers.")
+        return np.array([int(x) for x in flat], dtype=object).reshape(arr.shape)
+    if np.issubdtype(arr.dtype, np.integer) or arr.dtype == bool:
+        return arr.astype(np.int64).astype(object) if arr.dtype != np.uint64 else np.array(
+            [int(x) for x in arr.ravel()], dtype=object).reshape(arr.shape)
+    if np.issubdtype(arr.dtype, np.floating):
+        bad = ~np.isfinite(arr) | (arr != np.round(arr)) if arr.size else np.zeros(arr.shape, bool)
+        if bad.any():
+            idx = tuple(int(i) for i in np.argwhere(bad)[0])
+            raise InvalidMatrixError(f"{name}{list(idx)} = {arr[idx]!r} is not an integer; pass integers.")
+        return np.array([int(x) for x in arr.ravel()], dtype=object).reshape(arr.shape)
+    raise InvalidMatrixError(f"{name} has dtype {arr.dtype}, expected integers.")
+
+
+def to_int_array(M: np.ndarray) -> np.ndarray:
+    """Return ``M`` as int64 if every entry fits, else as an object array of Python ints."""
+    M = np.asarray(M, dtype=object)
+    if M.size == 0:
+        return np.zeros(M.shape, dtype=np.int64)
+    try:
+        return M.astype(np.int64)
+    except OverflowError:
+        return M
+
+
+def _eye(n: int) -> np.ndarray:
+    E = np.zeros((n, n), dtype=object)
+    E[np.arange(n), np.arange(n)] = 1
+    return E
+
+
+def _egcd(a: int, b: int) -> tuple[int, int, int]:
+    """Return ``(g, x, y)`` with ``x a + y b = g = gcd(a, b) >= 0``."""
+    x0, y0, x1, y1 = 1, 0, 0, 1
+    while b:
+        q, a, b = a // b, b, a % b
+        x0, x1 = x1, x0 - q * x1
+        y0, y1 = y1, y0 - q * y1
+    if a < 0:
+        return -a, -x0, -y0
+    return a, x0, y0
+
+
+# ----------------------------------------------------------------------------- Hermite normal form
+def hermite_normal_form(A):
+    """Column-style Hermite normal form ``H = A U`` with ``U`` unimodular.
+
+    ``H = (0 | H')``: the first ``n - r`` columns are zero (so those columns of ``U`` are a
+    Z-basis of ``ker A``, as in the proof of the seed's Lemma 1), and ``H'`` (``r = rank A``
+    columns) is in echelon form read from the bottom: the pivot of column ``j`` is its lowest
+    nonzero entry, pivots are positive, pivot rows strictly increase with ``j``, and every entry
+    to the right of a pivot in its row lies in ``[0, pivot)``.
+
+    Parameters
+    ----------
+    A : array_like or sparse matrix, shape (m, n)
+        Integer matrix.
+
+    Returns
+    -------
+    H : ndarray, shape (m, n)
+    U : ndarray, shape (n, n)
+        Unimodular (``det U = ±1``) with ``A @ U == H``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> A = np.array([[1, 1, 0], [0, 1, 1]])      # boundary of the path 0-1-2 closed by an edge
+    >>> H, U = hermite_normal_form(A)
+    >>> H.tolist()
+    [[0, 1, 0], [0, 0, 1]]
+    >>> bool((A @ U == H).all()), int(abs(integer_determinant(U)))
+    (True, 1)
+    """
+    H = as_object_matrix(A).copy()
+    m, n = H.shape
+    U = _eye(n)
+    k = n  # columns k..n-1 hold pivots
+    for i in range(m - 1, -1, -1):
+        if k == 0:
+            break
+        p = k - 1
+        for j in range(p):
+            b = H[i, j]
+            if b == 0:
+                continue
+            a = H[i, p]
+            g, x, y = _egcd(a, b)
+            ag, bg = a // g, b // g
+            cp, cj = H[:, p].copy(), H[:, j].copy()
+            H[:, p] = x * cp + y * cj
+            H[:, j] = ag * cj - bg * cp
+            up, uj = U[:, p].copy(), U[:, j].copy()
+            U[:, p] = x * up + y * uj
+            U[:, j] = ag * uj - bg * up
+        piv = H[i, p]
+        if piv == 0:
+            continue
+        if piv < 0:
+            H[:, p] = -H[:, p]
+            U[:, p] = -U[:, p]
+            piv = -piv
+        for j in range(k, n):
+            q = H[i, j] // piv
+            if q:
+                H[:, j] = H[:, j] - q * H[:, p]
+                U[:, j] = U[:, j] - q * U[:, p]
+        k -= 1
+    return to_int_array(H), to_int_array(U)
+
+
+# ----------------------------------------------------------------------------- Smith normal form
+def _snf(A: np.ndarray):
+    """Smith normal form of an object matrix; returns ``(U, D, V, Uinv, Vinv)`` (object arrays)."""
+    M = A.copy()
+    m, n = M.shape
+    U, Ui, V, Vi = _eye(m), _eye(m), _eye(n), _eye(n)
+
+    def swap_rows(i, j):
+        M[[i, j]] = M[[j, i]]
+        U[[i, j]] = U[[j, i]]
+        Ui[:, [i, j]] = Ui[:, [j, i]]
+
+    def swap_cols(i, j):
+        M[:, [i, j]] = M[:, [j, i]]
+        V[:, [i, j]] = V[:, [j, i]]
+        Vi[[i, j]] = Vi[[j, i]]
+
+    for t in range(min(m, n)):
+        sub = M[t:, t:]
+        nz = np.argwhere(sub != 0)
+        if len(nz) == 0:
+            break
+        absvals = np.array([abs(sub[i, j]) for i, j in nz], dtype=object)
+        i0, j0 = nz[int(np.argmin(absvals))]
+        if i0:
+            swap_rows(t, t + i0)
+        if j0:
+            swap_cols(t, t + j0)
+        while True:
+            # make the pivot the smallest nonzero entry of row t / column t, then clear both
+            while True:
+                col = M[t + 1:, t]
+                row = M[t, t + 1:]
+                cand = [(abs(x), 0, t + 1 + i) for i, x in enumerate(col) if x != 0]
+                cand += [(abs(x), 1, t + 1 + j) for j, x in enumerate(row) if x != 0]
+                if not cand:
+                    break
+                best = min(cand)
+                if best[0] < abs(M[t, t]):
+                    (swap_rows if best[1] == 0 else swap_cols)(t, best[2])
+                p = M[t, t]
+                q = M[t + 1:, t] // p
+                if q.any():
+                    M[t + 1:, :] -= q[:, None] * M[t, None, :]
+                    U[t + 1:, :] -= q[:, None] * U[t, None, :]
+                    Ui[:, t] += Ui[:, t + 1:].dot(q)
+                q = M[t, t + 1:] // p
+                if q.any():
+                    M[:, t + 1:] -= M[:, t, None] * q[None, :]
+                    V[:, t + 1:] -= V[:, t, None] * q[None, :]
+                    Vi[t, :] += q.dot(Vi[t + 1:, :])
+            p = M[t, t]
+            rest = M[t + 1:, t + 1:]
+            bad = np.argwhere(rest % p != 0) if rest.size else np.zeros((0, 2), int)
+            if len(bad) == 0:
+                break
+            i = t + 1 + int(bad[0][0])  # row t += row i, then re-clear
+            M[t, :] += M[i, :]
+            U[t, :] += U[i, :]
+            Ui[:, i] -= Ui[:, t]
+        if M[t, t] < 0:
+            M[t, :] = -M[t, :]
+            U[t, :] = -U[t, :]
+            Ui[:, t] = -Ui[:, t]
+    return U, M, V, Ui, Vi
+
+
+def smith_normal_form(A):
+    """Smith normal form ``U A V = D`` with unimodular ``U``, ``V``.
+
+    ``D`` has the shape of ``A``, is zero off the diagonal, and its diagonal is
+    ``d_1 | d_2 | ... | d_r`` (positive, each dividing the next) followed by zeros, ``r = rank A``.
+
+    Parameters
+    ----------
+    A : array_like or sparse matrix, shape (m, n)
+        Integer matrix (exact arithmetic; meant for small matrices).
+
+    Returns
+    -------
+    U : ndarray, shape (m, m)
+    D : ndarray, shape (m, n)
+    V : ndarray, shape (n, n)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> A = np.array([[0, 2, 2], [2, 0, 2]])   # not the boundary of anything, just a matrix
+    >>> U, D, V = smith_normal_form(A)
+    >>> D.tolist()
+    [[2, 0, 0], [0, 2, 0]]
+    >>> bool((U @ A @ V == D).all())
+    True
+    """
+    M = as_object_matrix(A)
+    U, D, V, _, _ = _snf(M)
+    return to_int_array(U), to_int_array(D), to_int_array(V)
+
+
+def integer_determinant(A) -> int:
+    """Exact determinant of a square integer matrix (Bareiss fraction-free elimination).
+
+    Examples
+    --------
+    >>> integer_determinant([[2, 1], [7, 4]])
+    1
+    """
+    M = as_object_matrix(A).copy()
+    n = M.shape[0]
+    if M.shape != (n, n):
+        raise ShapeError(f"integer_determinant needs a square matrix, got shape {M.shape}.")
+    sign, prev = 1, 1
+    for k in range(n):
+        if M[k, k] == 0:
+            nz = [i for i in range(k + 1, n) if M[i, k] != 0]
+            if not nz:
+                return 0
+            M[[k, nz[0]]] = M[[nz[0], k]]
+            sign = -sign
+        for i in range(k + 1, n):
+            M[i, k + 1:] = (M[i, k + 1:] * M[k, k] - M[i, k] * M[k, k + 1:]) // prev
+        prev = M[k, k]
+    return sign * int(M[n - 1, n - 1]) if n else 1
+
+
+def is_unimodular(U) -> bool:
+    """True iff ``U`` is a square integer matrix with determinant ±1.
+
+    Examples
+    --------
+    >>> is_unimodular([[1, 5], [0, -1]]), is_unimodular([[2, 0], [0, 1]])
+    (True, False)
+    """
+    M = as_object_matrix(U)
+    return M.shape[0] == M.shape[1] and abs(integer_determinant(M)) == 1
+
+
+# ----------------------------------------------------------------------------- kernels and solving
+_DENSE_LIMIT = 2_500  # entries; larger dense input goes through sparse elimination too
+
+
+def integer_kernel_basis(A):
+    """Z-basis of ``ker A ∩ Z^n`` as the columns of an integer matrix.
+
+    Small dense input uses the Hermite form ``A U = (0 | H)`` (seed, Lemma 1): the first
+    ``n - r`` columns of ``U``.  Sparse (or large) input is first reduced by unit-pivot elimination
+    (:class:`~dhlb.topology._sparse_elim.ChainReduction`); the kernel of the small residual is
+    lifted back by back-substitution.  For graph incidence matrices (every column one ``+1`` and
+    one ``-1``) the basis is the fundamental cycles of a breadth-first spanning forest.
+
+    Parameters
+    ----------
+    A : array_like or sparse matrix, shape (m, n)
+
+    Returns
+    -------
+    K : ndarray (dense input) or scipy.sparse.csc_matrix (sparse input), shape (n, n - rank A)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> d1 = np.array([[-1, -1, 0], [1, 0, -1], [0, 1, 1]])   # boundary of a triangle's edges
+    >>> K = integer_kernel_basis(d1)
+    >>> K.shape, bool((d1 @ K == 0).all())
+    ((3, 1), True)
+    >>> abs(K[:, 0]).tolist()
+    [1, 1, 1]
+    """
+    A_sparse = _sparse_if_large(A)
+    if A_sparse is not None:
+        from dhlb.topology._sparse_elim import sparse_kernel_basis
+
+        K = sparse_kernel_basis(A_sparse)
+        return K if sp.issparse(A) else K.toarray()
+    return dense_kernel_basis(as_object_matrix(A))
+
+
+def dense_kernel_basis(M: np.ndarray) -> np.ndarray:
+    """Kernel basis of a (small) object matrix from its Hermite form (no sparse detour)."""
+    H, U = hermite_normal_form(M)
+    z = 0  # the zero columns of the Hermite form are exactly the leading ones
+    while z < H.shape[1] and not H[:, z].any():
+        z += 1
+    return to_int_array(U[:, :z])
+
+
+def solve_integer(A, b):
+    """Integer solution ``x`` of ``A x = b``, or ``None`` if there is none.
+
+    Parameters
+    ----------
+    A : array_like or sparse matrix, shape (m, n)
+        Integer matrix.
+    b : array_like, shape (m,) or (m, p)
+        Integer right-hand side(s).
+
+    Returns
+    -------
+    x : ndarray of shape (n,) or (n, p), or None
+        One integer solution (for 2-D ``b``, all columns must be solvable).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> d0 = np.array([[-1, 1, 0], [0, -1, 1]])   # coboundary of the path 0-1-2
+    >>> f = solve_integer(d0, [2, 3])
+    >>> (d0 @ f).tolist(), int(f[1] - f[0])
+    ([2, 3], 2)
+    >>> print(solve_integer([[2, 0], [0, 2]], [1, 0]))
+    None
+    """
+    if np.ndim(b) not in (1, 2):
+        raise ShapeError(f"b must be a vector or a matrix of right-hand sides, got shape {np.shape(b)}.")
+    one_d = np.ndim(b) == 1
+    B = as_object_matrix(b, "b", ndim=np.ndim(b))
+    if one_d:
+        B = B[:, None]
+    A_sparse = _sparse_if_large(A)
+    m = A.shape[0] if A_sparse is not None else as_object_matrix(A).shape[0]
+    if B.shape[0] != m:
+        raise ShapeError(f"b has {B.shape[0]} rows but A has {m}; they must match.")
+    if A_sparse is not None:
+        from dhlb.topology._sparse_elim import sparse_solve_integer
+
+        x = sparse_solve_integer(A_sparse, B)
+    else:
+        x = dense_solve_integer(as_object_matrix(A), B)
+    if x is None:
+        return None
+    x = to_int_array(x)
+    return x[:, 0] if one_d else x
+
+
+def _sparse_if_large(A):
+    """``A`` as int64 CSR if it is sparse or large (sparse elimination pays off), else None."""
+    if sp.issparse(A):
+        if A.dtype.kind == "f":
+            as_object_matrix(A.data[None, :], "A")  # typed error for non-integer entries
+        elif A.dtype.kind not in "iub":
+            raise InvalidMatrixError(f"A has dtype {A.dtype}, expected integers.")
+        return sp.csr_matrix(A).astype(np.int64)
+    if np.size(A) <= _DENSE_LIMIT:
+        return None
+    M = to_int_array(as_object_matrix(A))
+    return sp.csr_matrix(M) if M.dtype == np.int64 else None
+
+
+def dense_solve_integer(M: np.ndarray, B: np.ndarray):
+    """Solve ``M X = B`` over Z for object arrays (via Smith form); ``None`` if unsolvable."""
+    m, n = M.shape
+    U, D, V, _, _ = _snf(M)
+    c = U.dot(B) if m else np.zeros((0, B.shape[1]), dtype=object)
+    diag = [D[i, i] for i in range(min(m, n)) if D[i, i] != 0]
+    r = len(diag)
+    if c[r:].any():
+        return None
+    y = np.zeros((n, B.shape[1]), dtype=object)
+    for i, d in enumerate(diag):
+        if any(x % d for x in c[i]):
+            return None
+        y[i] = c[i] // d
+    return V.dot(y) if n else y

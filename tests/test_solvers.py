@@ -1,0 +1,254 @@
+"""Tests of dhlb.fem.solvers: generalized Hermitian eigenpairs and shifted solves."""
+
+import numpy as np
+import pytest
+import scipy.linalg as sla
+import scipy.sparse as sp
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from dhlb import SimplicialComplex
+from dhlb.errors import ConvergenceError, InvalidOperatorError, NonFiniteError, ShapeError
+from dhlb.fem.solvers import EigenResult, backward_errors, default_shift, smallest_eigenpairs, solve
+from dhlb.geometry import EuclideanComplex
+
+
+# ---------------------------------------------------------------------- fixtures
+def pencil(n, spectrum, complex_, seed):
+    """Dense Hermitian pencil (A, M) with M PD and generalized spectrum exactly ``spectrum``."""
+    rng = np.random.default_rng(seed)
+    Z = rng.normal(size=(n, n)) + (1j * rng.normal(size=(n, n)) if complex_ else 0)
+    Q, _ = np.linalg.qr(Z)
+    C = rng.normal(size=(n, n)) + (1j * rng.normal(size=(n, n)) if complex_ else 0)
+    M = C @ C.conj().T / n + np.eye(n)
+    M = 0.5 * (M + M.conj().T)
+    L = np.linalg.cholesky(M)                              # M = L Lᴴ
+    A = L @ (Q * np.asarray(spectrum)) @ Q.conj().T @ L.conj().T
+    return 0.5 * (A + A.conj().T), M
+
+
+def path_laplacian(n):
+    main = np.r_[1.0, 2 * np.ones(n - 2), 1.0]
+    return sp.diags([-np.ones(n - 1), main, -np.ones(n - 1)], [-1, 0, 1], format="csr")
+
+
+def twisted_cycle(n, theta):
+    """Connection Laplacian of the n-cycle with r_{i,i+1} = exp(iθ/n): holonomy exp(iθ)."""
+    r = np.exp(1j * theta / n)
+    i = np.arange(n)
+    j = (i + 1) % n
+    rows = np.r_[i, j, i, j]
+    cols = np.r_[i, j, j, i]
+    # edge energy |z_j - r z_i|²: A[j, i] = -r, A[i, j] = -conj(r)
+    vals = np.r_[np.ones(n), np.ones(n), -np.conj(r) * np.ones(n), -r * np.ones(n)]
+    return sp.csr_matrix((vals, (rows, cols)), shape=(n, n))
+
+
+def check_eigenpairs(res, A, M, k, tol):
+    A, M = np.asarray(sp.csr_matrix(A).toarray()), np.asarray(sp.csr_matrix(M).toarray())
+    U, lam = res.eigenvectors, res.eigenvalues
+    assert isinstance(res, EigenResult) and res.converged and res.backend == "superlu"
+    assert U.shape == (A.shape[0], k) and lam.shape == (k,)
+    assert np.all(np.diff(lam) >= 0)
+    np.testing.assert_allclose(U.conj().T @ M @ U, np.eye(k), atol=1e-10)
+    R = A @ U - M @ U * lam
+    eta = np.linalg.norm(R, axis=0) / ((np.abs(A).sum(0).max() + np.abs(lam) * np.abs(M).sum(0).max())
+                                       * np.linalg.norm(U, axis=0))
+    # both are rounding noise below ~eps; above it they must agree
+    np.testing.assert_allclose(res.residuals, eta, rtol=1e-6, atol=4 * np.finfo(float).eps)
+    assert np.all(res.residuals <= tol)
+
+
+# ---------------------------------------------------------------------- accuracy
+@pytest.mark.parametrize("complex_", [False, True])
+def test_against_dense_eigh_with_degenerate_eigenvalues(complex_):
+    n = 60
+    spectrum = np.r_[0.0, 0.0, 0.5, 0.5, 0.5, 2.0, np.linspace(3, 50, n - 6)]
+    A, M = pencil(n, spectrum, complex_, seed=1)
+    k = 5                                            # ends exactly after a complete cluster
+    res = smallest_eigenpairs(sp.csr_matrix(A), sp.csr_matrix(M), k=k)
+    check_eigenpairs(res, A, M, k, 1e-10)
+    np.testing.assert_allclose(res.eigenvalues, spectrum[:k], atol=1e-12)
+    w, V = sla.eigh(A, M)
+    for cluster in (slice(0, 2), slice(2, 5)):       # compare eigenspaces via M-projectors
+        P_ref = V[:, cluster] @ V[:, cluster].conj().T @ M
+        U = res.eigenvectors[:, cluster]
+        np.testing.assert_allclose(P_ref @ U, U, atol=1e-8)
+    assert np.iscomplexobj(res.eigenvectors) == complex_
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(12, 40), st.integers(1, 6), st.booleans(), st.integers(0, 10**6),
+       st.lists(st.integers(1, 3), min_size=1, max_size=4))
+def test_random_pencils_match_eigh(n, k, complex_, seed, mult):
+    rng = np.random.default_rng(seed)
+    low = np.repeat(np.sort(rng.uniform(0, 1, len(mult))), mult)   # clusters of equal eigenvalues
+    spectrum = np.sort(np.r_[low, rng.uniform(2, 20, n - len(low))])[:n]
+    A, M = pencil(n, spectrum, complex_, seed)
+    res = smallest_eigenpairs(A, M, k=k)
+    check_eigenpairs(res, A, M, k, 1e-10)
+    np.testing.assert_allclose(res.eigenvalues, sla.eigh(A, M, eigvals_only=True)[:k], atol=1e-10)
+
+
+def test_path_graph_spectrum():
+    n = 200
+    res = smallest_eigenpairs(path_laplacian(n), sp.identity(n), k=6)
+    exact = 2 - 2 * np.cos(np.pi * np.arange(6) / n)
+    np.testing.assert_allclose(res.eigenvalues, exact, atol=1e-13)
+    check_eigenpairs(res, path_laplacian(n), sp.identity(n), 6, 1e-10)
+    # eigenvector of λ_1 is cos(π j (x + 1/2) / n) up to sign
+    x = np.cos(np.pi * (np.arange(n) + 0.5) / n)
+    x /= np.linalg.norm(x)
+    assert abs(abs(res.eigenvectors[:, 1] @ x) - 1) < 1e-10
+
+
+def test_flat_torus_grid_spectrum_with_multiplicities():
+    m = 24
+    cyc = sp.diags([-np.ones(m - 1), 2 * np.ones(m), -np.ones(m - 1)], [-1, 0, 1], format="lil")
+    cyc[0, m - 1] = cyc[m - 1, 0] = -1
+    cyc = cyc.tocsr()
+    I = sp.identity(m)
+    A = sp.kron(cyc, I) + sp.kron(I, cyc)
+    lam1 = 2 - 2 * np.cos(2 * np.pi * np.arange(m) / m)
+    exact = np.sort(np.add.outer(lam1, lam1).ravel())
+    k = 13                                           # 1 + 4 + 4 + 4: complete clusters
+    res = smallest_eigenpairs(A, sp.identity(m * m), k=k)
+    np.testing.assert_allclose(res.eigenvalues, exact[:k], atol=1e-12)
+    assert res.residuals.max() <= 1e-10
+
+
+@pytest.mark.parametrize("theta", [0.3, np.pi, 2.5])
+def test_twisted_cycle_complex_spectrum(theta):
+    """Hermitian connection Laplacian with holonomy e^{iθ}: λ = 2 − 2cos((2πj − θ)/n)."""
+    n = 40
+    A = twisted_cycle(n, theta)
+    res = smallest_eigenpairs(A, sp.identity(n), k=4)
+    exact = np.sort(2 - 2 * np.cos((2 * np.pi * np.arange(n) - theta) / n))
+    np.testing.assert_allclose(res.eigenvalues, exact[:4], atol=1e-12)
+    assert res.eigenvalues[0] > 0.99 * (theta / n) ** 2   # nontrivial holonomy: no kernel
+    check_eigenpairs(res, A, sp.identity(n), 4, 1e-10)
+
+
+def test_p1_interval_spectrum():
+    """P1 FEM on a uniform interval: λ_j = (6/h²)(1 − cos(πj/N)) / (2 + cos(πj/N))."""
+    N = 50
+    X = SimplicialComplex(np.column_stack([np.arange(N), np.arange(1, N + 1)]))
+    E = EuclideanComplex(X, points=np.linspace(0, 1, N + 1)[:, None])
+    res = smallest_eigenpairs(E.stiffness_matrix(), E.mass_matrix(), k=5)
+    c = np.cos(np.pi * np.arange(5) / N)
+    np.testing.assert_allclose(res.eigenvalues, 6 * N**2 * (1 - c) / (2 + c), rtol=1e-11, atol=1e-12)
+
+
+def test_sigma_selects_nearest_and_v0_speeds_up():
+    n = 100
+    A = path_laplacian(n)
+    exact = 2 - 2 * np.cos(np.pi * np.arange(n) / n)
+    res = smallest_eigenpairs(A, sp.identity(n), k=3, sigma=1.0)
+    np.testing.assert_allclose(res.eigenvalues, np.sort(exact[np.argsort(np.abs(exact - 1.0))[:3]]), atol=1e-12)
+    assert res.shift == 1.0
+    # σ exactly an eigenvalue: A − σM is exactly singular, the solver steps off by ε
+    D = sp.diags(np.arange(10.0), format="csr")
+    res2 = smallest_eigenpairs(D, sp.identity(10), k=3, sigma=4.0)
+    np.testing.assert_allclose(res2.eigenvalues, [3.0, 4.0, 5.0], atol=1e-13)
+    assert res2.shift == 4.0 - default_shift(D, sp.identity(10, format="csr"))
+    cold = smallest_eigenpairs(A, sp.identity(n), k=1)
+    warm = smallest_eigenpairs(A, sp.identity(n), k=1, v0=cold.eigenvectors[:, 0])
+    assert warm.iterations == 2 <= cold.iterations
+    assert warm.eigenvalues[0] == pytest.approx(0.0, abs=1e-13)
+
+
+# ---------------------------------------------------------------------- convergence criterion
+def test_residual_criterion_and_convergence_error():
+    n = 300
+    A, Mm = path_laplacian(n), sp.identity(n)
+    with pytest.raises(ConvergenceError) as info:
+        smallest_eigenpairs(A, Mm, k=4, maxiter=1)
+    part = info.value.result
+    assert not part.converged and part.iterations == 1 and part.residuals.shape == (4,)
+    loose = smallest_eigenpairs(A, Mm, k=4, tol=1e-4)
+    tight = smallest_eigenpairs(A, Mm, k=4, tol=1e-13)
+    assert loose.iterations < tight.iterations
+    assert np.all(loose.residuals <= 1e-4) and np.all(tight.residuals <= 1e-13)
+    exact = 2 - 2 * np.cos(np.pi * np.arange(4) / n)
+    assert np.abs(tight.eigenvalues - exact).max() < 1e-13
+    # the criterion stays meaningful at λ = 0 (where ‖r‖/‖Au‖ is 1 by construction): the kernel
+    # vector has a tiny backward error, a slightly perturbed one is rejected, and η is scale-free
+    u = tight.eigenvectors[:, :1]
+    assert backward_errors(A, Mm, [0.0], u)[0] < 1e-15
+    v = u + 1e-6 * np.random.default_rng(0).normal(size=u.shape)
+    eta_v = backward_errors(A, Mm, [0.0], v)[0]
+    assert eta_v == pytest.approx(np.linalg.norm(A @ v) / (4 * np.linalg.norm(v)), rel=1e-12)  # ‖A‖₁ = 4
+    assert eta_v > 1e4 * 1e-10
+    assert backward_errors(1e8 * A, 1e-3 * Mm, [0.0], 5 * v)[0] == pytest.approx(eta_v, rel=1e-12)
+    lam3 = tight.eigenvalues[3]
+    np.testing.assert_allclose(backward_errors(A, Mm, tight.eigenvalues, tight.eigenvectors),
+                               tight.residuals, rtol=1e-6, atol=4 * np.finfo(float).eps)
+    assert backward_errors(A, Mm, [lam3 * (1 + 1e-6)], tight.eigenvectors[:, 3])[0] > 1e-10
+
+
+def test_default_shift_scales_with_matrices():
+    A, M = path_laplacian(20), sp.identity(20, format="csr")
+    eps = default_shift(A, M)
+    assert eps == pytest.approx(4 * np.sqrt(np.finfo(float).eps))
+    assert default_shift(7 * A, M) == pytest.approx(7 * eps)
+    assert default_shift(A, 5 * M) == pytest.approx(eps / 5)
+    r1 = smallest_eigenpairs(A, M, k=3)
+    r2 = smallest_eigenpairs(1e6 * A, 1e-3 * M, k=3)
+    np.testing.assert_allclose(r2.eigenvalues, 1e9 * r1.eigenvalues, rtol=1e-10, atol=1e-3)
+
+
+# ---------------------------------------------------------------------- solve
+@pytest.mark.parametrize("complex_", [False, True])
+def test_solve_matches_dense(complex_):
+    A, M = pencil(30, np.linspace(0, 10, 30), complex_, seed=4)
+    rng = np.random.default_rng(0)
+    b = rng.normal(size=(30, 3)) + 1j * rng.normal(size=(30, 3))
+    x = solve(sp.csr_matrix(A), sp.csr_matrix(M), 0.37, b)
+    np.testing.assert_allclose((A - 0.37 * M) @ x, b, atol=1e-10)
+    x1 = solve(A, M, 0.37, b[:, 0].real)
+    np.testing.assert_allclose((A - 0.37 * M) @ x1, b[:, 0].real, atol=1e-10)
+    with pytest.raises(InvalidOperatorError):
+        solve(path_laplacian(5), sp.identity(5), 0.0, np.ones(5))   # singular
+    with pytest.raises(ShapeError):
+        solve(A, M, 0.37, np.ones(29))
+    with pytest.raises(NonFiniteError):
+        solve(A, M, np.nan, np.ones(30))
+
+
+# ---------------------------------------------------------------------- bad input
+def test_typed_errors_on_bad_input():
+    A, M = path_laplacian(10), sp.identity(10, format="csr")
+    with pytest.raises(ShapeError):
+        smallest_eigenpairs(sp.csr_matrix(np.ones((3, 4))), sp.identity(3), k=1)
+    with pytest.raises(ShapeError):
+        smallest_eigenpairs(A, sp.identity(9), k=1)
+    with pytest.raises(ShapeError):
+        smallest_eigenpairs(np.ones(5), np.ones(5), k=1)
+    with pytest.raises(ShapeError):
+        smallest_eigenpairs(A, M, k=11)
+    with pytest.raises(ShapeError):
+        smallest_eigenpairs(A, M, k=0)
+    bad = A.toarray()
+    bad[3, 4] = np.nan
+    with pytest.raises(NonFiniteError, match=r"A\[3, 4\]"):
+        smallest_eigenpairs(bad, M, k=1)
+    nonherm = A.toarray()
+    nonherm[0, 1] = 5.0
+    with pytest.raises(InvalidOperatorError, match="not Hermitian"):
+        smallest_eigenpairs(nonherm, M, k=1)
+    with pytest.raises(InvalidOperatorError, match="not Hermitian"):
+        smallest_eigenpairs(1j * A, M, k=1)           # anti-Hermitian
+    with pytest.raises(InvalidOperatorError, match="positive definite"):
+        smallest_eigenpairs(A, -M, k=1)
+    with pytest.raises(InvalidOperatorError, match="not positive semidefinite"):
+        smallest_eigenpairs(A - 0.5 * M, M, k=2)
+    far = sp.diags(np.r_[-100.0, np.arange(1.0, 10.0)], format="csr")   # negative eigenvalue far from 0
+    with pytest.raises(InvalidOperatorError, match="not positive semidefinite"):
+        smallest_eigenpairs(far, M, k=2)
+    assert smallest_eigenpairs(far, M, k=1, sigma=-90.0).eigenvalues[0] == pytest.approx(-100.0)
+    with pytest.raises(ShapeError):
+        backward_errors(A, M, [0.0, 1.0], np.ones((10, 3)))
+    with pytest.raises(ShapeError):
+        smallest_eigenpairs(A, M, k=1, v0=np.ones(9))
+    with pytest.raises(NonFiniteError):
+        smallest_eigenpairs(A, M, k=1, v0=np.full(10, np.inf))
