@@ -156,3 +156,13 @@ def test_bad_lookups():
     with pytest.raises(ValueError):
         X.boundary(5)
     assert X.simplices(7).shape == (0, 8)
+
+
+def test_block_input_equals_tuple_input():
+    blocks = [np.array([[0, 1, 2], [2, 3, 4]]), np.array([[4, 7]]), np.zeros((0, 2), int), np.array([[9]])]
+    tuples = [(0, 1, 2), (2, 3, 4), (4, 7), (9,)]
+    assert SimplicialComplex(blocks) == SimplicialComplex(tuples)
+    with pytest.raises(InvalidSimplexError, match="repeats"):
+        SimplicialComplex([np.array([[0, 1]]), np.array([[3, 3, 4]])])
+    with pytest.raises(EmptyComplexError):
+        SimplicialComplex([np.zeros((0, 3), int)])

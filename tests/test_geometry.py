@@ -12,8 +12,9 @@ from hypothesis.extra.numpy import arrays
 from scipy.spatial import Delaunay
 
 from dhlb import SimplicialComplex
-from dhlb.errors import (DegenerateSimplexError, InvalidMetricError, NonFiniteError, NonManifoldError,
-                         ShapeError)
+from dhlb.errors import (DegenerateSimplexError, InvalidMetricError, InvalidParameterError, NonFiniteError,
+                         NonManifoldError, ShapeError)
+from dhlb.examples import cube_nd
 from dhlb.geometry import EuclideanComplex, SimplexStack, metric_from_squared_lengths, squared_lengths_from_points
 
 SETTINGS = settings(max_examples=40, deadline=None)
@@ -257,6 +258,17 @@ def test_kernel_psd_and_linear_precision(n):
     assert np.linalg.eigvalsh(Mc.toarray())[0] > 0
 
 
+@pytest.mark.parametrize("n, m", [(1, 5), (2, 4), (3, 3), (4, 2), (5, 1)])
+def test_cube_nd_volumes_sum_to_one(n, m):
+    X, P = cube_nd(n, m, return_points=True)
+    E = EuclideanComplex(X, points=P)
+    assert E.volumes().sum() == pytest.approx(1.0, rel=1e-13)
+    np.testing.assert_allclose(E.volumes(), 1.0 / (factorial(n) * m**n), rtol=1e-13)
+    if n >= 2:   # the boundary (n-1)-faces have total volume 2n
+        bd = np.bincount(X.faces(n).ravel(), minlength=X.n_simplices(n - 1)) == 1
+        assert E.volumes(n - 1)[bd].sum() == pytest.approx(2 * n, rel=1e-13)
+
+
 def test_stiffness_3d_against_brute_force():
     pts, simp = kuhn_grid(3, 2, jitter=0.25, seed=7)
     E = EuclideanComplex(SimplicialComplex(simp), points=pts)
@@ -360,7 +372,7 @@ def test_euclidean_complex_input_errors():
         EuclideanComplex(X, edge_lengths=[1, 1, 1.2, 5, 1])
     with pytest.raises(NonManifoldError, match=r"\(3, 4\)"):
         EuclideanComplex(SimplicialComplex([(0, 1, 2), (3, 4)]), points=np.zeros((5, 2)))
-    with pytest.raises(ShapeError):
+    with pytest.raises(InvalidParameterError):
         EuclideanComplex(X, points=good).volumes(3)
 
 

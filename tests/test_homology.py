@@ -21,7 +21,7 @@ from dhlb.topology.homology import (
     homology_from_boundaries,
 )
 from dhlb.topology.intlinalg import integer_kernel_basis, smith_normal_form, solve_integer
-from tests.strategies import closed_surfaces, complexes
+from tests.strategies import balls, closed_manifolds, closed_surfaces, complexes
 
 
 # ----------------------------------------------------------------------------- explicit complexes
@@ -186,6 +186,34 @@ def test_random_closed_surfaces(surface):
         assert [(h.rank, h.torsion) for h in H] == [(1, ()), (2 - chi, ()), (1, ())]
     else:
         assert [(h.rank, h.torsion) for h in H] == [(1, ()), (1 - chi, (2,)), (0, ())]
+
+
+@settings(max_examples=10, deadline=None)
+@given(st.integers(3, 4).flatmap(lambda d: st.tuples(st.just(d), closed_manifolds(d, max_moves=2))))
+def test_random_closed_manifolds(case):
+    dim, (simplices, name) = case
+    H = homology(SimplicialComplex(simplices))
+    expected = {"sphere": [1] + [0] * (dim - 1) + [1], "torus": [1, 3, 3, 1]}[name]
+    assert [h.rank for h in H] == expected and all(h.torsion == () for h in H)
+
+
+@settings(max_examples=10, deadline=None)
+@given(st.integers(1, 4).flatmap(balls))
+def test_random_balls_are_acyclic(simplices):
+    H = homology(SimplicialComplex(simplices))
+    assert [(h.rank, h.torsion) for h in H] == [(1, ())] + [(0, ())] * (len(H) - 1)
+    assert H[0].generators.shape[1] == 1
+
+
+def test_kunneth_rp2_times_circle():
+    """H_*(RP² × S¹) by Künneth: Z, Z ⊕ Z/2, Z/2, 0 (Tor(Z/2, Z) = 0)."""
+    from dhlb import examples as ex
+
+    X = ex.product(SimplicialComplex(RP2), SimplicialComplex(CIRCLE))
+    H = homology(X)
+    assert [(h.rank, h.torsion) for h in H] == [(1, ()), (1, (2,)), (0, (2,)), (0, ())]
+    for k, h in enumerate(H):
+        check_homology_group(X, k, h)
 
 
 # ----------------------------------------------------------------------------- cohomology

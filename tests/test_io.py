@@ -169,6 +169,21 @@ def test_real_tet_mesh():
     np.testing.assert_array_equal(np.unique(np.sort(cells[2], axis=1), axis=0), u[c == 1])  # file boundary
 
 
+def test_files_written_by_meshio_read_back_identically():
+    """A third-party writer (meshio 5.3.5, see tests/data/SOURCES.md): Gmsh 2.2 and 4.1, VTK, Medit, PLY."""
+    V, cells = read_cells(os.path.join(DATA, "meshio-mixed.mesh"))
+    assert V.shape == (30, 3) and cells[2].shape == (25, 3) and cells[3].shape == (20, 4)
+    for name in ("meshio-mixed-v22.msh", "meshio-mixed.vtk", "meshio-tet-v41.msh"):
+        V2, cells2 = read_cells(os.path.join(DATA, name))
+        np.testing.assert_array_equal(V2, V)
+        np.testing.assert_array_equal(cells2[3], cells[3])
+        if "tet" not in name:
+            np.testing.assert_array_equal(cells2[2], cells[2])
+    V2, F2 = read_surface(os.path.join(DATA, "meshio-tri-binary.ply"))
+    np.testing.assert_array_equal(V2, V)
+    np.testing.assert_array_equal(F2, cells[2])
+
+
 def test_bundled_examples():
     V, F = read_surface(example_path("torus.obj"))
     assert V.shape == (288, 3) and F.shape == (576, 3) and len(V) - unique_edges(F) + len(F) == 0

@@ -8,8 +8,10 @@ import warnings
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from dhlb.errors import MeshParseError, NonFiniteError
+from dhlb.errors import DhlbError, MeshParseError, NonFiniteError
 from dhlb.io import load, read_cells, read_ply, read_surface, read_volume, write_ply
 
 DATA = os.path.join(os.path.dirname(__file__), "data")
@@ -54,6 +56,7 @@ CASES = [
     ("kw.obj", TRI_OBJ + "vertex 1 2 3\n", MeshParseError, r"line 5: unknown OBJ statement 'vertex'"),
     ("tok.off", OFF.replace("3 0 1 2", "3 0 one 2"), MeshParseError, r"line 6: cannot read 'one'"),
     ("tok.ply", PLY.replace("1 0 0\n", "1 0 zero\n"), MeshParseError, r"line 11: cannot read 'zero'"),
+    ("frac.ply", PLY.replace("3 0 1 2", "3 0 1 2.5"), MeshParseError, r"line 13: cannot read '2.5' as an integer"),
     ("tok.mesh", TET_MESH.replace("1 0 0 0", "1 0 O 0"), MeshParseError, r"line 6: cannot read 'O'"),
     ("tok.msh", MSH22.replace("1 2 0 1 2 3", "1 2 0 1 2 three"), MeshParseError, r"line 12: cannot read 'three'"),
     ("tok.vtk", VTK.replace("3 0 1 2", "3 0 1 #"), MeshParseError, r"line 10: cannot read '#'"),
@@ -86,8 +89,10 @@ CASES = [
     ("few.ply", PLY.replace("element face 1", "element face 2"), MeshParseError, r"ends after 1 of 2 'face' lines"),
     ("head.ply", PLY.replace("property float y", "property flaot y"), MeshParseError, r"line 5: cannot understand"),
     ("noz.ply", PLY.replace("property float z\n", "property float w\n"), MeshParseError, r"no property 'z'"),
-    ("few.mesh", TET_MESH.replace("Tetrahedra\n1", "Tetrahedra\n2"), MeshParseError, r"line 12: section 'Tetrahedra' \(line 9\) declares 2 rows, but keyword 'End' follows after 1"),
-    ("twice.mesh", TET_MESH.replace("End", "Vertices\n0\nEnd"), MeshParseError, r"line 12: section 'Vertices' appears twice"),
+    ("few.mesh", TET_MESH.replace("Tetrahedra\n1", "Tetrahedra\n2"), MeshParseError,
+     r"line 12: section 'Tetrahedra' \(line 9\) declares 2 rows, but keyword 'End' follows after 1"),
+    ("twice.mesh", TET_MESH.replace("End", "Vertices\n0\nEnd"), MeshParseError,
+     r"line 12: section 'Vertices' appears twice"),
     ("kw.mesh", TET_MESH.replace("Tetrahedra", "0.5 0.5"), MeshParseError, r"line 9: expected a keyword"),
     ("open.msh", MSH22.replace("$EndNodes\n", ""), MeshParseError, r"line 4: section \$Nodes is not closed"),
     ("bin.msh", MSH22.replace("2.2 0 8", "2.2 1 8"), MeshParseError, r"line 2: binary .msh files are not supported"),
@@ -100,7 +105,8 @@ CASES = [
     ("rep.obj", TRI_OBJ.replace("f 1 2 3", "f 1 2 2"), MeshParseError, r"line 4: face \(1 2 2\) repeats a vertex"),
     ("rep.mesh", TET_MESH.replace("1 2 3 4 0", "1 2 3 3 0"), MeshParseError, r"line 11: tetrahedron .* repeats"),
     ("rep.txt", "0 1 2\n3 4 3\n", MeshParseError, r"line 2: simplex \(3, 4, 3\) repeats vertex 3"),
-    ("hex.mesh", TET_MESH.replace("End", "Hexahedra\n1\n1 2 3 4 1 2 3 4 0\nEnd"), MeshParseError, r"line 12: .*1 Hexahedra"),
+    ("hex.mesh", TET_MESH.replace("End", "Hexahedra\n1\n1 2 3 4 1 2 3 4 0\nEnd"), MeshParseError,
+     r"line 12: .*1 Hexahedra"),
     ("quad.msh", MSH22.replace("1 2 0 1 2 3", "1 3 0 1 2 3 1"), MeshParseError, r"line 12: element type 3 \(4-node"),
     ("quad.vtk", VTK.replace("CELL_TYPES 1\n5", "CELL_TYPES 1\n9"), MeshParseError, r"line 12: cell type 9 \(quad\)"),
 ]
@@ -177,3 +183,52 @@ def test_binary_garbage_is_a_parse_error_not_a_crash(tmp_path):
         p.write_bytes(rng.integers(0, 256, 2000, dtype=np.uint8).tobytes())
         with pytest.raises(MeshParseError, match=f"garbage.{ext}"):
             load(p)
+
+
+# ------------------------------------------------------------------------------------ fuzzing
+FIXTURES = {"a.obj": TRI_OBJ, "a.off": OFF, "a.ply": PLY, "a.mesh": TET_MESH, "a.msh": MSH22, "b.msh": MSH41,
+            "a.vtk": VTK, "a.txt": "0 1 2\n1 2 3\n"}  # fmt: skip
+TOKENS = ["x", "-1", "0", "1", "2", "3", "99", "nan", "-inf", "1e400", "3.5", "-0", "#", "$Nodes", "End", "f", "v"]
+
+
+@st.composite
+def mutated(draw):
+    name = draw(st.sampled_from(sorted(FIXTURES)))
+    lines = [line.split(" ") for line in FIXTURES[name].splitlines()]
+    for _ in range(draw(st.integers(1, 3))):
+        i = draw(st.integers(0, len(lines) - 1))
+        action = draw(st.sampled_from(["replace", "delete_line", "duplicate_line", "insert", "drop_token"]))
+        if action == "replace":
+            lines[i][draw(st.integers(0, len(lines[i]) - 1))] = draw(st.sampled_from(TOKENS))
+        elif action == "delete_line" and len(lines) > 1:
+            del lines[i]
+        elif action == "duplicate_line":
+            lines.insert(i, list(lines[i]))
+        elif action == "insert":
+            lines[i].insert(draw(st.integers(0, len(lines[i]))), draw(st.sampled_from(TOKENS)))
+        elif action == "drop_token" and len(lines[i]) > 1:
+            del lines[i][draw(st.integers(0, len(lines[i]) - 1))]
+    return name, "\n".join(" ".join(t) for t in lines) + "\n"
+
+
+@settings(max_examples=150, deadline=None)
+@given(case=mutated())
+def test_mutated_files_parse_or_raise_a_dhlb_error(tmp_path_factory, case):
+    """Random edits of valid files: either a consistent mesh or a DhlbError, nothing else."""
+    name, text = case
+    path = tmp_path_factory.mktemp("fuzz") / name
+    path.write_text(text)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            m = load(path)
+        except DhlbError as err:
+            assert str(path) in str(err)
+            return
+    for k, c in m.cells.items():
+        assert c.dtype == np.int64 and c.ndim == 2 and c.shape[1] == k + 1 and len(c)
+        assert (np.sort(c, axis=1)[:, 1:] != np.sort(c, axis=1)[:, :-1]).all()
+        if m.points is not None:
+            assert c.min() >= 0 and c.max() < len(m.points)
+    if m.points is not None:
+        assert m.points.shape[1] == 3 and np.isfinite(m.points).all()

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dhlb import SimplicialComplex
-from dhlb.errors import ConvergenceError, InvalidOperatorError, NonFiniteError, ShapeError
+from dhlb.errors import ConvergenceError, InvalidOperatorError, InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.fem.solvers import EigenResult, backward_errors, default_shift, smallest_eigenpairs, solve
 from dhlb.geometry import EuclideanComplex
 
@@ -211,8 +211,10 @@ def test_solve_matches_dense(complex_):
         solve(path_laplacian(5), sp.identity(5), 0.0, np.ones(5))   # singular
     with pytest.raises(ShapeError):
         solve(A, M, 0.37, np.ones(29))
-    with pytest.raises(NonFiniteError):
+    with pytest.raises(InvalidParameterError):
         solve(A, M, np.nan, np.ones(30))
+    with pytest.raises(NonFiniteError):
+        solve(A, M, 0.37, np.full(30, np.nan))
 
 
 # ---------------------------------------------------------------------- bad input
@@ -224,10 +226,14 @@ def test_typed_errors_on_bad_input():
         smallest_eigenpairs(A, sp.identity(9), k=1)
     with pytest.raises(ShapeError):
         smallest_eigenpairs(np.ones(5), np.ones(5), k=1)
-    with pytest.raises(ShapeError):
+    with pytest.raises(InvalidParameterError):
         smallest_eigenpairs(A, M, k=11)
-    with pytest.raises(ShapeError):
+    with pytest.raises(InvalidParameterError):
         smallest_eigenpairs(A, M, k=0)
+    with pytest.raises(InvalidParameterError):
+        smallest_eigenpairs(A, M, k=1, tol=0.0)
+    with pytest.raises(InvalidParameterError):
+        smallest_eigenpairs(A, M, k=1, sigma=np.nan)
     bad = A.toarray()
     bad[3, 4] = np.nan
     with pytest.raises(NonFiniteError, match=r"A\[3, 4\]"):

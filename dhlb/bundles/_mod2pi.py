@@ -37,8 +37,9 @@ _SIGNS = np.array([1, -1, 1], dtype=np.int64)
 def _peel(faces: np.ndarray, alive: np.ndarray, n_low: int):
     """Batched collapses of (low face, high simplex) pairs among the ``alive`` high simplices.
 
-    Returns ``(rounds, stuck)``: list of ``(low, high)`` index arrays per round, and the high
-    simplices removed without a partner (in removal order).
+    Returns ``(rounds, stuck, low_alive)``: the ``(low, high)`` index arrays of each round, the
+    high simplices removed without a partner (in removal order), and a mask of the low faces
+    that were never collapsed.
     """
     alive = alive.copy()
     ids = np.nonzero(alive)[0]
@@ -46,28 +47,35 @@ def _peel(faces: np.ndarray, alive: np.ndarray, n_low: int):
     cnt = np.bincount(flat, minlength=n_low).astype(np.int64)
     acc = np.bincount(flat, weights=np.repeat(ids, faces.shape[1]).astype(np.float64), minlength=n_low).astype(np.int64)
     low_alive = np.ones(n_low, bool)
+    stamp = np.zeros(n_low, np.int64)
+    owner = np.zeros(faces.shape[0], np.int64)
     cand = np.nonzero(cnt == 1)[0]
     rounds, stuck = [], []
     n_alive = ids.size
     scan = 0
     while n_alive:
         cand = cand[(cnt[cand] == 1) & low_alive[cand]]
-        if cand.size == 0:
+        if cand.size:  # drop repeated candidates, then keep one free face per high simplex (O(k), no sort)
+            pos = np.arange(cand.size)
+            stamp[cand] = pos
+            cand = cand[stamp[cand] == pos]
+            high = acc[cand]
+            owner[high] = cand
+            keep = owner[high] == cand
+            low, high = cand[keep], high[keep]
+            low_alive[low] = False
+            rounds.append((low, high))
+        else:
             while not alive[scan]:
                 scan += 1
             high = np.array([scan], np.int64)
             stuck.append(scan)
-        else:
-            high, first = np.unique(acc[cand], return_index=True)
-            low = cand[first]
-            low_alive[low] = False
-            rounds.append((low, high))
         alive[high] = False
         n_alive -= high.size
         fl = faces[high].ravel()
         np.subtract.at(cnt, fl, 1)
         np.subtract.at(acc, fl, np.repeat(high, faces.shape[1]))
-        cand = np.unique(fl)
+        cand = fl
     return rounds, np.array(stuck, np.int64), low_alive
 
 

@@ -31,3 +31,24 @@ def wrap_angle(a) -> np.ndarray:
     a = np.asarray(a, dtype=np.float64)
     w = np.mod(a + np.pi, 2 * np.pi) - np.pi
     return np.where(w <= -np.pi, w + 2 * np.pi, w)
+
+
+def coboundary(X, k: int, values) -> np.ndarray:
+    """``d_k`` applied to a k-cochain via ``X.faces(k+1)`` (no sparse matrix is built).
+
+    Returns ``(d values, scale)`` where ``scale = |d| |values|`` bounds the rounding error.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1, 2)])
+    >>> coboundary(X, 1, np.array([1.0, 2.0, 4.0]))[0].tolist()      # ω_12 − ω_02 + ω_01
+    [3.0]
+    """
+    v = np.asarray(values)
+    if X.n_simplices(k + 1) == 0:
+        return np.zeros(0, v.dtype), np.zeros(0)
+    f = X.faces(k + 1)
+    signs = np.where(np.arange(k + 2) % 2 == 0, 1.0, -1.0)
+    g = v[f]
+    return g @ signs, np.abs(g).sum(axis=1)

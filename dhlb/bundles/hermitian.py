@@ -25,7 +25,7 @@ from functools import cached_property
 import numpy as np
 
 from dhlb.bundles import paths
-from dhlb.bundles._util import simplex_name, wrap_angle
+from dhlb.bundles._util import coboundary, simplex_name, wrap_angle
 from dhlb.bundles.vector_bundle import VectorBundle
 from dhlb.errors import (
     CurvatureMismatchError,
@@ -112,8 +112,7 @@ class HermitianLineBundle:
                     f"the connection: Ω = {Om[t]:.6g}, holonomy angle = {hol[t]:.6g}, mismatch = {mis[t]:.3g} (mod 2π)"
                 )
         if X.dim >= 3 and X.n_simplices(3):
-            dOm = X.coboundary(2) @ Om
-            scale = np.abs(X.coboundary(2)) @ np.abs(Om)
+            dOm, scale = coboundary(X, 2, Om)
             badd = np.abs(dOm) > atol * np.maximum(1.0, scale)
             if np.any(badd):
                 s = int(np.argmax(badd))
@@ -163,7 +162,7 @@ class HermitianLineBundle:
 
     def holonomy_angles(self) -> np.ndarray:
         """``(dω)`` wrapped to (−π, π]: the angle of ``r_ij r_jk r_ki`` per triangle."""
-        return wrap_angle(self._X.coboundary(1) @ self.connection_angles)
+        return wrap_angle(coboundary(self._X, 1, self.connection_angles)[0])
 
     def vector_bundle(self) -> VectorBundle:
         """The rank-1 complex hermitian :class:`VectorBundle` with transports ``r``."""

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from dhlb.bundles._util import simplex_name
+from dhlb.bundles._util import coboundary, simplex_name
 from dhlb.errors import CurvatureMismatchError, NonFiniteError, SectionZeroError
 
 __all__ = ["rotation_form", "index_form", "index_sum"]
@@ -75,7 +75,7 @@ def index_form(L, section) -> np.ndarray:
     mean that the bundle's curvature and connection disagree).
     """
     xi = rotation_form(L, section)
-    val = (L.X.coboundary(1) @ xi + L.curvature) / (2 * np.pi)
+    val = (coboundary(L.X, 1, xi)[0] + L.curvature) / (2 * np.pi)
     n = np.round(val)
     off = np.abs(val - n)
     tol = 1e-6 * np.maximum(1.0, np.abs(L.curvature) / (2 * np.pi))

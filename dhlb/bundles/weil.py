@@ -36,7 +36,7 @@ import scipy.sparse as sp
 
 from dhlb.bundles._mod2pi import solve_mod_2pi
 from dhlb.bundles._surface import surface_cycles
-from dhlb.bundles._util import simplex_name, wrap_angle
+from dhlb.bundles._util import coboundary, simplex_name, wrap_angle
 from dhlb.bundles.hermitian import HermitianLineBundle, _real_vector
 from dhlb.errors import CurvatureMismatchError, IntegralityError, NotClosedError
 
@@ -109,10 +109,9 @@ def check_integrality(X, Omega, atol: float = 1e-8) -> np.ndarray:
     if Om.size == 0:
         return np.zeros(0, np.int64)
     if X.dim >= 3 and X.n_simplices(3):
-        d3 = X.coboundary(2)
-        per = d3 @ Om
+        per, scale = coboundary(X, 2, Om)
         dfc = per - 2 * np.pi * np.round(per / (2 * np.pi))
-        bad = np.abs(dfc) > atol * np.maximum(1.0, np.abs(d3) @ np.abs(Om))
+        bad = np.abs(dfc) > atol * np.maximum(1.0, scale)
         if np.any(bad):
             s = int(np.argmax(bad))
             cyc = np.asarray(X.boundary(3)[:, [s]].toarray()).ravel().astype(np.int64)
@@ -131,9 +130,8 @@ def check_integrality(X, Omega, atol: float = 1e-8) -> np.ndarray:
 
 def _check_closed(X, Om: np.ndarray, atol: float) -> None:
     if X.dim >= 3 and X.n_simplices(3):
-        d3 = X.coboundary(2)
-        dOm = d3 @ Om
-        bad = np.abs(dOm) > atol * np.maximum(1.0, np.abs(d3) @ np.abs(Om))
+        dOm, scale = coboundary(X, 2, Om)
+        bad = np.abs(dOm) > atol * np.maximum(1.0, scale)
         if np.any(bad):
             s = int(np.argmax(bad))
             raise NotClosedError(f"Ω is not closed: dΩ = {dOm[s]:.6g} on the tetrahedron {simplex_name(X, 3, s)}")

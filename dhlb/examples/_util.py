@@ -11,13 +11,16 @@ from dhlb.errors import InvalidParameterError
 from dhlb.topology.complex import SimplicialComplex
 
 
-def check_int(value, name: str, minimum: int) -> int:
-    """``value`` as a Python int, or :class:`InvalidParameterError` if not an integer ``>= minimum``."""
+def check_int(value, name: str, minimum: int, why: str = "") -> int:
+    """``value`` as a Python int, or :class:`InvalidParameterError` if not an integer ``>= minimum``.
+
+    ``why`` is appended to the message of a too-small value.
+    """
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
         raise InvalidParameterError(f"{name} must be an integer, got {value!r} ({type(value).__name__})")
     value = int(value)
     if value < minimum:
-        raise InvalidParameterError(f"{name} must be an integer >= {minimum}, got {value}")
+        raise InvalidParameterError(f"{name} must be an integer >= {minimum}, got {value}" + (f"; {why}" if why else ""))
     return value
 
 
@@ -42,7 +45,8 @@ def shuffle_paths(p: int, q: int) -> tuple[np.ndarray, np.ndarray]:
     ([[0, 1, 1], [0, 0, 1]], [[0, 0, 1], [0, 1, 1]])
     """
     steps = p + q
-    x_steps = np.array(list(combinations(range(steps), p)), dtype=np.int64).reshape(-1, p)
+    choices = list(combinations(range(steps), p))
+    x_steps = np.array(choices, dtype=np.int64).reshape(len(choices), p)
     is_x = np.zeros((x_steps.shape[0], steps), dtype=np.int64)
     np.put_along_axis(is_x, x_steps, 1, axis=1)
     zero = np.zeros((is_x.shape[0], 1), np.int64)
@@ -62,7 +66,8 @@ def kuhn_paths(n: int) -> np.ndarray:
     >>> kuhn_paths(2).tolist()
     [[[0, 0], [1, 0], [1, 1]], [[0, 0], [0, 1], [1, 1]]]
     """
-    perms = np.array(list(permutations(range(n))), dtype=np.int64).reshape(-1, n)
+    perm_list = list(permutations(range(n)))
+    perms = np.array(perm_list, dtype=np.int64).reshape(len(perm_list), n)
     steps = np.zeros((perms.shape[0], n, n), dtype=np.int64)
     np.put_along_axis(steps, perms[:, :, None], 1, axis=2)  # steps[s, r] = e_{π(r)}
     zero = np.zeros((perms.shape[0], 1, n), np.int64)
@@ -71,7 +76,4 @@ def kuhn_paths(n: int) -> np.ndarray:
 
 def from_blocks(blocks: list[np.ndarray]) -> SimplicialComplex:
     """A complex from row blocks of possibly different widths (one array when they all agree)."""
-    widths = {b.shape[1] for b in blocks}
-    if len(widths) == 1:
-        return SimplicialComplex(np.concatenate(blocks))
-    return SimplicialComplex([tuple(r) for b in blocks for r in b.tolist()])
+    return SimplicialComplex([np.asarray(b, np.int64) for b in blocks])

@@ -13,16 +13,22 @@ from dhlb.topology.complex import SimplicialComplex
 __all__ = ["cube_nd", "torus_nd"]
 
 
-def _cells_per_axis(n: int, m, minimum: int, what: str) -> tuple[int, ...]:
+def _cells_per_axis(n: int, m, minimum: int, why: str = "") -> tuple[int, ...]:
     if isinstance(m, numbers.Integral) and not isinstance(m, (bool, np.bool_)):
-        return (check_int(m, "m", minimum),) * n
+        return (check_int(m, "m", minimum, why),) * n
     try:
         seq = list(m)
     except TypeError:
         raise InvalidParameterError(f"m must be an integer or a sequence of {n} integers, got {m!r}") from None
     if len(seq) != n:
         raise InvalidParameterError(f"m must give one cell count per axis ({n} of them), got {len(seq)}: {seq!r}")
-    return tuple(check_int(v, f"m[{a}]", minimum) for a, v in enumerate(seq))
+    return tuple(check_int(v, f"m[{a}]", minimum, why) for a, v in enumerate(seq))
+
+
+_PERIODIC_WHY = (
+    "with m <= 2 cells on an axis the periodic grid is no simplicial complex (grid points i and i + 2 "
+    "coincide, so two different edges would join the same two vertices); use m >= 3 or cube_nd"
+)
 
 
 def _strides(shape: tuple[int, ...]) -> np.ndarray:
@@ -79,7 +85,7 @@ def cube_nd(n: int, m=1, return_points: bool = False):
     (27, 98, 120, 48)
     """
     n = check_int(n, "n", 1)
-    cells = _cells_per_axis(n, m, 1, "cube")
+    cells = _cells_per_axis(n, m, 1)
     shape = tuple(c + 1 for c in cells)
     strides = _strides(shape)
     base = np.zeros(1, np.int64)  # vertex index of each cell's lowest corner, C order of cells
@@ -135,7 +141,7 @@ def torus_nd(n: int, m=3, return_points: bool = False):
     (64, 448, 768, 384)
     """
     n = check_int(n, "n", 1)
-    cells = _cells_per_axis(n, m, 3, "torus")
+    cells = _cells_per_axis(n, m, 3, _PERIODIC_WHY)
     strides = _strides(cells)
     paths = kuhn_paths(n)  # (n!, n+1, n)
     rows = np.zeros(1, np.int64)[:, None, None]

@@ -5,7 +5,6 @@ from __future__ import annotations
 import numpy as np
 
 from dhlb.examples._util import as_complex, from_blocks, shuffle_paths
-from dhlb.topology.complex import SimplicialComplex
 
 __all__ = ["product"]
 
@@ -17,8 +16,8 @@ def product(X, Y, return_pairs: bool = False):
     ``σ = (x_0 < ... < x_p)`` and a q-simplex ``τ = (y_0 < ... < y_q)`` the prism ``σ × τ`` is
     cut into ``binom(p + q, p)`` simplices of dimension ``p + q``, one per monotone lattice path
     ``(0, 0) = (i_0, j_0), (i_1, j_1), ..., (p, q)`` (each step raises one coordinate by one):
-    the simplex with vertices ``(x_{i_r}, y_{j_r})`` (Eilenberg–Zilber; Eilenberg–Steenrod,
-    *Foundations of Algebraic Topology*, II.8). Equivalently the simplices are the chains of the
+    the simplex with vertices ``(x_{i_r}, y_{j_r})`` (the classical triangulation of a product of
+    ordered simplicial complexes; its simplices are the shuffles of Eilenberg–Zilber 1953). Equivalently the simplices are the chains of the
     product order in which both projections are simplices. The triangulations of neighbouring
     prisms agree on common faces, so this is a simplicial complex homeomorphic to ``|X| × |Y|``.
 

@@ -53,7 +53,7 @@ def lens_space(p: int, q: int = 1) -> SimplicialComplex:
     """A triangulation of the lens space ``L(p, q) = S^3 / (Z/p)``.
 
     ``Z/p`` acts on ``S^3 ⊂ C^2`` by ``(z_1, z_2) -> (ζ z_1, ζ^q z_2)``, ``ζ = exp(2πi / p)``
-    (the convention of Hatcher's *Algebraic Topology*, Example 2.43). ``L(1, q) = S^3``,
+    (the convention of Hatcher's *Algebraic Topology*, §2.2). ``L(1, q) = S^3``,
     ``L(2, 1) = RP^3``; the homology is ``Z, Z/p, 0, Z``.
 
     Triangulation: ``S^3 = ∂(D_A × D_B)`` with ``D_A`` the cone from a centre ``c_A`` over a

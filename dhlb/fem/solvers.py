@@ -4,9 +4,11 @@ The eigensolver is shift-and-invert subspace iteration with Rayleigh–Ritz: wit
 it factorizes ``K = A - σ M`` once and iterates ``W = K⁻¹ M U``, orthonormalizes ``W`` and
 solves the projected problem ``(QᴴAQ) c = θ (QᴴMQ) c``.  The Ritz vectors are M-orthonormal.
 
-Linear algebra goes through a tiny backend interface (``name``, ``factorize(K)`` returning an
-object with ``solve(B)``) so that faster factorizations can be plugged in later; the default
-backend is SuperLU (:func:`scipy.sparse.linalg.splu`, real or complex).
+Linear algebra goes through a tiny backend interface (``name``, ``factorize(K, positive_definite=False)``
+returning an object with ``solve(B)``; ``factorize`` raises :class:`~dhlb.errors.InvalidOperatorError`
+if ``K`` is singular, or not positive definite when that was asserted) so that faster
+factorizations can be plugged in later; the default backend is SuperLU
+(:func:`scipy.sparse.linalg.splu`, real or complex).
 
 Default shift
     For a PSD ``A`` the smallest eigenvalues are wanted and the kernel of ``A`` is typically
@@ -38,7 +40,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from dhlb.errors import ConvergenceError, InvalidOperatorError, NonFiniteError, ShapeError
+from dhlb.errors import ConvergenceError, InvalidOperatorError, InvalidParameterError, NonFiniteError, ShapeError
 
 __all__ = ["EigenResult", "SuperLUBackend", "backward_errors", "default_shift", "smallest_eigenpairs", "solve"]
 
@@ -52,6 +54,7 @@ class SuperLUBackend:
     With ``positive_definite=True`` the Hermitian ``K`` is factorized with a symmetric
     fill-reducing ordering and no pivoting (``P K Pᵀ = L D Lᴴ`` in LU form); by Sylvester's law
     of inertia ``K`` is positive definite iff all pivots ``D`` are positive, which is checked.
+    (Should SuperLU nevertheless pivot off the diagonal, the check is skipped.)
     """
 
     name = "superlu"
@@ -80,7 +83,7 @@ def _get_backend(backend):
         return SuperLUBackend()
     if isinstance(backend, str):
         if backend not in _BACKENDS:
-            raise ValueError(f"unknown backend {backend!r}; available: {sorted(_BACKENDS)}")
+            raise InvalidParameterError(f"unknown backend {backend!r}; available: {sorted(_BACKENDS)}")
         return _BACKENDS[backend]()
     if not (hasattr(backend, "factorize") and hasattr(backend, "name")):
         raise TypeError("a backend needs a `name` and a `factorize(K, positive_definite=False)` method "
@@ -262,11 +265,11 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
     A, M = _validate_pair(A, M)
     n = A.shape[0]
     if not (isinstance(k, (int, np.integer)) and 1 <= k <= n):
-        raise ShapeError(f"k must be an integer with 1 <= k <= n = {n}, got {k!r}")
+        raise InvalidParameterError(f"k must be an integer with 1 <= k <= n = {n}, got {k!r}")
     if not (np.isfinite(tol) and tol > 0):
-        raise ValueError(f"tol must be a positive number, got {tol!r}")
+        raise InvalidParameterError(f"tol must be a positive number, got {tol!r}")
     if not (isinstance(maxiter, (int, np.integer)) and maxiter >= 1):
-        raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
+        raise InvalidParameterError(f"maxiter must be a positive integer, got {maxiter!r}")
     be = _get_backend(backend)
     complex_ = np.iscomplexobj(A.data) or np.iscomplexobj(M.data)
     dtype = np.complex128 if complex_ else np.float64
@@ -276,7 +279,7 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
         shift = -eps_shift
     else:
         if not (np.isscalar(sigma) and np.isreal(sigma) and np.isfinite(sigma)):
-            raise ValueError(f"sigma must be a finite real number, got {sigma!r}")
+            raise InvalidParameterError(f"sigma must be a finite real number, got {sigma!r}")
         shift = float(sigma)
     if default:
         try:
@@ -370,7 +373,7 @@ def solve(A, M, lam, b, *, backend=None) -> np.ndarray:
     A, M = _validate_pair(A, M)
     n = A.shape[0]
     if not (np.isscalar(lam) and np.isfinite(lam)):
-        raise NonFiniteError(f"lam must be a finite scalar, got {lam!r}")
+        raise InvalidParameterError(f"lam must be a finite scalar, got {lam!r}")
     B = np.asarray(b)
     if B.ndim not in (1, 2) or B.shape[0] != n:
         raise ShapeError(f"b must have shape ({n},) or ({n}, r), got {B.shape}")

@@ -1,4 +1,4 @@
-"""Discrete k-forms (cochains) with coefficients in Z, R, C, S¹ or C*, and integer chains.
+"""Discrete k-forms (cochains) with coefficients in Z, R, C, S¹ or C*.
 
 A discrete k-form is a homomorphism from k-chains to a coefficient group (seed, Definition 5):
 one group element per canonically oriented k-simplex, in the row order of
@@ -12,7 +12,8 @@ import numbers
 
 import numpy as np
 
-from dhlb.errors import InvalidCochainError, NotAPathError, SimplexNotFoundError
+from dhlb.errors import InvalidCochainError
+from dhlb.forms.chain import Chain, _as_rows, _check_complex, _check_degree, _coefficients, _same_complex
 from dhlb.forms.groups import Group, get_group
 
 __all__ = ["Cochain", "Chain"]
@@ -26,16 +27,6 @@ _CONVERSIONS = {
     ("S1", "C*"): lambda v: np.exp(1j * v),
     ("C*", "S1"): lambda v: np.angle(v),
 }
-
-
-def _same_complex(X, Y) -> bool:
-    return X is Y or X == Y
-
-
-def _check_degree(k) -> int:
-    if not isinstance(k, numbers.Integral) or k < 0:
-        raise InvalidCochainError(f"the degree k of a form or chain must be a non-negative integer, got {k!r}")
-    return int(k)
 
 
 class Cochain:
@@ -87,7 +78,7 @@ class Cochain:
     __array_ufunc__ = None  # keep numpy from broadcasting over a Cochain
 
     def __init__(self, X, k, values, group="R"):
-        self._X = X
+        self._X = _check_complex(X)
         self._k = _check_degree(k)
         self._group = get_group(group)
         vals = self._group.coerce(values, X, self._k)
@@ -115,7 +106,7 @@ class Cochain:
         [(1+0j)]
         """
         g = get_group(group)
-        return cls._wrap(X, _check_degree(k), np.full(X.n_simplices(k), g.identity, dtype=g.dtype), g)
+        return cls._wrap(_check_complex(X), _check_degree(k), np.full(X.n_simplices(k), g.identity, dtype=g.dtype), g)
 
     @classmethod
     def from_simplices(cls, X, rows, values, group="R") -> "Cochain":
@@ -132,10 +123,9 @@ class Cochain:
         [-0.5, 0.0, 2.0]
         """
         g = get_group(group)
-        arr = np.asarray(rows)
-        if arr.ndim != 2 or arr.shape[0] == 0:
-            raise InvalidCochainError("rows must be a non-empty list of simplices of equal dimension")
+        arr = _as_rows(rows)
         k = arr.shape[1] - 1
+        _check_complex(X)
         idx = X.index(k, arr)
         sign = X.orientation_of(arr)
         vals = np.asarray(values)
@@ -208,7 +198,17 @@ class Cochain:
     __call__ = pair
 
     def is_closed(self, tol=None) -> bool:
-        """True if ``dω`` is the identity up to ``tol`` (default: relative 1e-9; exact for Z)."""
+        """True if ``dω`` is the identity up to ``tol`` (default: relative 1e-9; exact for Z).
+
+        Examples
+        --------
+        >>> from dhlb import SimplicialComplex
+        >>> X = SimplicialComplex([(0, 1, 2)])
+        >>> Cochain(X, 1, [1.0, 1.0, 0.0]).is_closed(), Cochain(X, 1, [1.0, 0.0, 0.0]).is_closed()
+        (True, False)
+        >>> Cochain(X, 1, [3.0, -3.0, 2 * np.pi - 6.0], "S1").is_closed()   # dω = 2π·(−1) ≡ 0
+        True
+        """
         dw = self._group.d(self._X, self._k, self._values)
         tol = self._group.default_tol(self._values) if tol is None else tol
         return bool(np.all(self._group.distance(dw) <= tol))
@@ -330,130 +330,14 @@ class Cochain:
         return Cochain(self._X, self._k, conv(self._values), g)
 
     def lift(self) -> "Cochain":
-        """The real form with the canonical S¹ representatives in (−π, π] (S¹ only)."""
+        """The real form with the canonical S¹ representatives in (−π, π] (S¹ only).
+
+        Examples
+        --------
+        >>> from dhlb import SimplicialComplex
+        >>> Cochain(SimplicialComplex([(0, 1)]), 1, [7.0], "S1").lift().values.round(4).tolist()
+        [0.7168]
+        """
         if self.group != "S1":
             raise InvalidCochainError(f"lift() is for S1-forms; this form has group {self.group}")
         return Cochain._wrap(self._X, self._k, self._values, get_group("R"))
-
-
-def _coefficients(chain, X, k, integer: bool) -> np.ndarray:
-    """Coefficient array of a chain argument, validated against the complex and degree."""
-    if isinstance(chain, Chain):
-        if chain.k != k or not _same_complex(chain.complex, X):
-            raise InvalidCochainError(f"cannot pair a {k}-form with a {chain.k}-chain or a chain on another complex")
-        return chain.coefficients
-    c = np.asarray(chain)
-    n = X.n_simplices(k)
-    if c.ndim not in (1, 2) or c.shape[-1] != n or c.dtype.kind not in "biuf":
-        raise InvalidCochainError(f"a {k}-chain is a numeric array of shape ({n},) or (m, {n}); got {c.shape}")
-    if c.dtype.kind == "f":
-        if not np.all(np.isfinite(c)):
-            raise InvalidCochainError("chain coefficients must be finite")
-        if integer:
-            if np.any(c != np.round(c)):
-                raise InvalidCochainError("this group needs integer chain coefficients (S1, C*, Z are not real vector spaces)")
-            c = c.astype(np.int64)
-    return c.astype(np.int64) if c.dtype.kind in "bu" else c
-
-
-class Chain:
-    """An integer k-chain: one coefficient per canonically oriented k-simplex.
-
-    Examples
-    --------
-    >>> from dhlb import SimplicialComplex
-    >>> X = SimplicialComplex([(0, 1, 2)])
-    >>> c = Chain.from_simplices(X, [(2, 1, 0)])        # the triangle, negatively oriented
-    >>> c.coefficients.tolist(), c.boundary().coefficients.tolist()
-    ([-1], [-1, 1, -1])
-    """
-
-    def __init__(self, X, k, coefficients):
-        self._X, self._k = X, _check_degree(k)
-        c = _coefficients(coefficients, X, self._k, integer=True)
-        if c.ndim != 1:
-            raise InvalidCochainError("a Chain holds a single chain; pass a 1-D coefficient array")
-        c = np.array(c, dtype=np.int64)
-        c.setflags(write=False)
-        self._c = c
-
-    @classmethod
-    def from_simplices(cls, X, rows, coefficients=None) -> "Chain":
-        """Σ c_i σ_i over oriented simplices given as vertex tuples (input labels, any order)."""
-        arr = np.asarray(rows)
-        if arr.ndim != 2 or arr.shape[0] == 0:
-            raise InvalidCochainError("rows must be a non-empty list of simplices of equal dimension")
-        k = arr.shape[1] - 1
-        coeff = np.ones(arr.shape[0], np.int64) if coefficients is None else np.asarray(coefficients)
-        if coeff.shape != (arr.shape[0],) or coeff.dtype.kind not in "biu":
-            raise InvalidCochainError(f"need one integer coefficient per simplex ({arr.shape[0]}), got {coeff.shape}")
-        out = np.zeros(X.n_simplices(k), np.int64)
-        np.add.at(out, X.index(k, arr), X.orientation_of(arr) * coeff)
-        return cls(X, k, out)
-
-    @classmethod
-    def path(cls, X, vertices) -> "Chain":
-        """The 1-chain of the edge path ``v0 → v1 → …`` (input labels); repeat v0 to close it.
-
-        Raises
-        ------
-        NotAPathError
-            If two consecutive vertices are not joined by an edge (the message names them).
-        """
-        v = np.asarray(vertices)
-        if v.ndim != 1 or v.size < 2 or v.dtype.kind not in "iu":
-            raise NotAPathError("a path is a sequence of at least two integer vertex labels")
-        steps = np.stack([v[:-1], v[1:]], axis=1)
-        if np.any(steps[:, 0] == steps[:, 1]):
-            i = int(np.argmax(steps[:, 0] == steps[:, 1]))
-            raise NotAPathError(f"step {i} of the path stays at vertex {int(steps[i, 0])}; consecutive vertices must differ")
-        ok = X.contains(1, steps) if X.dim >= 1 else np.zeros(len(steps), bool)
-        if not np.all(ok):
-            i = int(np.argmin(ok))
-            raise NotAPathError(f"step {i} of the path, {int(steps[i, 0])} → {int(steps[i, 1])}, is not an edge of the complex")
-        try:
-            return cls.from_simplices(X, steps)
-        except SimplexNotFoundError as exc:  # pragma: no cover - guarded by contains() above
-            raise NotAPathError(str(exc)) from None
-
-    @property
-    def complex(self):
-        return self._X
-
-    @property
-    def k(self) -> int:
-        return self._k
-
-    @property
-    def coefficients(self) -> np.ndarray:
-        """Integer coefficients, one per k-simplex (read-only)."""
-        return self._c
-
-    def boundary(self) -> "Chain":
-        """∂c, a (k−1)-chain (for k = 0: the empty chain of degree 0 is not defined; raises)."""
-        if self._k == 0:
-            raise InvalidCochainError("the boundary of a 0-chain is not a chain of this complex (∂_0 = 0)")
-        return Chain(self._X, self._k - 1, self._X.boundary(self._k) @ self._c)
-
-    def is_cycle(self) -> bool:
-        """True if ∂c = 0 (every 0-chain is a cycle)."""
-        return self._k == 0 or not np.any(self._X.boundary(self._k) @ self._c)
-
-    def __add__(self, other):
-        if not isinstance(other, Chain) or other._k != self._k or not _same_complex(self._X, other._X):
-            raise InvalidCochainError("can only add chains of the same degree on the same complex")
-        return Chain(self._X, self._k, self._c + other._c)
-
-    def __neg__(self):
-        return Chain(self._X, self._k, -self._c)
-
-    def __sub__(self, other):
-        return self + (-other)
-
-    def __rmul__(self, n):
-        if not isinstance(n, numbers.Integral):
-            raise InvalidCochainError(f"chains have integer coefficients; cannot multiply by {n!r}")
-        return Chain(self._X, self._k, int(n) * self._c)
-
-    def __repr__(self) -> str:
-        return f"Chain(k={self._k}, support={int(np.count_nonzero(self._c))})"

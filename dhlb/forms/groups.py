@@ -88,7 +88,10 @@ class Group:
         if arr.dtype.kind == "b":
             arr = arr.astype(np.int64)
         if arr.dtype.kind not in "iufc":
-            raise InvalidCochainError(f"values of a {k}-form must be numbers, got dtype {arr.dtype}")
+            raise InvalidCochainError(
+                f"values of a {k}-form must be numbers (int64/float/complex), got dtype {arr.dtype}"
+                + (" (integers too large for int64, or non-numbers)" if arr.dtype == object else "")
+            )
         if arr.dtype.kind in "fc":
             bad = ~np.isfinite(arr)
             if np.any(bad):
@@ -149,6 +152,9 @@ class _Integers(Group):
 
     def _convert(self, arr, X, k):
         arr = self._require_real(arr, X, k)
+        if arr.dtype.kind == "u" and arr.size and arr.max() > np.iinfo(np.int64).max:
+            i = int(np.argmax(arr))
+            raise InvalidCochainError(f"the value on the {simplex_name(X, k, i)} does not fit into int64")
         if arr.dtype.kind == "f":
             bad = (arr != np.round(arr)) | (np.abs(arr) >= 2.0**62)
             if np.any(bad):

@@ -15,7 +15,7 @@ from math import factorial
 import numpy as np
 import scipy.sparse as sp
 
-from dhlb.errors import InvalidMetricError, NonFiniteError, NonManifoldError, ShapeError
+from dhlb.errors import InvalidMetricError, InvalidParameterError, NonFiniteError, NonManifoldError, ShapeError
 from dhlb.geometry.simplex import SimplexStack
 from dhlb.topology.complex import SimplicialComplex
 
@@ -187,7 +187,7 @@ class EuclideanComplex:
         """k-volume of every k-simplex (default ``k = dim``); vertices have volume 1."""
         k = self.dim if k is None else int(k)
         if not 0 <= k <= self.dim:
-            raise ShapeError(f"volumes(k) needs 0 <= k <= dim = {self.dim}, got {k}")
+            raise InvalidParameterError(f"volumes(k) needs 0 <= k <= dim = {self.dim}, got {k}")
         if k not in self._volumes:
             v = self._top.volumes if k == self.dim else self._stack(k).volumes
             v = np.array(v)

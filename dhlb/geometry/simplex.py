@@ -103,15 +103,15 @@ class SimplexStack:
     np.float64(90.0)
     """
 
-    def __init__(self, metric: np.ndarray, factor: np.ndarray | None, sq_lengths: np.ndarray,
-                 rtol: float | None = None, from_points: bool = False):
+    def __init__(self, metric: np.ndarray, factor: np.ndarray | None = None, sq_lengths: np.ndarray | None = None,
+                 points: np.ndarray | None = None, rtol: float | None = None):
         self._g = metric
         self._factor_given = factor
-        self._L2 = sq_lengths
+        self._L2_given = sq_lengths
+        self._points = points
         self.n = metric.shape[1]
         self.m = metric.shape[0]
         self.rtol = default_rtol(self.n) if rtol is None else float(rtol)
-        self._from_points = from_points
 
     # ------------------------------------------------------------------ constructors
     @classmethod
@@ -130,7 +130,7 @@ class SimplexStack:
         R = R[:, :n, :n]
         g = np.swapaxes(E, 1, 2) @ E
         g = 0.5 * (g + np.swapaxes(g, 1, 2))
-        return cls(g, R, squared_lengths_from_points(P), rtol, from_points=True)
+        return cls(g, factor=R, points=P, rtol=rtol)
 
     @classmethod
     def from_squared_lengths(cls, sq_lengths, *, rtol: float | None = None) -> "SimplexStack":
@@ -148,9 +148,14 @@ class SimplexStack:
             s, a, b = (int(v) for v in np.argwhere((L2 <= 0) & off)[0])
             raise InvalidMetricError(f"simplex {s}: the edge ({a}, {b}) has non-positive length; "
                                      "edge lengths must be > 0")
-        return cls(metric_from_squared_lengths(L2), None, L2, rtol)
+        return cls(metric_from_squared_lengths(L2), sq_lengths=L2, rtol=rtol)
 
     # ------------------------------------------------------------------ definiteness
+    @cached_property
+    def squared_lengths(self) -> np.ndarray:
+        """Squared edge lengths ``(m, n+1, n+1)``."""
+        return self._L2_given if self._L2_given is not None else squared_lengths_from_points(self._points)
+
     @cached_property
     def metric(self) -> np.ndarray:
         """Metric ``g`` in the edge basis ``p_a - p_0``, shape ``(m, n, n)``."""
@@ -158,11 +163,9 @@ class SimplexStack:
 
     @cached_property
     def metric_eigenvalues(self) -> np.ndarray:
-        """Eigenvalues of ``g`` ascending, shape ``(m, n)`` (squared singular values of ``R`` if from points)."""
+        """Eigenvalues of ``g`` ascending, shape ``(m, n)`` (absolute accuracy ``~ eps λ_max``)."""
         if self.n == 0:
             return np.zeros((self.m, 0))
-        if self._from_points:
-            return np.linalg.svd(self._factor_given, compute_uv=False)[:, ::-1] ** 2
         return np.linalg.eigvalsh(self._g)
 
     @cached_property
@@ -197,7 +200,7 @@ class SimplexStack:
         ``c`` is the vertex opposite the edge that is longer than the sum of the other two.
         """
         out = []
-        L = np.sqrt(np.maximum(self._L2, 0))
+        L = np.sqrt(np.maximum(self.squared_lengths, 0))
         for a, b, c in combinations(range(self.n + 1), 3):
             for (x, y), z in (((a, b), c), ((a, c), b), ((b, c), a)):
                 slack = L[:, x, z] + L[:, y, z] - L[:, x, y]
@@ -241,7 +244,7 @@ class SimplexStack:
             for s in bad_idx[:10]:
                 if s in viol:
                     x, y, z = viol[s]
-                    L = np.sqrt(self._L2[s])
+                    L = np.sqrt(self.squared_lengths[s])
                     lines.append(f"{name(s)}: triangle inequality fails on the face "
                                  f"{tuple(int(lab[s][v]) for v in sorted((x, y, z)))}: "
                                  f"|{int(lab[s][x])}{int(lab[s][y])}| = {L[x, y]:.6g} > "

@@ -56,7 +56,9 @@ def compact_mesh(V, F) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     if V.ndim != 2:
         raise InvalidSimplexError(f"V must be a 2-d array (one vertex per row), got shape {V.shape}")
     if F.ndim != 2 or (F.size and not np.issubdtype(F.dtype, np.integer)):
-        raise InvalidSimplexError(f"F must be a 2-d integer array (one cell per row), got shape {F.shape}, dtype {F.dtype}")
+        raise InvalidSimplexError(
+            f"F must be a 2-d integer array (one cell per row), got shape {F.shape}, dtype {F.dtype}"
+        )
     F = F.astype(np.int64)
     n = V.shape[0]
     if F.size and (F.min() < 0 or F.max() >= n):

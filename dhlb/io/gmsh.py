@@ -12,7 +12,16 @@ import os
 import numpy as np
 
 from dhlb.errors import MeshParseError
-from dhlb.io._text import normalize_cells, check_cells, check_finite, content_lines, format_number_rows, read_text, to_array
+from dhlb.io._text import (
+    check_cells,
+    check_finite,
+    content_lines,
+    format_number_rows,
+    no_gc,
+    normalize_cells,
+    read_text,
+    to_array,
+)
 
 __all__ = ["read_gmsh", "write_gmsh"]
 
@@ -77,7 +86,8 @@ def _coords(rows, path, skip_tag: bool):
     width = 4 if skip_tag else 3
     bad = [i for i, (_, t) in enumerate(rows) if (len(t) != 4 if skip_tag else len(t) < 3)]
     if bad:
-        raise MeshParseError(f"a node line needs {'a tag and ' if skip_tag else ''}3 coordinates", path, numbers[bad[0]])
+        need = "a tag and 3 coordinates" if skip_tag else "3 coordinates"
+        raise MeshParseError(f"a node line needs {need}", path, numbers[bad[0]])
     toks = [t[:width] for _, t in rows]
     if skip_tag:
         tags = to_array([t[:1] for t in toks], numbers, np.int64, path, "node tag").ravel()
@@ -97,6 +107,34 @@ def _element_type(etype: int, line: int, path: str):
     return _TYPES[etype]
 
 
+def _add(by_dim: dict, dim: int, corners: np.ndarray, lines, order=None) -> None:
+    """Collect a block of elements of one dimension; ``order`` keys restore file order later."""
+    parts = by_dim.setdefault(dim, [])
+    start = sum(len(c) for _, c, _ in parts) if order is None else 0
+    key = np.arange(start, start + len(corners)) if order is None else np.asarray(order)
+    parts.append((key, corners, np.asarray(lines, dtype=np.int64)))
+
+
+def _elements_v2(rows, by_dim: dict, path: str) -> None:
+    """``tag type n_tags tag.. node..`` lines, converted by groups of equal length."""
+    lengths = np.fromiter((len(t) for _, t in rows), dtype=np.int64, count=len(rows))
+    lines = np.fromiter((ln for ln, _ in rows), dtype=np.int64, count=len(rows))
+    for length in np.unique(lengths).tolist():
+        idx = np.flatnonzero(lengths == length)
+        if length < 3:
+            raise MeshParseError("an element line needs 'tag type n_tags ...'", path, int(lines[idx[0]]))
+        vals = to_array([rows[i][1] for i in idx], lines[idx], np.int64, path, "element value")
+        for etype, ntags in np.unique(vals[:, 1:3], axis=0).tolist():
+            sel = np.flatnonzero((vals[:, 1] == etype) & (vals[:, 2] == ntags))
+            dim, n_nodes, n_corners = _element_type(etype, int(lines[idx[sel[0]]]), path)
+            first = 3 + ntags
+            if ntags < 0 or length != first + n_nodes:
+                raise MeshParseError(
+                    f"element of type {etype} needs {n_nodes} nodes, got {length - first}", path, int(lines[idx[sel[0]]])
+                )
+            _add(by_dim, dim, vals[sel, first : first + n_corners], lines[idx[sel]], order=idx[sel])
+
+
 def _nodes_and_elements(sec, version: str, path: str):
     if "Nodes" not in sec or "Elements" not in sec:
         raise MeshParseError("the file needs a $Nodes and an $Elements section", path)
@@ -108,15 +146,7 @@ def _nodes_and_elements(sec, version: str, path: str):
         tags, V, vlines = _coords(nodes.take(n), path, skip_tag=True)
         nodes.done()
         _, (m,) = elems.ints(1, "number of elements")
-        for line, toks in elems.take(m):
-            vals = to_array([toks], [line], np.int64, path, "element value")[0]
-            if len(vals) < 3:
-                raise MeshParseError("an element line needs 'tag type n_tags ...'", path, line)
-            dim, n_nodes, n_corners = _element_type(int(vals[1]), line, path)
-            first = 3 + int(vals[2])
-            if len(vals) != first + n_nodes:
-                raise MeshParseError(f"element of type {vals[1]} needs {n_nodes} nodes, got {len(vals) - first}", path, line)
-            by_dim.setdefault(dim, []).append((vals[first : first + n_corners], line))
+        _elements_v2(elems.take(m), by_dim, path)
         elems.done()
     else:
         _, (blocks, _n, _lo, _hi) = nodes.ints(4, "numEntityBlocks numNodes minNodeTag maxNodeTag")
@@ -127,7 +157,8 @@ def _nodes_and_elements(sec, version: str, path: str):
             bad = [ln for ln, t in tag_rows if len(t) != 1]
             if bad:
                 raise MeshParseError("expected one node tag per line", path, bad[0])
-            tag_parts.append(to_array([t for _, t in tag_rows], [ln for ln, _ in tag_rows], np.int64, path, "node tag").ravel())
+            tags_k = to_array([t for _, t in tag_rows], [ln for ln, _ in tag_rows], np.int64, path, "node tag")
+            tag_parts.append(tags_k.ravel())
             _, X, numbers = _coords(nodes.take(k), path, skip_tag=False)
             coord_parts.append(X)
             vlines += numbers
@@ -144,11 +175,12 @@ def _nodes_and_elements(sec, version: str, path: str):
             if bad:
                 raise MeshParseError(f"an element of type {etype} needs a tag and {n_nodes} nodes", path, bad[0])
             vals = to_array([t for _, t in rows], numbers, np.int64, path, "node tag").reshape(-1, n_nodes + 1)
-            by_dim.setdefault(dim, []).extend(zip(vals[:, 1 : 1 + n_corners], numbers))
+            _add(by_dim, dim, vals[:, 1 : 1 + n_corners], numbers)
         elems.done()
     return tags, V, vlines, by_dim
 
 
+@no_gc
 def read_gmsh(path) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     """Read an ASCII Gmsh ``.msh`` file (format 2.2 or 4.1).
 
@@ -202,7 +234,8 @@ def read_gmsh(path) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     if not lines:
         raise MeshParseError("the file is empty", path)
     if lines[0][1][0] != "$MeshFormat":
-        raise MeshParseError(f"expected '$MeshFormat', found {lines[0][1][0]!r}; is this a Gmsh file?", path, lines[0][0])
+        found = lines[0][1][0]
+        raise MeshParseError(f"expected '$MeshFormat', found {found!r}; is this a Gmsh file?", path, lines[0][0])
     sec = _sections(lines, path)
     fline, frows = sec["MeshFormat"]
     if not frows or len(frows[0][1]) != 3:
@@ -220,15 +253,17 @@ def read_gmsh(path) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     if dup.size:
         raise MeshParseError(f"node tag {sorted_tags[dup[0]]} appears twice", path, vlines[order[dup[0] + 1]])
     cells = {}
-    for dim, items in sorted(by_dim.items()):
-        refs = np.array([r for r, _ in items], dtype=np.int64).reshape(-1, dim + 1)
-        numbers = [ln for _, ln in items]
+    for dim, parts in sorted(by_dim.items()):
+        key = np.concatenate([k for k, _, _ in parts])
+        first = np.argsort(key, kind="stable")  # file order
+        refs = np.concatenate([c for _, c, _ in parts]).reshape(-1, dim + 1)[first]
+        numbers = np.concatenate([ln for _, _, ln in parts])[first]
         pos = np.minimum(np.searchsorted(sorted_tags, refs), max(len(tags) - 1, 0))
         found = sorted_tags[pos] == refs if len(tags) else np.zeros(refs.shape, bool)
         if not found.all():
             i = int(np.flatnonzero(~found.all(axis=1))[0])
             tag = int(refs[i][~found[i]][0])
-            raise MeshParseError(f"element refers to node tag {tag}, which is not in $Nodes", path, numbers[i])
+            raise MeshParseError(f"element refers to node tag {tag}, which is not in $Nodes", path, int(numbers[i]))
         cells[dim] = order[pos]
         check_cells(cells[dim], len(V), path, numbers, what="element")
     return V, cells
@@ -265,7 +300,10 @@ def write_gmsh(path, V, cells, version: str = "2.2") -> None:
         out.append(f"{sum(len(T) for T in blocks.values())}\n")
         tag = 1
         for k, T in sorted(blocks.items()):
-            head = np.column_stack([np.arange(tag, tag + len(T)), np.full((len(T), 4), [_GMSH_TYPE_OF_DIM[k], 2, 0, 1])])
+            # tag, type, 2 tags (physical 0, elementary 1)
+            head = np.column_stack(
+                [np.arange(tag, tag + len(T)), np.full((len(T), 4), [_GMSH_TYPE_OF_DIM[k], 2, 0, 1])]
+            )
             out.append(format_number_rows(np.column_stack([head, T + 1]), "%d"))
             tag += len(T)
     else:

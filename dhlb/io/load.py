@@ -19,7 +19,7 @@ __all__ = ["MeshData", "load"]
 _KIND_OF_DIM = {0: "points", 1: "curve", 2: "surface", 3: "volume"}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class MeshData:
     """What :func:`load` read from a file.
 

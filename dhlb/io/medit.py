@@ -12,7 +12,16 @@ import os
 import numpy as np
 
 from dhlb.errors import MeshParseError
-from dhlb.io._text import normalize_cells, check_cells, check_finite, content_lines, format_number_rows, read_text, to_array
+from dhlb.io._text import (
+    check_cells,
+    check_finite,
+    content_lines,
+    format_number_rows,
+    no_gc,
+    normalize_cells,
+    read_text,
+    to_array,
+)
 
 __all__ = ["read_medit", "write_medit"]
 
@@ -36,6 +45,7 @@ def _value_after(lines, toks, line, path, what):
     return nxt[0], nxt[1][0]
 
 
+@no_gc
 def read_medit(path) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     """Read a Medit ``.mesh`` file.
 

@@ -17,6 +17,7 @@ from dhlb.io._text import (
     check_finite,
     fan_triangulate,
     format_number_rows,
+    no_gc,
     prepare_write,
     to_array,
     to_flat_int,
@@ -69,6 +70,8 @@ def _parse_header(data: bytes, path: str):
         elif toks[0] == "element":
             if len(toks) != 3 or not toks[2].isdigit():
                 raise MeshParseError(f"expected 'element <name> <count>', got {text.strip()!r}", path, number)
+            if toks[1] in [e.name for e in elements]:
+                raise MeshParseError(f"element '{toks[1]}' is declared twice", path, number)
             elements.append(_Element(toks[1], int(toks[2]), number))
         elif toks[0] == "property":
             if not elements:
@@ -81,6 +84,9 @@ def _parse_header(data: bytes, path: str):
                 elements[-1].props.append(_Prop(toks[2], _TYPES[toks[1]]))
             else:
                 raise MeshParseError(f"cannot understand the property line {text.strip()!r}", path, number)
+            if [p.name for p in elements[-1].props].count(toks[-1]) > 1:
+                raise MeshParseError(f"property {toks[-1]!r} is declared twice in element '{elements[-1].name}'",
+                                     path, number)  # fmt: skip
         else:
             raise MeshParseError(f"unknown PLY header keyword {toks[0]!r}", path, number)
     if order == "missing":
@@ -99,6 +105,11 @@ def _ascii_element(lines, elem: _Element, path: str) -> dict:
         numbers.append(nxt[0])
         rows.append(nxt[1])
     has_list = any(p.count_dtype for p in elem.props)
+    if not rows:
+        empty = (np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0, np.int64))
+        out = {p.name: empty if p.count_dtype else np.zeros(0) for p in elem.props}
+        out["__lines__"] = np.zeros(0, np.int64)
+        return out
     if not has_list:
         bad = [i for i, r in enumerate(rows) if len(r) != len(elem.props)]
         if bad:
@@ -110,6 +121,9 @@ def _ascii_element(lines, elem: _Element, path: str) -> dict:
         out = {p.name: values[:, j] for j, p in enumerate(elem.props)}
         out["__lines__"] = np.asarray(numbers)
         return out
+    fast = _ascii_fixed_layout(rows, numbers, elem, path)
+    if fast is not None:
+        return fast
     out: dict = {p.name: ([], []) for p in elem.props}
     for toks, number in zip(rows, numbers):
         pos = 0
@@ -145,6 +159,44 @@ def _ascii_element(lines, elem: _Element, path: str) -> dict:
                 flat = to_flat_int(vals, numbers, path, f"'{p.name}' entry")
             result[p.name] = (flat, np.asarray(sizes, dtype=np.int64), np.asarray(numbers))
     return result
+
+
+def _ascii_fixed_layout(rows, numbers, elem: _Element, path: str):
+    """Fast path: every line has the same length and the same list lengths as the first one.
+
+    Returns the parsed element, or None when the lines differ (the caller then walks them one by one).
+    """
+    if not rows or any(len(r) != len(rows[0]) for r in rows):
+        return None
+    table = to_array(rows, numbers, np.float64, path, f"'{elem.name}' value")
+    layout, pos = [], 0
+    for p in elem.props:
+        if pos >= table.shape[1]:
+            return None
+        if p.count_dtype is None:
+            layout.append((p, pos, None))
+            pos += 1
+            continue
+        count = table[0, pos]
+        if not np.isfinite(count) or count < 0 or count != int(count):
+            return None
+        layout.append((p, pos, int(count)))
+        pos += 1 + int(count)
+    if pos != table.shape[1] or any(c is not None and np.any(table[:, at] != c) for _, at, c in layout):
+        return None
+    out = {"__lines__": np.asarray(numbers)}
+    for p, at, count in layout:
+        if count is None:
+            out[p.name] = table[:, at]
+            continue
+        vals = table[:, at + 1 : at + 1 + count]
+        if p.dtype[0] != "f":
+            frac = np.flatnonzero(np.any((vals != np.round(vals)) | ~np.isfinite(vals), axis=1))
+            if frac.size:  # report the token as written
+                i = int(frac[0])
+                to_array([rows[i][at + 1 : at + 1 + count]], [numbers[i]], np.int64, path, f"'{p.name}' entry")
+        out[p.name] = (vals.ravel(), np.full(len(rows), count, dtype=np.int64), np.asarray(numbers))
+    return out
 
 
 # --------------------------------------------------------------------------------- binary body
@@ -232,6 +284,7 @@ def _need(data: bytes, pos: int, nbytes: int, elem: _Element, path: str, instanc
 
 
 # ---------------------------------------------------------------------------------- public API
+@no_gc
 def read_ply(path) -> tuple[np.ndarray, np.ndarray]:
     """Read a PLY triangle mesh (ASCII or binary, either byte order, any extra properties).
 

@@ -11,11 +11,12 @@ import os
 import numpy as np
 
 from dhlb.errors import InvalidSimplexError, MeshParseError
-from dhlb.io._text import content_lines, read_text, to_array
+from dhlb.io._text import content_lines, no_gc, read_text, to_array
 
 __all__ = ["read_simplices", "parse_simplices_text", "write_simplices"]
 
 
+@no_gc
 def parse_simplices_text(text: str, source: str = "<string>") -> list[tuple[int, ...]]:
     """Parse the text of a simplex list (see :func:`read_simplices`); ``source`` names it in errors.
 

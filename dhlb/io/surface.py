@@ -19,6 +19,7 @@ from dhlb.io._text import (
     content_lines,
     fan_triangulate,
     format_number_rows,
+    no_gc,
     prepare_write,
     read_text,
     to_array,
@@ -38,6 +39,7 @@ _OBJ_IGNORED = frozenset(
 )
 
 
+@no_gc
 def read_obj(path) -> tuple[np.ndarray, np.ndarray]:
     """Read a Wavefront OBJ file as a triangle mesh.
 
@@ -149,6 +151,7 @@ def write_obj(path, V, F) -> None:
 _OFF_HEADER = re.compile(r"^(ST)?(C)?(N)?(4)?(n)?OFF$")
 
 
+@no_gc
 def read_off(path) -> tuple[np.ndarray, np.ndarray]:
     """Read an OFF file (also ``COFF``, ``NOFF``, ``STOFF``... : extra vertex/face values are skipped).
 
@@ -202,35 +205,34 @@ def read_off(path) -> tuple[np.ndarray, np.ndarray]:
     nv, nf = (int(x) for x in to_array([rest[:2]], [line], np.int64, path, "count")[0])
     if nv < 0 or nf < 0:
         raise MeshParseError("negative vertex or face count", path, line)
-    vrows, vlines = [], []
-    for _ in range(nv):
-        nxt = next(lines, None)
-        if nxt is None:
-            raise MeshParseError(f"the file ends after {len(vrows)} of {nv} vertices", path)
-        line, toks = nxt
-        if len(toks) < 3:
-            raise MeshParseError(f"a vertex needs 3 coordinates, got {len(toks)}", path, line)
-        vrows.append(toks[:3])
-        vlines.append(line)
-    corners, sizes, flines = [], [], []
-    for _ in range(nf):
-        nxt = next(lines, None)
-        if nxt is None:
-            raise MeshParseError(f"the file ends after {len(sizes)} of {nf} faces", path)
-        line, toks = nxt
-        k = int(to_array([toks[:1]], [line], np.int64, path, "face size")[0, 0])
-        if k < 3:
-            raise MeshParseError(f"a face needs at least 3 vertices, this one declares {k}", path, line)
-        if len(toks) < k + 1:
-            raise MeshParseError(f"the face declares {k} vertices but lists {len(toks) - 1}", path, line)
-        corners.append(toks[1 : k + 1])
-        sizes.append(k)
-        flines.append(line)
-    extra = next(lines, None)
-    if extra is not None:
-        raise MeshParseError(f"unexpected data after the {nf} declared faces", path, extra[0])
+    body = list(lines)
+    if len(body) < nv:
+        raise MeshParseError(f"the file ends after {len(body)} of {nv} vertices", path)
+    if len(body) < nv + nf:
+        raise MeshParseError(f"the file ends after {len(body) - nv} of {nf} faces", path)
+    if len(body) > nv + nf:
+        raise MeshParseError(f"unexpected data after the {nf} declared faces", path, body[nv + nf][0])
     if nf == 0:
         raise MeshParseError("the file declares no faces; a surface mesh needs faces", path)
+    vlines = [ln for ln, _ in body[:nv]]
+    short = [ln for ln, t in body[:nv] if len(t) < 3]
+    if short:
+        raise MeshParseError("a vertex needs 3 coordinates", path, short[0])
+    vrows = [t[:3] for _, t in body[:nv]]
+    faces = body[nv:]
+    flines = np.array([ln for ln, _ in faces], dtype=np.int64)
+    sizes = to_flat_int([t[:1] for _, t in faces], flines, path, "face size")
+    lengths = np.fromiter((len(t) for _, t in faces), dtype=np.int64, count=nf)
+    bad = np.flatnonzero((sizes < 3) | (lengths < sizes + 1))
+    if bad.size:
+        i = int(bad[0])
+        msg = (f"a face needs at least 3 vertices, this one declares {sizes[i]}" if sizes[i] < 3
+               else f"the face declares {sizes[i]} vertices but lists {lengths[i] - 1}")  # fmt: skip
+        raise MeshParseError(msg, path, int(flines[i]))
+    if np.all(lengths == sizes + 1):
+        corners = [t[1:] for _, t in faces]
+    else:  # trailing colour values
+        corners = [t[1 : k + 1] for (_, t), k in zip(faces, sizes.tolist())]
     V = to_array(vrows, vlines, np.float64, path, "vertex coordinate").reshape(-1, 3)
     check_finite(V, path, vlines)
     flat = to_flat_int(corners, flines, path, "vertex index")

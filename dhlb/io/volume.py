@@ -64,7 +64,9 @@ def read_volume(path, fmt: str | None = None) -> tuple[np.ndarray, np.ndarray]:
     V, cells = read_cells(path, fmt)
     if 3 not in cells or len(cells[3]) == 0:
         have = ", ".join(f"{len(c)} {k}-simplices" for k, c in sorted(cells.items())) or "no cells"
-        raise MeshParseError(f"the file contains no tetrahedra ({have}); use read_surface for surfaces", os.fspath(path))
+        raise MeshParseError(
+            f"the file contains no tetrahedra ({have}); use read_surface for surfaces", os.fspath(path)
+        )
     return V, cells[3]
 
 

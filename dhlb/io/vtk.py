@@ -11,7 +11,15 @@ import os
 import numpy as np
 
 from dhlb.errors import MeshParseError
-from dhlb.io._text import normalize_cells, check_cells, check_finite, format_number_rows, read_text, to_array
+from dhlb.io._text import (
+    check_cells,
+    check_finite,
+    format_number_rows,
+    no_gc,
+    normalize_cells,
+    read_text,
+    to_array,
+)
 
 __all__ = ["read_vtk", "write_vtk"]
 
@@ -66,7 +74,7 @@ class _Stream:
 
 def _legacy_offsets(data: np.ndarray, lines: np.ndarray, n_cells: int, path: str):
     """``n p0 p1 .. n p0 ..`` -> (connectivity, offsets (n_cells+1,), line of each cell)."""
-    if n_cells and data.size % n_cells == 0:  # fast path: all cells have the same size
+    if n_cells and data.size % n_cells == 0 and data.size >= 2 * n_cells:  # fast path: all cells of one size
         width = data.size // n_cells
         table = data.reshape(n_cells, width)
         if np.all(table[:, 0] == width - 1):
@@ -91,6 +99,7 @@ def _legacy_offsets(data: np.ndarray, lines: np.ndarray, n_cells: int, path: str
     return data[keep], np.concatenate([[0], np.cumsum(sizes)]), lines[starts]
 
 
+@no_gc
 def read_vtk(path) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     """Read a legacy ASCII VTK ``UNSTRUCTURED_GRID`` file.
 

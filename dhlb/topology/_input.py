@@ -61,8 +61,9 @@ def _check_repeats(rows: np.ndarray, offsets: np.ndarray | None, originals) -> N
 def parse_simplices(simplices) -> dict[int, np.ndarray]:
     """Turn user input into ``{k: sorted int64 rows (m, k+1)}`` (duplicates allowed).
 
-    Accepts a 2-d integer array (one simplex per row) or any iterable of vertex sequences of
-    possibly different lengths.
+    Accepts a 2-d integer array (one simplex per row), a list of such arrays (blocks of possibly
+    different widths; the fast way to pass several dimensions), or any iterable of vertex
+    sequences of possibly different lengths.
     """
     if isinstance(simplices, np.ndarray):
         arr = simplices
@@ -78,6 +79,23 @@ def parse_simplices(simplices) -> dict[int, np.ndarray]:
         srt = np.sort(rows, axis=1)
         _check_repeats(srt, None, lambda i: arr[i])
         return {srt.shape[1] - 1: srt}
+
+    if isinstance(simplices, (list, tuple)) and simplices and all(
+        isinstance(b, np.ndarray) and b.ndim == 2 for b in simplices
+    ):
+        # fast path: one 2-d array (m, k+1) per block, e.g. one per dimension
+        out: dict[int, list[np.ndarray]] = {}
+        for b in simplices:
+            if b.shape[0] == 0:
+                continue
+            if b.shape[1] == 0:
+                raise InvalidSimplexError("a block of simplices has rows of length 0")
+            block = parse_simplices(b)
+            for k, rows in block.items():
+                out.setdefault(k, []).append(rows)
+        if not out:
+            raise EmptyComplexError("no simplices given: pass at least one vertex tuple")
+        return {k: np.concatenate(v) for k, v in out.items()}
 
     try:
         items = list(simplices)

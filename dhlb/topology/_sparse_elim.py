@@ -23,9 +23,9 @@ import heapq
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse import csgraph
 
 from dhlb.errors import InvalidMatrixError
+from dhlb.topology._graph_cycles import bfs_forest, graph_kernel, incidence
 
 _I64 = np.iinfo(np.int64)
 
@@ -73,11 +73,54 @@ class ChainReduction:
         self.n = len(self.sizes) - 1
         self.R = [None] * (self.n + 1)
         self.C = [None] * (self.n + 1)
-        for k in range(1, self.n + 1):
+        for k in range(2, self.n + 1):
             self.R[k], self.C[k] = _to_dicts(mats[k])
         self.alive = [np.ones(s, dtype=bool) for s in self.sizes]
         self.row_steps = [[] for _ in self.sizes]  # row_steps[j]: pivots in ∂_j (b ∈ C_j): (b, u, row_a, a)
         self.col_steps = [[] for _ in self.sizes]  # col_steps[j]: pivots in ∂_{j+1} (a ∈ C_j): (a, u, col_b, b)
+        self.graph_done = self.n >= 1 and self._eliminate_graph(mats[1])
+        if self.n >= 1 and not self.graph_done:
+            self.R[1], self.C[1] = _to_dicts(mats[1])
+
+    def _eliminate_graph(self, A) -> bool:
+        """Fast path for an incidence matrix ``∂_1``: pivots ``(v, tree edge to the parent)`` of a
+        breadth-first forest, parents first.  Then every pivot column is ``{v: u, root: -u}``
+        (column sums stay zero, the fill goes to the root row), the stored rows are the original
+        rows, and the residual is zero.  Returns False if ``A`` is not an incidence matrix."""
+        A = sp.csc_matrix(A)
+        if A.dtype.kind not in "iu":
+            return False
+        A = A.astype(np.int64)
+        A.eliminate_zeros()
+        A.sort_indices()
+        inc = incidence(A)
+        if inc is None:
+            return False
+        head, tail = inc
+        m = A.shape[0]
+        order, pred, tree_col, sign, root = bfs_forest(head, tail, m)
+        Ar = A.tocsr()
+        ip, ind, dat = Ar.indptr, Ar.indices.tolist(), Ar.data.tolist()
+        for v in order.tolist():
+            b = int(tree_col[v])
+            if b < 0:
+                continue
+            row = dict(zip(ind[ip[v]:ip[v + 1]], dat[ip[v]:ip[v + 1]]))
+            u = row.pop(b)
+            self.row_steps[1].append((b, u, row, v))
+            self.col_steps[0].append((v, u, {int(root[v]): -u}, b))
+        tree = tree_col[tree_col >= 0]
+        self.alive[1][tree] = False
+        self.alive[0][tree_col >= 0] = False
+        self.R[1], self.C[1] = {}, {}
+        if self.n >= 2:
+            R2, C2 = self.R[2], self.C[2]
+            for b in tree.tolist():
+                row = R2.pop(b, None)
+                if row:
+                    for c in row:
+                        del C2[c][b]
+        return True
 
     # ------------------------------------------------------------------ elimination
     def eliminate(self, k: int) -> int:
@@ -147,7 +190,7 @@ class ChainReduction:
 
     def reduce_all(self) -> None:
         """Eliminate in ``∂_1`` (spanning forest), then ``∂_n, ∂_{n-1}, ..., ∂_2``."""
-        if self.n >= 1:
+        if self.n >= 1 and not self.graph_done:
             self.eliminate(1)
         for k in range(self.n, 1, -1):
             self.eliminate(k)
@@ -236,71 +279,6 @@ def _int_sparse(entries, shape) -> sp.csc_matrix:
                                                                np.asarray(cols, dtype=np.int64))), shape=shape)
 
 
-def _graph_kernel(A: sp.csc_matrix):
-    """Fundamental cycles of a breadth-first spanning forest, or None if A is no incidence matrix."""
-    m, n = A.shape
-    nnz = np.diff(A.indptr)
-    if np.any((nnz != 2) & (nnz != 0)) or m == 0:
-        return None
-    two = np.flatnonzero(nnz == 2)
-    start = A.indptr[two]
-    d0, d1 = A.data[start], A.data[start + 1]
-    if not np.all(d0 + d1 == 0) or not np.all(np.abs(d0) == 1):
-        return None
-    r0, r1 = A.indices[start], A.indices[start + 1]
-    head = np.where(d0 == 1, r0, r1)
-    tail = np.where(d0 == 1, r1, r0)
-    # breadth-first forest from a virtual root m joined to the smallest vertex of each component
-    G = sp.coo_matrix((np.ones(len(two)), (head, tail)), shape=(m, m)).tocsr()
-    ncomp, lab = csgraph.connected_components(G, directed=False)
-    roots = np.unique(lab, return_index=True)[1]
-    ext = sp.coo_matrix((np.ones(len(two) + ncomp),
-                         (np.r_[head, np.full(ncomp, m)], np.r_[tail, roots])), shape=(m + 1, m + 1)).tocsr()
-    order, pred = csgraph.breadth_first_order(ext, m, directed=False, return_predecessors=True)
-    depth = np.zeros(m + 1, dtype=np.int64)
-    for v in order[1:]:  # numpy-free alternative is slower; depth by order is a single pass
-        depth[v] = depth[pred[v]] + 1
-    # tree edge of each non-root vertex v: a column joining v and pred[v]
-    key = np.minimum(head, tail).astype(np.int64) * (m + 1) + np.maximum(head, tail)
-    srt = np.argsort(key, kind="stable")
-    is_tree = np.zeros(len(two), dtype=bool)
-    tree_col = np.full(m + 1, -1, dtype=np.int64)
-    sign = np.zeros(m + 1, dtype=np.int64)
-    verts = np.flatnonzero((pred[:m] >= 0) & (pred[:m] < m))
-    if len(verts):
-        p = pred[verts]
-        vk = np.minimum(verts, p).astype(np.int64) * (m + 1) + np.maximum(verts, p)
-        pos = srt[np.searchsorted(key[srt], vk)]
-        is_tree[pos] = True
-        tree_col[verts] = two[pos]
-        sign[verts] = np.where(head[pos] == p, 1, -1)  # +1: the column points from v up to pred[v]
-    nt = np.flatnonzero(~is_tree)
-    zero_cols = np.flatnonzero(nnz == 0)
-    K = len(nt) + len(zero_cols)
-    rows = [two[nt], zero_cols]
-    cols = [np.arange(len(nt)), len(nt) + np.arange(len(zero_cols))]
-    vals = [np.ones(len(nt), dtype=np.int64), np.ones(len(zero_cols), dtype=np.int64)]
-    gid = np.arange(len(nt))
-    ch, ct = head[nt].astype(np.int64), tail[nt].astype(np.int64)
-    while len(gid):
-        done = ch == ct
-        gid, ch, ct = gid[~done], ch[~done], ct[~done]
-        if not len(gid):
-            break
-        dh, dt = depth[ch], depth[ct]
-        uh, ut = dh >= dt, dt >= dh
-        rows += [tree_col[ch[uh]], tree_col[ct[ut]]]
-        cols += [gid[uh], gid[ut]]
-        vals += [sign[ch[uh]], -sign[ct[ut]]]
-        ch = np.where(uh, pred[ch], ch)
-        ct = np.where(ut, pred[ct], ct)
-    rows, cols, vals = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
-    order_cols = np.argsort(np.r_[two[nt], zero_cols], kind="stable")  # basis in column order
-    inv = np.empty(K, dtype=np.int64)
-    inv[order_cols] = np.arange(K)
-    return sp.csc_matrix((vals, (rows, inv[cols])), shape=(n, K), dtype=np.int64)
-
-
 def sparse_kernel_basis(A) -> sp.csc_matrix:
     """Z-basis of ``ker A`` for a sparse integer matrix (see :func:`integer_kernel_basis`)."""
     from dhlb.topology.intlinalg import dense_kernel_basis
@@ -311,7 +289,7 @@ def sparse_kernel_basis(A) -> sp.csc_matrix:
         G = A.astype(np.int64)
         G.eliminate_zeros()
         G.sort_indices()
-        K = _graph_kernel(G)
+        K = graph_kernel(G)
         if K is not None:
             return K
     red = ChainReduction([None, A], [m, n])

@@ -25,8 +25,9 @@ class SimplicialComplex:
 
     Parameters
     ----------
-    simplices : iterable of vertex tuples, or int array of shape (m, k+1)
-        The generating simplices (mixed dimensions allowed). All their faces are added.
+    simplices : iterable of vertex tuples, int array of shape (m, k+1), or list of such arrays
+        The generating simplices (mixed dimensions allowed; a list of 2-d arrays is the fast
+        way to pass several dimensions at once). All their faces are added.
         Vertex labels are non-negative integers; they are compacted to ``0 .. N-1`` in
         increasing order and the input labels are kept in :attr:`vertex_labels`.
 

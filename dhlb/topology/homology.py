@@ -43,7 +43,7 @@ import scipy.sparse as sp
 
 from dhlb.errors import InvalidMatrixError, ShapeError
 from dhlb.topology._sparse_elim import ChainReduction
-from dhlb.topology.intlinalg import _snf, to_int_array
+from dhlb.topology.intlinalg import _snf, as_object_matrix, to_int_array
 
 __all__ = [
     "HomologyGroup",
@@ -129,7 +129,14 @@ class CohomologyGroup:
 
 # ----------------------------------------------------------------------------- core computation
 def _check_boundaries(boundaries):
-    mats = [sp.csr_matrix(B) if not sp.issparse(B) else sp.csr_matrix(B) for B in boundaries]
+    mats = []
+    for k, B in enumerate(boundaries):
+        if not sp.issparse(B):
+            M = to_int_array(as_object_matrix(B, f"∂_{k}"))
+            if M.dtype != np.int64:
+                raise InvalidMatrixError(f"∂_{k} has entries beyond int64; boundary matrices are small integers.")
+            B = M
+        mats.append(sp.csr_matrix(B))
     if not mats:
         raise ShapeError("boundaries is empty; pass [∂_0, ∂_1, ..., ∂_n] with ∂_0 of shape (0, n_0).")
     if mats[0].shape[0] != 0:

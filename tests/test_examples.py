@@ -1,0 +1,482 @@
+"""dhlb.examples: named complexes against textbook homology, Euler characteristics and manifold checks."""
+
+from collections import Counter
+from itertools import combinations, permutations, product as iproduct
+from math import comb, factorial, gcd
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from dhlb import SimplicialComplex
+from dhlb import examples as E
+from dhlb.errors import (
+    EmptyComplexError,
+    InvalidParameterError,
+    InvalidSimplexError,
+    NonFiniteError,
+    UnreferencedVertexWarning,
+)
+from dhlb.examples.quotients import _lens_cover
+from dhlb.examples.surfaces import _DUNCE
+from dhlb.topology.homology import homology
+
+
+def H(X):
+    """Homology as a list of (rank, torsion tuple)."""
+    return [(h.rank, tuple(h.torsion)) for h in homology(X)]
+
+
+Z, T2 = (1, ()), (0, (2,))
+ZERO = (0, ())
+
+
+def sphere_homology(n):
+    return [(2, ())] if n == 0 else [Z] + [ZERO] * (n - 1) + [Z]
+
+
+def rp_homology(n):
+    out = [Z]
+    for k in range(1, n + 1):
+        if k == n:
+            out.append(Z if n % 2 else ZERO)
+        else:
+            out.append(T2 if k % 2 else ZERO)
+    return out
+
+
+CASES = {
+    "S0": (lambda: E.sphere(0), sphere_homology(0)),
+    "S1": (lambda: E.sphere(1), sphere_homology(1)),
+    "S2": (lambda: E.sphere(2), sphere_homology(2)),
+    "S4": (lambda: E.sphere(4), sphere_homology(4)),
+    "ball3": (lambda: E.ball(3), [Z, ZERO, ZERO, ZERO]),
+    "torus": (E.torus, [Z, (2, ()), Z]),
+    "klein": (E.klein_bottle, [Z, (1, (2,)), ZERO]),
+    "RP2": (E.projective_plane, [Z, T2, ZERO]),
+    "moebius": (E.moebius_strip, [Z, Z, ZERO]),
+    "dunce": (E.dunce_hat, [Z, ZERO, ZERO]),
+    "RP1": (lambda: E.projective_space(1), rp_homology(1)),
+    "RP2_sd": (lambda: E.projective_space(2), rp_homology(2)),
+    "RP3": (lambda: E.projective_space(3), rp_homology(3)),
+    "RP4": (lambda: E.projective_space(4), rp_homology(4)),
+    "L(1,0)=S3": (lambda: E.lens_space(1, 0), sphere_homology(3)),
+    "L(2,1)=RP3": (lambda: E.lens_space(2, 1), [Z, T2, ZERO, Z]),
+    "L(5,2)": (lambda: E.lens_space(5, 2), [Z, (0, (5,)), ZERO, Z]),
+    "L(7,-3)": (lambda: E.lens_space(7, -3), [Z, (0, (7,)), ZERO, Z]),
+    "L(12,5)": (lambda: E.lens_space(12, 5), [Z, (0, (12,)), ZERO, Z]),
+    "cube_nd(3,3)": (lambda: E.cube_nd(3, 3), [Z, ZERO, ZERO, ZERO]),
+    "S1xS1": (lambda: E.product(E.sphere(1), E.sphere(1)), [Z, (2, ()), Z]),
+    "RP2xS1": (lambda: E.product(E.projective_plane(), E.sphere(1)), [Z, (1, (2,)), T2, ZERO]),
+    "RP2xRP2": (lambda: E.product(E.projective_plane(), E.projective_plane()), [Z, (0, (2, 2)), T2, T2, ZERO]),
+    "suspension(RP2)": (lambda: E.suspension(E.projective_plane()), [Z, ZERO, T2, ZERO]),
+    "cone(klein)": (lambda: E.cone(E.klein_bottle()), [Z, ZERO, ZERO, ZERO]),
+    "S1*S1=S3": (lambda: E.join(E.sphere(1), E.sphere(1)), sphere_homology(3)),
+}
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_textbook_homology(name):
+    build, expected = CASES[name]
+    assert H(build()) == expected
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 4])
+def test_torus_nd_betti_numbers_are_binomial(n):
+    assert H(E.torus_nd(n, 3)) == [(comb(n, k), ()) for k in range(n + 1)]
+
+
+# ------------------------------------------------------------------ manifold / orientability
+@pytest.mark.parametrize(
+    "build, manifold, orientable, closed",
+    [
+        (lambda: E.sphere(3), True, True, True),
+        (lambda: E.ball(3), True, True, False),
+        (E.torus, True, True, True),
+        (E.klein_bottle, True, False, True),
+        (E.projective_plane, True, False, True),
+        (E.moebius_strip, True, False, False),
+        (E.dunce_hat, False, False, True),
+        (lambda: E.projective_space(3), True, True, True),
+        (lambda: E.projective_space(4), True, False, True),
+        (lambda: E.lens_space(5, 2), True, True, True),
+        (lambda: E.torus_nd(3, 3), True, True, True),
+        (lambda: E.cube_nd(3, 2), True, True, False),
+        (lambda: E.product(E.projective_plane(), E.sphere(1)), True, False, True),
+        (lambda: E.product(E.moebius_strip(), E.sphere(1)), True, False, False),
+    ],
+)
+def test_manifold_and_orientability(build, manifold, orientable, closed):
+    X = build()
+    assert X.is_manifold() is manifold
+    assert X.is_orientable() is orientable
+    if manifold:
+        assert (X.boundary_complex() is None) is closed
+
+
+def test_klein_bottle_by_classification():
+    # a closed connected non-orientable surface with χ = 0 is the Klein bottle
+    K = E.klein_bottle()
+    assert K.is_manifold() and not K.is_orientable() and K.boundary_complex() is None
+    assert K.connected_components()[0] == 1 and K.euler_characteristic == 0
+    assert K.counts == (8, 24, 16)
+
+
+def test_moebius_strip_has_one_boundary_circle_and_is_rp2_minus_a_disk():
+    M = E.moebius_strip()
+    B = M.boundary_complex()
+    assert B.counts == (5, 5) and B.connected_components()[0] == 1
+    rp2 = E.projective_plane().simplices(2)
+    rest = rp2[~(rp2 == 0).any(axis=1)]
+    relabelled = SimplicialComplex((2 * (rest - 1)) % 5)
+    assert relabelled == M
+
+
+def test_dunce_hat_structure():
+    D = E.dunce_hat()
+    tri = D.simplices(2)
+    degree = Counter(e for t in tri.tolist() for e in combinations(t, 2))
+    curve = {e for e, c in degree.items() if c == 3}
+    assert curve == {(0, 1), (0, 2), (1, 2)}  # the curve a, three edges in three triangles each
+    assert set(degree.values()) == {2, 3}
+    for v in range(3, 8):  # interior points of the disk have circle links
+        L = D.link(0, v)
+        assert L.counts[0] == L.counts[1] and L.connected_components()[0] == 1
+        assert all(c == 2 for c in Counter(L.simplices(1).ravel().tolist()).values())
+    # the listed triples orient the disk: interior edges are traversed once each way, and the
+    # curve edges reproduce the word a a a^{-1} (twice forwards, once backwards)
+    directed = Counter((t[i], t[(i + 1) % 3]) for t in _DUNCE for i in range(3))
+    for (u, w), c in directed.items():
+        if (min(u, w), max(u, w)) in curve:
+            assert (c, directed[(w, u)]) == ((2, 1) if (u, w) in {(0, 1), (1, 2), (2, 0)} else (1, 2))
+        else:
+            assert c == 1 and directed[(w, u)] == 1
+
+
+def test_listed_torus_triangles_are_coherently_oriented():
+    i = np.arange(7)
+    rows = np.concatenate([np.stack([i, i + 1, i + 3], 1), np.stack([i, i + 3, i + 2], 1)]) % 7
+    signs = SimplicialComplex.orientation_of(rows)
+    T = E.torus()
+    o = np.zeros(T.n_simplices(2), int)
+    o[T.index(2, rows)] = signs
+    assert abs(np.sum(o * T.orientation())) == T.n_simplices(2)
+
+
+# ------------------------------------------------------------------ counts and Euler characteristics
+def test_named_counts():
+    assert E.torus().counts == (7, 21, 14)
+    assert E.projective_plane().counts == (6, 15, 10)
+    assert E.moebius_strip().counts == (5, 10, 5)
+    assert E.dunce_hat().counts == (8, 24, 17)
+    assert E.sphere(3).counts == (5, 10, 10, 5)
+    assert E.simplex(4).counts == tuple(comb(5, k + 1) for k in range(5))
+
+
+@pytest.mark.parametrize("n", range(0, 6))
+def test_sphere_and_simplex_counts(n):
+    S = E.sphere(n)
+    assert S.counts == tuple(comb(n + 2, k + 1) for k in range(n + 1))
+    assert S.euler_characteristic == 1 + (-1) ** n
+    assert E.simplex(n).euler_characteristic == 1
+
+
+def _chains(n, k):
+    """Number of chains ∅ ⊊ S_1 ⊊ ... ⊊ S_k ⊆ {0..n-1}: each element picks the step it enters at or never."""
+    return sum(1 for f in iproduct(range(k + 1), repeat=n) if set(range(1, k + 1)) <= set(f))
+
+
+@pytest.mark.parametrize("n, m", [(1, 3), (1, 5), (2, 3), (2, 4), (3, 3), (3, (3, 4, 5)), (4, 3)])
+def test_torus_nd_f_vector(n, m):
+    X = E.torus_nd(n, m)
+    cells = int(np.prod(np.broadcast_to(m, (n,))))
+    assert X.counts == tuple(cells * _chains(n, k) for k in range(n + 1))
+    assert X.euler_characteristic == 0
+
+
+def _brute_kuhn(n, m, periodic):
+    shape = [c if periodic else c + 1 for c in m]
+    out = set()
+    for cell in iproduct(*[range(c) for c in m]):
+        for perm in permutations(range(n)):
+            pt, verts = list(cell), []
+            for r in range(n + 1):
+                if r:
+                    pt[perm[r - 1]] += 1
+                coords = [c % s for c, s in zip(pt, shape)] if periodic else pt
+                verts.append(int(np.ravel_multi_index(coords, shape)))
+            out.add(tuple(sorted(verts)))
+    return [list(t) for t in sorted(out)]
+
+
+@pytest.mark.parametrize("n, m", [(1, (2,)), (2, (2, 3)), (3, (2, 1, 2)), (2, (3, 3)), (3, (3, 3, 4))])
+def test_grids_match_brute_force(n, m):
+    X = E.cube_nd(n, m)
+    assert X.simplices(n).tolist() == _brute_kuhn(n, m, periodic=False)
+    if min(m) >= 3:
+        assert E.torus_nd(n, m).simplices(n).tolist() == _brute_kuhn(n, m, periodic=True)
+
+
+@pytest.mark.parametrize("n, m", [(1, 4), (2, 3), (3, 2), (4, 2)])
+def test_cube_nd_geometry(n, m):
+    X, P = E.cube_nd(n, m, return_points=True)
+    assert P.shape == ((m + 1) ** n, n) and P.min() == 0.0 and P.max() == 1.0
+    assert X.counts[0] == (m + 1) ** n and X.counts[n] == factorial(n) * m**n
+    S = X.simplices(n)
+    vol = np.abs(np.linalg.det(P[S[:, 1:]] - P[S[:, :1]])) / factorial(n)
+    np.testing.assert_allclose(vol, 1.0 / (factorial(n) * m**n), rtol=1e-12)  # no degenerate simplex
+    assert vol.sum() == pytest.approx(1.0, rel=1e-12)
+    assert X.is_manifold() and X.euler_characteristic == 1
+
+
+def test_torus_nd_points_are_the_grid():
+    X, P = E.torus_nd(3, (3, 4, 5), return_points=True)
+    assert P.shape == (60, 3) and P.min() == 0.0 and P.max() < 1.0
+    idx = np.round(P * np.array([3, 4, 5])).astype(int)
+    assert np.array_equal(np.ravel_multi_index(idx.T, (3, 4, 5)), np.arange(60))
+    # every edge is a 0/1 step modulo the period
+    E1 = X.simplices(1)
+    step = np.mod(idx[E1[:, 1]] - idx[E1[:, 0]], [3, 4, 5])
+    step = np.where(step > 1, step - np.array([3, 4, 5]), step)
+    assert np.all(np.abs(step) <= 1)
+
+
+def test_cube_nd_large_is_vectorized():
+    X = E.cube_nd(3, 55)
+    assert X.counts[3] == 6 * 55**3 and X.counts[0] == 56**3
+
+
+def test_sphere_and_simplex_points():
+    for n in range(0, 5):
+        X, P = E.sphere(n, return_points=True)
+        assert P.shape == (n + 2, n + 1)
+        np.testing.assert_allclose(np.linalg.norm(P, axis=1), 1.0)
+        if n > 0:
+            d = [np.linalg.norm(P[a] - P[b]) for a, b in combinations(range(n + 2), 2)]
+            np.testing.assert_allclose(d, d[0])
+            np.testing.assert_allclose(P.sum(axis=0), 0.0, atol=1e-12)
+    S, Q = E.simplex(3, return_points=True)
+    assert Q.tolist() == [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]
+
+
+def test_projective_space_points_are_distinct_lines():
+    for n in range(1, 4):
+        X, P = E.projective_space(n, return_points=True)
+        assert X.counts[0] == (3 ** (n + 1) - 1) // 2 and X.counts[n] == 2**n * factorial(n + 1)
+        np.testing.assert_allclose(np.linalg.norm(P, axis=1), 1.0)
+        first = P[np.arange(len(P)), np.argmax(np.abs(P) > 0, axis=1)]
+        assert np.all(first > 0)
+        assert len({tuple(np.round(p, 9)) for p in P}) == len(P)
+
+
+# ------------------------------------------------------------------ lens spaces
+@pytest.mark.parametrize("p", range(1, 7))
+def test_lens_space_is_an_honest_quotient(p):
+    for q in range(p):
+        if gcd(p, q) != 1:
+            continue
+        cover, quot = _lens_cover(p, q, all_cells=True)
+        C, Q = SimplicialComplex(cover), SimplicialComplex(quot)
+        # Z/p acts freely on every skeleton and the orbit space keeps all simplices distinct
+        assert C.counts == tuple(p * c for c in Q.counts)
+        L = E.lens_space(p, q)
+        assert Q == L  # one tetrahedron per orbit gives the same complex
+        assert L.counts[0] == 9 * p + 6 and L.counts[3] == 54 * p
+    assert H(C) == sphere_homology(3) and C.is_manifold()  # the cover is a 3-sphere
+
+
+def test_lens_space_2_1_is_rp3():
+    assert H(E.lens_space(2, 1)) == H(E.projective_space(3))
+
+
+# ------------------------------------------------------------------ products, joins, cones
+@pytest.mark.parametrize("a, b, m", [(1, 1, 1), (1, 1, 3), (1, 2, 2), (2, 1, 2), (2, 2, 1), (1, 3, 1)])
+def test_product_of_cubes_is_the_kuhn_cube(a, b, m):
+    assert E.product(E.cube_nd(a, m), E.cube_nd(b, m)) == E.cube_nd(a + b, m)
+
+
+def test_product_vertex_numbering_and_projections():
+    X, Y = E.projective_plane(), E.moebius_strip()
+    P, pairs = E.product(X, Y, return_pairs=True)
+    assert np.array_equal(pairs[:, 0] * Y.n_vertices + pairs[:, 1], np.arange(P.n_vertices))
+    for k in range(P.dim + 1):
+        S = P.simplices(k)
+        xs, ys = np.sort(pairs[S, 0], axis=1), np.sort(pairs[S, 1], axis=1)
+        for proj, F in ((xs, X), (ys, Y)):  # both projections of every simplex are simplices
+            for row in proj[:50]:
+                u = np.unique(row)
+                assert F.contains(len(u) - 1, u[None, :])[0]
+        # vertices of a simplex are a chain of the product order
+        assert np.all(np.diff(pairs[S, 0], axis=1) >= 0) and np.all(np.diff(pairs[S, 1], axis=1) >= 0)
+
+
+def test_product_is_associative():
+    A, B, C = E.sphere(1), E.cube_nd(1, 2), E.moebius_strip()
+    assert E.product(E.product(A, B), C) == E.product(A, E.product(B, C))
+
+
+def _primary(rank, torsion):
+    out = []
+    for t in torsion:
+        p = 2
+        while t > 1:
+            q = 1
+            while t % p == 0:
+                t //= p
+                q *= p
+            if q > 1:
+                out.append(q)
+            p += 1
+    return rank, sorted(out)
+
+
+def _kunneth(HX, HY, n):
+    """Integer homology of X × Y in degree n from the Künneth theorem, in primary form."""
+    rank, tors = 0, []
+    for i, j in iproduct(range(len(HX)), range(len(HY))):
+        (a, TA), (b, TB) = _primary(*HX[i]), _primary(*HY[j])
+        mixed = [gcd(s, t) for s in TA for t in TB if gcd(s, t) > 1]
+        if i + j == n:  # H_i ⊗ H_j
+            rank += a * b
+            tors += TA * b + TB * a + mixed
+        if i + j == n - 1:  # Tor(H_i, H_j)
+            tors += mixed
+    return rank, sorted(tors)
+
+
+def _check_kunneth(X, Y):
+    HX, HY, HP = H(X), H(Y), H(E.product(X, Y))
+    assert len(HP) == len(HX) + len(HY) - 1
+    for n, h in enumerate(HP):
+        assert _primary(*h) == _kunneth(HX, HY, n), n
+
+
+@pytest.mark.parametrize(
+    "X, Y",
+    [
+        (E.projective_plane, E.projective_plane),
+        (E.klein_bottle, lambda: E.sphere(1)),
+        (E.projective_plane, E.moebius_strip),
+        (E.dunce_hat, E.torus),
+    ],
+)
+def test_kunneth_named(X, Y):
+    _check_kunneth(X(), Y())
+
+
+small_complexes = st.lists(
+    st.lists(st.integers(0, 5), min_size=1, max_size=3, unique=True), min_size=1, max_size=7
+).map(SimplicialComplex)
+
+
+@settings(max_examples=25, deadline=None)
+@given(small_complexes, small_complexes)
+def test_kunneth_and_euler_characteristic_of_products(X, Y):
+    P = E.product(X, Y)
+    assert P.n_vertices == X.n_vertices * Y.n_vertices
+    assert P.dim == X.dim + Y.dim
+    assert P.euler_characteristic == X.euler_characteristic * Y.euler_characteristic
+    _check_kunneth(X, Y)
+
+
+@settings(max_examples=30, deadline=None)
+@given(small_complexes, small_complexes)
+def test_join_cone_suspension_euler_characteristics(X, Y):
+    cx, cy = X.euler_characteristic, Y.euler_characteristic
+    assert E.join(X, Y).euler_characteristic == cx + cy - cx * cy
+    assert E.cone(X).euler_characteristic == 1
+    assert E.suspension(X).euler_characteristic == 2 - cx
+    C = E.cone(X)
+    assert C.n_vertices == X.n_vertices + 1 and C.dim == X.dim + 1
+    assert np.all(C.simplices(C.dim)[:, -1] == X.n_vertices)  # the apex is the last vertex
+
+
+def test_suspension_of_spheres_are_spheres():
+    for n in range(0, 3):
+        S = E.suspension(E.sphere(n))
+        assert H(S) == sphere_homology(n + 1) and S.is_manifold()
+
+
+# ------------------------------------------------------------------ mesh wrappers
+def test_surface_keeps_orientation_and_index():
+    T, P = E.torus_nd(2, 4, return_points=True)
+    rng = np.random.default_rng(0)
+    F = T.simplices(2)[rng.permutation(T.n_simplices(2))]
+    F = np.array([row[rng.permutation(3)] for row in F])
+    angle = 2 * np.pi * P
+    V = np.stack([(2 + np.cos(angle[:, 1])) * np.cos(angle[:, 0]), (2 + np.cos(angle[:, 1])) * np.sin(angle[:, 0]),
+                  np.sin(angle[:, 1])], axis=1)
+    M = E.surface(F, V)
+    X = M.complex
+    assert X == T
+    assert np.array_equal(X.simplices(2)[M.index], np.sort(F, axis=1))
+    assert np.array_equal(M.orientation, SimplicialComplex.orientation_of(F))
+    np.testing.assert_array_equal(M.points, V)
+    # flipping one triangle flips exactly its sign
+    G = F.copy()
+    G[5] = G[5, [1, 0, 2]]
+    assert np.array_equal(E.surface(G).orientation * M.orientation, np.where(np.arange(len(F)) == 5, -1, 1))
+
+
+def test_tet_mesh_and_unreferenced_vertices():
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [9, 9, 9], [1, 1, 1]], float)
+    T = np.array([[0, 1, 2, 3], [5, 3, 2, 1]])
+    with pytest.warns(UnreferencedVertexWarning):
+        M = E.tet_mesh(T, V)
+    assert M.complex.vertex_labels.tolist() == [0, 1, 2, 3, 5]
+    assert M.points.tolist() == V[[0, 1, 2, 3, 5]].tolist()
+    assert M.orientation.tolist() == [1, SimplicialComplex.orientation_of([[5, 3, 2, 1]])[0]]
+    assert M.complex.simplices(3)[M.index].tolist() == [[0, 1, 2, 3], [1, 2, 3, 4]]
+
+
+def test_mesh_bad_input():
+    V = np.zeros((4, 3))
+    with pytest.raises(InvalidSimplexError, match="shape"):
+        E.surface([[0, 1, 2, 3]], V)
+    with pytest.raises(InvalidSimplexError, match="refers to vertex 7"):
+        E.surface([[0, 1, 2], [1, 2, 7]], V)
+    with pytest.raises(InvalidSimplexError, match="repeats a vertex"):
+        E.surface([[0, 1, 1]])
+    with pytest.raises(InvalidSimplexError):
+        E.surface([[0, -1, 2]])
+    with pytest.raises(EmptyComplexError):
+        E.tet_mesh(np.zeros((0, 4), int))
+    with pytest.raises(NonFiniteError, match="vertex 2"):
+        E.surface([[0, 1, 2]], [[0, 0, 0], [1, 0, 0], [np.nan, 0, 0]])
+    with pytest.raises(InvalidSimplexError):
+        E.tet_mesh([[0, 1, 2]])
+
+
+# ------------------------------------------------------------------ bad parameters
+@pytest.mark.parametrize(
+    "call, match",
+    [
+        (lambda: E.torus_nd(2, 2), ">= 3"),
+        (lambda: E.torus_nd(1, 1), ">= 3"),
+        (lambda: E.torus_nd(2, (3, 2)), r"m\[1\]"),
+        (lambda: E.torus_nd(2, (3, 3, 3)), "one cell count per axis"),
+        (lambda: E.cube_nd(0, 3), "n must be"),
+        (lambda: E.cube_nd(2, 0), ">= 1"),
+        (lambda: E.cube_nd(2, 1.5), "integer"),
+        (lambda: E.sphere(-1), ">= 0"),
+        (lambda: E.sphere(True), "integer"),
+        (lambda: E.simplex("3"), "integer"),
+        (lambda: E.lens_space(4, 2), "gcd"),
+        (lambda: E.lens_space(0, 1), ">= 1"),
+        (lambda: E.lens_space(3, 1.0), "integer"),
+        (lambda: E.projective_space(-2), ">= 0"),
+    ],
+)
+def test_bad_parameters(call, match):
+    with pytest.raises(InvalidParameterError, match=match) as info:
+        call()
+    assert isinstance(info.value, ValueError)
+
+
+def test_constructions_validate_their_input():
+    with pytest.raises(InvalidSimplexError):
+        E.product([(0, 0)], [(0, 1)])
+    with pytest.raises(EmptyComplexError):
+        E.cone([])
+    assert E.product(np.array([[0, 1]]), [(0,)]).counts == (2, 1)  # plain simplex input is accepted
