@@ -11,5 +11,18 @@ from dhlb import errors  # noqa: E402
 __all__ = ["errors", "__version__"]
 
 from dhlb.topology import SimplicialComplex  # noqa: E402
+from dhlb import examples  # noqa: E402
+from dhlb.forms import Chain, Cochain, SolveResult, integrate_closed_1form, is_exact, solve_d  # noqa: E402
+from dhlb.geometry import EuclideanComplex  # noqa: E402
 
-__all__ += ["SimplicialComplex"]
+__all__ += [
+    "SimplicialComplex",
+    "examples",
+    "Chain",
+    "Cochain",
+    "SolveResult",
+    "integrate_closed_1form",
+    "is_exact",
+    "solve_d",
+    "EuclideanComplex",
+]

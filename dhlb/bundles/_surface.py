@@ -71,28 +71,34 @@ def surface_cycles(X) -> SurfaceCycles | None:
     cnt = np.bincount(flat, minlength=n1)
     if np.any(cnt > 2):
         return None
-    order = np.argsort(flat, kind="stable")
-    e_sorted = flat[order]
-    first = np.nonzero((cnt[e_sorted] == 2) & (np.r_[True, e_sorted[1:] != e_sorted[:-1]]))[0]
-    i1, i2 = order[first], order[first + 1]
+    # the two incidences of each interior edge, without sorting: the last writer and the rest
+    slots = np.arange(flat.size, dtype=np.int64)
+    last = np.zeros(n1, np.int64)
+    last[flat] = slots
+    total = np.bincount(flat, weights=slots.astype(np.float64), minlength=n1).astype(np.int64)
+    inner = np.nonzero(cnt == 2)[0]
+    i2 = last[inner]
+    i1 = total[inner] - i2
     t1, t2 = i1 // 3, i2 // 3
     rho = -_SIGNS[i1 % 3] * _SIGNS[i2 % 3]  # o_t2 = rho * o_t1 for a consistent orientation
     labels, roots, parent, _ = bfs_forest(n2, t1, t2)
     ncomp = roots.size
-    # sign of the link child -> parent: look up the interior edge joining them
-    keys = np.minimum(t1, t2) * n2 + np.maximum(t1, t2)
-    srt = np.argsort(keys)
+    # sign of the link child -> parent: the edge of the child whose other triangle is the parent
+    other = np.full(n1, -1, np.int64)
+    other[inner] = t1 + t2  # other triangle = other[e] - this triangle
+    rho_e = np.zeros(n1, np.int64)
+    rho_e[inner] = rho
     child = np.nonzero(parent >= 0)[0]
-    q = np.minimum(child, parent[child]) * n2 + np.maximum(child, parent[child])
-    link = srt[np.searchsorted(keys[srt], q)]
+    fc = f[child]
+    col = np.argmax(other[fc] - child[:, None] == parent[child][:, None], axis=1)
     step = np.ones(n2, np.int64)
-    step[child] = rho[link]
+    step[child] = rho_e[fc[np.arange(child.size), col]]
     signs = tree_accumulate(parent, step, np.multiply, 1)
     bad_edge = signs[t2] != rho * signs[t1]
     orientable = np.ones(ncomp, bool)
     orientable[labels[t1[bad_edge]]] = False
     closed = np.ones(ncomp, bool)
-    boundary_tris = np.nonzero(np.isin(f, np.nonzero(cnt == 1)[0]).any(axis=1))[0]
+    boundary_tris = np.nonzero((cnt == 1)[f].any(axis=1))[0]
     closed[labels[boundary_tris]] = False
     return SurfaceCycles(
         component=labels,

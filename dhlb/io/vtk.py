@@ -82,7 +82,8 @@ def _legacy_offsets(data: np.ndarray, lines: np.ndarray, n_cells: int, path: str
     starts, pos = [], 0
     for _ in range(n_cells):
         if pos >= data.size:
-            raise MeshParseError(f"the CELLS data ends after {len(starts)} of {n_cells} cells", path, int(lines[-1]))
+            at = int(lines[-1]) if lines.size else None
+            raise MeshParseError(f"the CELLS data ends after {len(starts)} of {n_cells} cells", path, at)
         k = int(data[pos])
         if k < 1 or pos + 1 + k > data.size:
             raise MeshParseError(
