@@ -14,6 +14,7 @@ from dhlb.topology import SimplicialComplex  # noqa: E402
 from dhlb import examples  # noqa: E402
 from dhlb.forms import Chain, Cochain, SolveResult, integrate_closed_1form, is_exact, solve_d  # noqa: E402
 from dhlb.geometry import EuclideanComplex  # noqa: E402
+from dhlb import io  # noqa: E402
 
 __all__ += [
     "SimplicialComplex",
@@ -25,4 +26,5 @@ __all__ += [
     "is_exact",
     "solve_d",
     "EuclideanComplex",
+    "io",
 ]

@@ -81,7 +81,7 @@ def surface_cycles(X) -> SurfaceCycles | None:
     i1 = total[inner] - i2
     t1, t2 = i1 // 3, i2 // 3
     rho = -_SIGNS[i1 % 3] * _SIGNS[i2 % 3]  # o_t2 = rho * o_t1 for a consistent orientation
-    labels, roots, parent, _ = bfs_forest(n2, t1, t2)
+    labels, roots, parent, order = bfs_forest(n2, t1, t2)
     ncomp = roots.size
     # sign of the link child -> parent: the edge of the child whose other triangle is the parent
     other = np.full(n1, -1, np.int64)
@@ -93,7 +93,7 @@ def surface_cycles(X) -> SurfaceCycles | None:
     col = np.argmax(other[fc] - child[:, None] == parent[child][:, None], axis=1)
     step = np.ones(n2, np.int64)
     step[child] = rho_e[fc[np.arange(child.size), col]]
-    signs = tree_accumulate(parent, step, np.multiply, 1)
+    signs = tree_accumulate(parent, step, np.multiply, 1, order=order)
     bad_edge = signs[t2] != rho * signs[t1]
     orientable = np.ones(ncomp, bool)
     orientable[labels[t1[bad_edge]]] = False

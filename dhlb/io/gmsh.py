@@ -63,6 +63,8 @@ class _Body:
     def take(self, n: int | None = None):
         """Next row (or next ``n`` rows); error if the section ends early."""
         k = 1 if n is None else n
+        if k < 0:
+            raise MeshParseError(f"negative count in section ${self.name}", self.path, self.rows[self.i - 1][0])
         if self.i + k > len(self.rows):
             raise MeshParseError(f"section ${self.name} ends too early", self.path, self.header)
         got = self.rows[self.i : self.i + k]
@@ -126,12 +128,11 @@ def _elements_v2(rows, by_dim: dict, path: str) -> None:
         vals = to_array([rows[i][1] for i in idx], lines[idx], np.int64, path, "element value")
         for etype, ntags in np.unique(vals[:, 1:3], axis=0).tolist():
             sel = np.flatnonzero((vals[:, 1] == etype) & (vals[:, 2] == ntags))
-            dim, n_nodes, n_corners = _element_type(etype, int(lines[idx[sel[0]]]), path)
+            at = int(lines[idx[sel[0]]])
+            dim, n_nodes, n_corners = _element_type(etype, at, path)
             first = 3 + ntags
             if ntags < 0 or length != first + n_nodes:
-                raise MeshParseError(
-                    f"element of type {etype} needs {n_nodes} nodes, got {length - first}", path, int(lines[idx[sel[0]]])
-                )
+                raise MeshParseError(f"element of type {etype} needs {n_nodes} nodes, got {length - first}", path, at)
             _add(by_dim, dim, vals[sel, first : first + n_corners], lines[idx[sel]], order=idx[sel])
 
 

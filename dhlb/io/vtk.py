@@ -162,6 +162,8 @@ def read_vtk(path) -> tuple[np.ndarray, dict[int, np.ndarray]]:
             V, vlines = flat.reshape(-1, 3), lines[::3]
         elif key == "CELLS":
             (a, b), _ = s.numbers(2, np.int64, "CELLS size")
+            if a < 0 or b < 0:
+                raise MeshParseError("negative CELLS size", path, at)
             if s.peek() is not None and s.peek().upper() == "OFFSETS":
                 s.word("OFFSETS"), s.word("the offsets type")
                 offsets, _ = s.numbers(int(a), np.int64, "cell offset")

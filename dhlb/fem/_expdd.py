@@ -1,0 +1,219 @@
+"""Divided differences of ``exp`` at purely imaginary nodes, vectorized and accurate.
+
+This is the numerical engine behind :mod:`dhlb.fem.integrals`.  By the Hermite--Genocchi
+formula every integral over an n-simplex of a monomial in barycentric coordinates times
+``exp(i Σ θ_m x_m)`` is a (confluent) divided difference of ``exp``; see
+:func:`dhlb.fem.integrals.expi_moment`.
+
+Algorithm
+---------
+Nodes are given as *classes* ``iθ_c`` (real phases ``θ_c``) with multiplicities ``μ_c``.
+
+1. **Clusters.**  Per row, the phases are grouped by single linkage with gap ``L = 8``.
+   The divided difference splits over clusters ``C_1, ..., C_K`` by the partial-fraction
+   (contour integral) identity ``f[∪ C_j] = Σ_j [C_j](f / Π_{l≠j} π_{C_l})``, where
+   ``π_C(z) = Π_{c ∈ C} (z - c)``.  Since the clusters are far apart (compared with the scale 1
+   on which ``exp`` varies) no catastrophic cancellation occurs.
+2. **Inside a cluster** ``[C](e^z h)`` is row 0 of ``exp(T) h(T)`` for the Opitz matrix ``T``
+   (bidiagonal: the nodes on the diagonal, ones above); ``h(T) = Π_b (T - bI)^{-1}`` is applied
+   by forward substitution (stable: ``|node - b| > L``).  Row 0 of ``exp(T)`` holds the divided
+   differences of the prefixes of the node sequence.  After centring the cluster (a shift
+   multiplies by ``e^{ic}``) they are Taylor series ``Σ_q i^q h_q(y)/(q + d)!`` in the complete
+   homogeneous polynomials ``h_q`` of the real centred phases ``y``; when the radius exceeds 1
+   the full triangle of ``exp(λT)`` is formed for ``λ = 2^{-s}`` and squared ``s`` times
+   (McCurdy, Ng & Parlett 1984).
+
+Relative accuracy against 60-digit mpmath is about 1e-15 for every multiplicity pattern used by
+the finite elements (tested from |θ| = 1e-8 to 1e4, with coinciding and nearly coinciding nodes).
+"""
+
+from __future__ import annotations
+
+from math import factorial
+
+import numpy as np
+
+__all__ = ["expi_divided_difference"]
+
+_GAP = 8.0          # single-linkage gap between clusters
+_THETA = 1.0        # Taylor radius (after centring / scaling)
+_QMAX = 24          # Taylor terms for radius _THETA: 1/24! < 2e-24
+
+
+def _n_terms(radius: float) -> int:
+    """Number of Taylor terms so that ``radius^Q / Q! < 2e-18`` (radius <= _THETA)."""
+    q, term = 1, radius
+    while term > 2e-18 and q < _QMAX:
+        q += 1
+        term *= radius / q
+    return q
+
+
+def _i_powers(qs: int, shift: int) -> np.ndarray:
+    """Complex coefficients ``i^q / (q + shift)!`` for ``q < qs``."""
+    return np.array([(1j ** (q % 4)) / factorial(q + shift) for q in range(qs)], dtype=complex)
+
+
+def _prefix_taylor(y: np.ndarray, need_all: bool) -> np.ndarray:
+    """Divided differences of ``exp`` at the prefixes of ``i*y`` (rows of ``y``, ``|y| <= 1``).
+
+    Returns ``(G, K)`` complex: column ``d`` is ``exp[iy_0, ..., iy_d]`` (only the last column is
+    filled when ``need_all`` is false).
+    """
+    g, k = y.shape
+    out = np.zeros((g, k), dtype=complex)
+    qs = _n_terms(float(np.abs(y).max()) if y.size else 0.0)
+    h = np.empty((g, qs))
+    h[:, 0] = 1.0
+    for q in range(1, qs):
+        h[:, q] = h[:, q - 1] * y[:, 0]
+    if need_all or k == 1:
+        out[:, 0] = h @ _i_powers(qs, 0)
+    for d in range(1, k):
+        yd = y[:, d]
+        for q in range(1, qs):
+            h[:, q] += yd * h[:, q - 1]
+        if need_all or d == k - 1:
+            out[:, d] = h @ _i_powers(qs, d)
+    return out
+
+
+def _prefix_squaring(y: np.ndarray) -> np.ndarray:
+    """Like :func:`_prefix_taylor` (all prefixes) for rows of any radius, by scaling and squaring."""
+    g, k = y.shape
+    rad = np.abs(y).max(axis=1)
+    s = np.maximum(0, np.ceil(np.log2(np.maximum(rad, 1e-300) / _THETA))).astype(int)
+    lam = np.ldexp(1.0, -s)
+    ys = y * lam[:, None]
+    qs = _n_terms(float(np.abs(ys).max()))
+    band = []  # band[d][:, i] = F[i, i + d], F = exp(λ T)
+    h = None
+    for d in range(k):
+        if d == 0:
+            h = np.empty((g, k, qs))
+            h[:, :, 0] = 1.0
+            for q in range(1, qs):
+                h[:, :, q] = h[:, :, q - 1] * ys
+        else:
+            h = h[:, :-1, :].copy()
+            yy = ys[:, d:]
+            for q in range(1, qs):
+                h[:, :, q] += yy * h[:, :, q - 1]
+        band.append((h @ _i_powers(qs, d)) * (lam ** d)[:, None])
+    for r in range(int(s.max()) if g else 0):
+        rows = np.nonzero(s > r)[0]
+        new = []
+        for d in range(k):
+            acc = np.zeros((rows.size, k - d), dtype=complex)
+            for j in range(d + 1):
+                acc += band[j][rows, : k - d] * band[d - j][rows, j: j + k - d]
+            new.append(acc)
+        for d in range(k):
+            band[d][rows] = new[d]
+    return np.stack([band[d][:, 0] for d in range(k)], axis=1)
+
+
+def _cluster_partition(phases: np.ndarray) -> np.ndarray:
+    """Integer key per row encoding which classes share a cluster (single linkage, gap ``_GAP``)."""
+    b, c = phases.shape
+    order = np.argsort(phases, axis=1)
+    srt = np.take_along_axis(phases, order, axis=1)
+    cid_sorted = np.concatenate([np.zeros((b, 1), int), np.cumsum(np.diff(srt, axis=1) > _GAP, axis=1)], axis=1)
+    cid = np.empty_like(cid_sorted)
+    np.put_along_axis(cid, order, cid_sorted, axis=1)
+    key = np.zeros(b, dtype=np.int64)
+    bit = 0
+    for p in range(c):
+        for q in range(p + 1, c):
+            key |= (cid[:, p] == cid[:, q]).astype(np.int64) << bit
+            bit += 1
+    return key
+
+
+def _clusters_of_key(key: int, c: int) -> list[list[int]]:
+    """The partition of ``range(c)`` encoded by :func:`_cluster_partition`."""
+    label = list(range(c))
+    bit = 0
+    for p in range(c):
+        for q in range(p + 1, c):
+            if (key >> bit) & 1:
+                label[q] = label[p]
+            bit += 1
+    groups: dict[int, list[int]] = {}
+    for cls, lab in enumerate(label):
+        groups.setdefault(lab, []).append(cls)
+    return list(groups.values())
+
+
+def _group_value(phases: np.ndarray, mult: np.ndarray, clusters: list[list[int]]) -> np.ndarray:
+    """Divided differences for rows sharing one cluster partition."""
+    total = np.zeros(phases.shape[0], dtype=complex)
+    for cluster in clusters:
+        seq = np.repeat(np.asarray(cluster), mult[cluster])
+        nodes = phases[:, seq]
+        centre = 0.5 * (nodes.max(axis=1) + nodes.min(axis=1))
+        y = nodes - centre[:, None]
+        need_all = len(clusters) > 1
+        rad = np.abs(y).max(axis=1)
+        small = rad <= _THETA
+        v = np.empty(y.shape, dtype=complex)
+        if small.all():
+            v = _prefix_taylor(y, need_all)
+        else:
+            if small.any():
+                v[small] = _prefix_taylor(y[small], True)
+            v[~small] = _prefix_squaring(y[~small])
+        v *= np.exp(1j * centre)[:, None]
+        for other in range(phases.shape[1]):
+            if other in cluster:
+                continue
+            for _ in range(int(mult[other])):
+                diff = 1j * (nodes - phases[:, [other]])
+                w = np.empty_like(v)
+                prev = 0.0
+                for d in range(v.shape[1]):
+                    w[:, d] = (v[:, d] - prev) / diff[:, d]
+                    prev = w[:, d]
+                v = w
+        total += v[:, -1]
+    return total
+
+
+def expi_divided_difference(phases, multiplicities) -> np.ndarray:
+    """Confluent divided differences ``exp[iθ_1^(μ_1), ..., iθ_C^(μ_C)]`` of the exponential.
+
+    Parameters
+    ----------
+    phases : array_like, shape (..., C)
+        Real phases ``θ_c``; the node ``iθ_c`` is repeated ``μ_c`` times.
+    multiplicities : array_like of int, shape (C,)
+        Multiplicities ``μ_c >= 1`` (the same for every row).
+
+    Returns
+    -------
+    ndarray, shape (...)
+        Complex divided differences; with ``N + 1 = Σ μ_c`` nodes the value is ``1/N!`` when all
+        phases vanish and has modulus at most ``1/N!``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> float(expi_divided_difference([0.0, 0.0], [1, 2]).real)  # exp[0, 0, 0] = 1/2!
+    0.5
+    >>> t = 2.0  # exp[0, it] = (e^{it} - 1)/(it)
+    >>> bool(np.isclose(expi_divided_difference([0.0, t], [1, 1]), (np.exp(1j * t) - 1) / (1j * t)))
+    True
+    """
+    th = np.asarray(phases, dtype=float)
+    mu = np.asarray(multiplicities, dtype=int).reshape(-1)
+    shape = th.shape[:-1]
+    th = th.reshape(-1, th.shape[-1])
+    b, c = th.shape
+    out = np.empty(b, dtype=complex)
+    if b == 0:
+        return out.reshape(shape)
+    keys = _cluster_partition(th) if c > 1 else np.zeros(b, dtype=np.int64)
+    for key in np.unique(keys):
+        rows = np.nonzero(keys == key)[0]
+        out[rows] = _group_value(th[rows], mu, _clusters_of_key(int(key), c))
+    return out.reshape(shape)
