@@ -10,7 +10,16 @@ from dhlb.bundles.paths import fundamental_cycles, loop_group_presentation
 from dhlb.errors import InvalidConnectionError, NotAPathError
 from dhlb.topology.homology import homology
 from dhlb.topology.intlinalg import smith_normal_form
-from tests.strategies import closed_surfaces, complexes, rp2, torus7
+from tests.strategies import closed_surfaces, pure_simplex_lists, rp2, simplex_lists, torus7
+
+
+def rich_complexes(max_dim: int = 4):
+    """Random complexes of dimension 2..max_dim with enough simplices to have loops and cycles."""
+    options = [pure_simplex_lists(dim=2, max_vertices=8, min_size=4, max_size=18),
+               simplex_lists(max_vertices=7, max_dim=max_dim, min_size=5, max_size=16)]
+    if max_dim >= 3:
+        options.append(pure_simplex_lists(dim=3, max_vertices=7, min_size=2, max_size=10))
+    return st.one_of(*options).map(SimplicialComplex)
 
 
 def random_orthogonal(rng, n, K):
@@ -122,7 +131,7 @@ def test_circle_rotation_monodromy_exact():
 
 
 @settings(max_examples=15, deadline=None)
-@given(complexes(max_vertices=7, max_dim=3), st.integers(0, 2**32 - 1), st.sampled_from(["R", "C", ("GF", 7)]))
+@given(rich_complexes(3), st.integers(0, 2**32 - 1), st.sampled_from(["R", "C", ("GF", 7)]))
 def test_generator_monodromy_matches_loops(X, seed, field):
     rng = np.random.default_rng(seed)
     E = random_bundle(X, rng, K=2, field=field)
@@ -135,7 +144,7 @@ def test_generator_monodromy_matches_loops(X, seed, field):
 
 
 @settings(max_examples=15, deadline=None)
-@given(complexes(max_vertices=7, max_dim=3), st.integers(0, 2**32 - 1))
+@given(rich_complexes(3), st.integers(0, 2**32 - 1))
 def test_from_monodromy_realizes_representation(X, seed):
     """Theorem 2, surjectivity: any matrices on the generators are a monodromy."""
     rng = np.random.default_rng(seed)
@@ -147,7 +156,7 @@ def test_from_monodromy_realizes_representation(X, seed):
 
 # ------------------------------------------------------------------ parallel sections
 @settings(max_examples=15, deadline=None)
-@given(complexes(max_vertices=7, max_dim=3), st.integers(0, 2**32 - 1))
+@given(rich_complexes(3), st.integers(0, 2**32 - 1))
 def test_parallel_sections_are_parallel_and_complete(X, seed):
     """Parallel sections of a bundle with monodromy fixing a known subspace."""
     rng = np.random.default_rng(seed)
@@ -192,7 +201,7 @@ def test_gf_parallel_sections_exact():
 
 # ------------------------------------------------------------------ π₁ and flatness
 @settings(max_examples=20, deadline=None)
-@given(complexes(max_vertices=7, max_dim=3))
+@given(rich_complexes(3))
 def test_presentation_abelianizes_to_h1(X):
     """Relators of the triangle loops abelianize to H₁(X; Z) (generators: non-tree edges)."""
     if X.dim == 0:

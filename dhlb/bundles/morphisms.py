@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from dhlb.bundles._util import simplex_name
 from dhlb.bundles.vector_bundle import VectorBundle
 from dhlb.errors import ConvergenceError, InvalidConnectionError
 
@@ -211,11 +210,3 @@ def find_isomorphism(E: VectorBundle, F: VectorBundle, *, rng=None, max_enumerat
 def is_isomorphic(E: VectorBundle, F: VectorBundle, **kwargs) -> bool:
     """True if :func:`find_isomorphism` finds an isomorphism."""
     return find_isomorphism(E, F, **kwargs) is not None
-
-
-def first_failing_edge(E: VectorBundle, F: VectorBundle, f) -> str | None:
-    """Name of the first edge whose diagram does not commute under ``f`` (None if all do)."""
-    ops = E.ops
-    Ed = E.X.simplices(1)
-    ok = ops.close(ops.matmul(f[Ed[:, 1]], E.transports), ops.matmul(F.transports, f[Ed[:, 0]]))
-    return None if np.all(ok) else simplex_name(E.X, 1, int(np.argmin(ok)))

@@ -214,6 +214,7 @@ class BundlesWithCurvature:
         self.generators = np.asarray(H1.generators, dtype=np.int64) if H1 else np.zeros((n1, 0), np.int64)
         self.cocycles = np.asarray(C1.cocycles, dtype=np.float64) if C1 else np.zeros((n1, 0))
         self._h0 = np.array([self.base.holonomy(g) for g in self.generators.T])
+        self._pair_free = self.generators[:, : self.b1].T @ self.cocycles[:, : self.b1]
 
     def __repr__(self) -> str:
         return f"BundlesWithCurvature(b1={self.b1}, torsion_orders={self.torsion_orders})"
@@ -226,7 +227,9 @@ class BundlesWithCurvature:
         k = np.zeros(t, np.int64) if torsion is None else np.asarray(torsion, dtype=np.int64).reshape(-1)
         if theta.size != b or k.size != t:
             raise CurvatureMismatchError(f"holonomy needs {b} free angles and {t} torsion residues, got {theta.size} and {k.size}")
-        shift = self.cocycles[:, :b] @ (theta - self._h0[:b]) + self.cocycles[:, b:] @ k
+        # the free cocycles are dual to the free generators (pairing = identity); solve anyway
+        x = np.linalg.solve(self._pair_free, theta - self._h0[:b]) if b else np.zeros(0)
+        shift = self.cocycles[:, :b] @ x + self.cocycles[:, b:] @ k
         return HermitianLineBundle.from_angles(self.X, self.base.connection_angles + shift, self.base.curvature, atol=self.atol)
 
     def coordinates(self, L: HermitianLineBundle) -> tuple[np.ndarray, tuple]:

@@ -123,8 +123,9 @@ def integrate_closed_1form(omega: Cochain, root: int = 0, tol=None) -> Cochain:
         cycle = _fundamental_cycle(X, pred, int(np.argmax(dist)))
         defect = omega.pair(Chain.path(X, cycle))
         err = NotClosedError(
-            f"the 1-form is not closed: its integral over the cycle {cycle} (input labels) is {defect!r}, "
-            f"not the identity of {g.name}; only closed forms are derivatives of 0-forms"
+            f"the 1-form is not the derivative of a 0-form: its integral over the cycle {cycle} (input labels) "
+            f"is {defect!r}, not the identity of {g.name} (the form is not closed, or closed with a non-zero "
+            f"period over this cycle)"
         )
         err.cycle, err.defect = cycle, defect
         raise err
