@@ -13,6 +13,17 @@ __all__ = ["errors", "__version__"]
 from dhlb.topology import SimplicialComplex  # noqa: E402
 from dhlb import examples  # noqa: E402
 from dhlb.forms import Chain, Cochain, SolveResult, integrate_closed_1form, is_exact, solve_d  # noqa: E402
+from dhlb.bundles import (  # noqa: E402
+    HermitianLineBundle,
+    VectorBundle,
+    bundles_with_curvature,
+    check_integrality,
+    find_isomorphism,
+    flat_line_bundles,
+    index_form,
+    is_isomorphic,
+    line_bundle_with_curvature,
+)
 from dhlb.geometry import EuclideanComplex  # noqa: E402
 from dhlb import io  # noqa: E402
 
@@ -25,6 +36,15 @@ __all__ += [
     "integrate_closed_1form",
     "is_exact",
     "solve_d",
+    "HermitianLineBundle",
+    "VectorBundle",
+    "bundles_with_curvature",
+    "check_integrality",
+    "find_isomorphism",
+    "flat_line_bundles",
+    "index_form",
+    "is_isomorphic",
+    "line_bundle_with_curvature",
     "EuclideanComplex",
     "io",
 ]

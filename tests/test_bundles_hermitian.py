@@ -161,3 +161,16 @@ def test_holonomy_of_generator_loop_on_rp2():
     with pytest.raises(NotClosedError):
         HermitianLineBundle.trivial(X).holonomy(np.eye(X.n_simplices(1), dtype=int)[0])
     assert HermitianLineBundle.trivial(X).holonomy(z) == 0.0
+
+
+def test_cochain_interop():
+    from dhlb.forms import Cochain
+
+    rng = np.random.default_rng(7)
+    X = SimplicialComplex(torus7())
+    L, _ = random_bundle(X, rng)
+    M = HermitianLineBundle(X, L.connection_form(), L.curvature_form())
+    assert np.allclose(M.connection, L.connection) and np.array_equal(M.curvature, L.curvature)
+    assert L.connection_form().d().allclose(L.curvature_form().to_group("S1"))
+    with pytest.raises(InvalidConnectionError, match="expected a 1-form"):
+        HermitianLineBundle(X, Cochain(X, 2, L.curvature, "R"), L.curvature)

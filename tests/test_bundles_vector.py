@@ -258,3 +258,17 @@ def test_triangle_monodromy_is_loop_monodromy(surf, seed):
     for t in range(0, X.n_simplices(2), 7):
         a, b, c = X.simplices(2)[t]
         assert np.allclose(H[t], E.monodromy([a, b, c, a]))
+
+
+def test_rebased_monodromy_is_conjugate_by_transport():
+    """Changing the base vertex conjugates the generator monodromies by a path transport."""
+    rng = np.random.default_rng(11)
+    X = SimplicialComplex(torus7())
+    E = random_bundle(X, rng, K=2, metric=True)
+    T = spanning_forest(X, base=4)
+    M4 = E.monodromy_representation(base=4)
+    for g in range(T.nontree.size):
+        loop = generator_loop(X, T, g)
+        assert loop[0] == 4 and np.allclose(E.monodromy(loop), M4[g])
+        P = E.transport(tree_path(E.forest, 4), np.eye(2))  # root 0 -> 4
+        assert np.allclose(E.monodromy(tree_path(E.forest, 4) + loop[1:] + tree_path(E.forest, 4)[::-1][1:]), np.linalg.inv(P) @ M4[g] @ P)

@@ -32,6 +32,7 @@ from dhlb.bundles.paths import spanning_forest
 __all__ = ["solve_mod_2pi"]
 
 _SIGNS = np.array([1, -1, 1], dtype=np.int64)
+_BLOCK = 32  # core variables propagated per pass
 
 
 def _peel(faces: np.ndarray, alive: np.ndarray, n_low: int):
@@ -101,27 +102,41 @@ class Mod2PiSolution:
                 keep[low] = False
         rounds, deferred, edge_alive = _peel(f, keep, n1) if n2 else ([], np.zeros(0, np.int64), np.ones(n1, bool))
         core = np.nonzero(edge_alive)[0]
-        forest = spanning_forest(X, edges=core)
-        gens = forest.nontree
+        gens = spanning_forest(X, edges=core).nontree
         q = gens.size
-        a = np.zeros(n1)
-        B = np.zeros((n1, q), np.int64)
-        B[gens, np.arange(q)] = 1
-        for e, t in reversed(rounds):
+        self._f, self._rounds, self._gens, self._Omega = f, rounds, gens, Omega
+        fd = f[deferred]
+        # ω = a + B y is affine in the core variables y; B is propagated in column blocks so
+        # that memory stays O(n_1 · _BLOCK) whatever the genus.
+        A = np.zeros((deferred.size, q), np.int64)
+        b = np.zeros(deferred.size)
+        for j0 in range(0, max(q, 1), _BLOCK):
+            cols = np.arange(j0, min(q, j0 + _BLOCK))
+            W = np.zeros((n1, 1 + cols.size))
+            W[gens[cols], 1 + np.arange(cols.size)] = 1.0
+            self._back_substitute(W, with_omega=j0 == 0)
+            if j0 == 0:
+                b = Omega[deferred] - (W[fd, 0] * _SIGNS).sum(axis=1) if deferred.size else b
+            A[:, cols] = np.rint(np.einsum("j,djq->dq", _SIGNS, W[fd, 1:])).astype(np.int64)
+        self._solve_deferred(A, b)
+
+    def _back_substitute(self, W: np.ndarray, with_omega: bool) -> None:
+        """Undo the collapses in reverse order: each pair's triangle equation defines its edge.
+
+        Column 0 carries the constant part (with Ω, wrapped to (−π, π]); the other columns the
+        integer coefficients of the core variables (right-hand side 0)."""
+        f, Om = self._f, self._Omega
+        for e, t in reversed(self._rounds):
             ft = f[t]
             k = t.size
             hit = ft == e[:, None]
-            s_e = _SIGNS[np.argmax(hit, axis=1)]
+            s_e = _SIGNS[np.argmax(hit, axis=1)].astype(np.float64)
             oe = ft[~hit].reshape(k, 2)
-            os = np.broadcast_to(_SIGNS, (k, 3))[~hit].reshape(k, 2)
-            a[e] = wrap_angle(s_e * (Omega[t] - np.sum(os * a[oe], axis=1)))
-            if q:
-                B[e] = -s_e[:, None] * np.einsum("kj,kjq->kq", os, B[oe])
-        fd = f[deferred]
-        A = np.einsum("j,djq->dq", _SIGNS, B[fd]) if q else np.zeros((deferred.size, 0), np.int64)
-        b = Omega[deferred] - (a[fd] * _SIGNS).sum(axis=1) if deferred.size else np.zeros(0)
-        self._a, self._B, self._gens = a, B, gens
-        self._solve_deferred(A, b)
+            os = np.broadcast_to(_SIGNS, (k, 3))[~hit].reshape(k, 2).astype(np.float64)
+            vals = -s_e[:, None] * np.einsum("kj,kjc->kc", os, W[oe])
+            if with_omega:
+                vals[:, 0] = wrap_angle(vals[:, 0] + s_e * Om[t])
+            W[e] = vals
 
     def _solve_deferred(self, A: np.ndarray, b: np.ndarray) -> None:
         m, q = A.shape
@@ -163,8 +178,10 @@ class Mod2PiSolution:
             y1[:r] = (self._c + 2 * np.pi * k) / self._d
         if free is not None:
             y1[r:] = free
-        y = self._V @ y1
-        return wrap_angle(self._a + (self._B @ y if q else 0.0))
+        W = np.zeros((self.X.n_simplices(1), 1))
+        W[self._gens, 0] = wrap_angle(self._V @ y1) if q else 0.0
+        self._back_substitute(W, with_omega=True)
+        return wrap_angle(W[:, 0])
 
 
 def solve_mod_2pi(X, Omega) -> Mod2PiSolution:

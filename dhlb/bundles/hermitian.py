@@ -56,14 +56,25 @@ def _real_vector(values, n: int, what: str) -> np.ndarray:
     return arr
 
 
+def _from_cochain(value, k: int):
+    """Accept a :class:`dhlb.forms.Cochain` (S¹ angles become unit complex numbers)."""
+    if hasattr(value, "values") and hasattr(value, "group") and hasattr(value, "k"):
+        if value.k != k:
+            raise InvalidConnectionError(f"expected a {k}-form, got a {value.k}-form")
+        vals = np.asarray(value.values)
+        return np.exp(1j * vals) if (k == 1 and value.group == "S1") else vals
+    return value
+
+
 class HermitianLineBundle:
     """A hermitian line bundle with connection ``r`` and curvature ``Ω``.
 
     Parameters
     ----------
     X : SimplicialComplex
-    connection : (n_1,) complex, unit modulus, one per canonical edge
-    curvature : (n_2,) real, one per canonical triangle
+    connection : (n_1,) complex, unit modulus, one per canonical edge (or an S¹/C* 1-form
+        :class:`dhlb.forms.Cochain`)
+    curvature : (n_2,) real, one per canonical triangle (or a real 2-form ``Cochain``)
     atol : float
         Tolerance for ``|r| = 1``, ``exp(iΩ) = holonomy`` (mod 2π, relative to ``max(1, |Ω|)``)
         and ``dΩ = 0``.
@@ -82,6 +93,7 @@ class HermitianLineBundle:
         self._X = X
         self._atol = float(atol)
         n1, n2 = X.n_simplices(1), X.n_simplices(2)
+        connection, curvature = _from_cochain(connection, 1), _from_cochain(curvature, 2)
         r = np.asarray(connection)
         try:
             r = r.astype(np.complex128).reshape(-1)
@@ -159,6 +171,18 @@ class HermitianLineBundle:
     def connection_angles(self) -> np.ndarray:
         """The S¹-valued connection form ``ω = angle(r)`` in (−π, π]."""
         return wrap_angle(np.angle(self._r))
+
+    def connection_form(self):
+        """The connection form ω as an S¹-valued :class:`dhlb.forms.Cochain`."""
+        from dhlb.forms import Cochain
+
+        return Cochain(self._X, 1, self.connection_angles, "S1")
+
+    def curvature_form(self):
+        """The curvature Ω as a real :class:`dhlb.forms.Cochain`."""
+        from dhlb.forms import Cochain
+
+        return Cochain(self._X, 2, self._Om, "R")
 
     def holonomy_angles(self) -> np.ndarray:
         """``(dω)`` wrapped to (−π, π]: the angle of ``r_ij r_jk r_ki`` per triangle."""
@@ -257,9 +281,8 @@ class HermitianLineBundle:
         b = self._X.boundary(k) @ c
         if np.any(b != 0):
             s = int(np.nonzero(b)[0][0])
-            raise NotClosedError(
-                f"the {k}-chain is not a cycle: its boundary has coefficient {int(b[s])} on {simplex_name(self._X, k - 1, s)}"
-            )
+            where = f"vertex {int(self._X.vertex_labels[s])}" if k == 1 else simplex_name(self._X, k - 1, s)
+            raise NotClosedError(f"the {k}-chain is not a cycle: its boundary has coefficient {int(b[s])} on {where}")
         return c
 
     def integrate_curvature(self, cycle) -> float:

@@ -77,6 +77,11 @@ def gauge(E: VectorBundle, g) -> VectorBundle:
 
 
 def _check_pair(E: VectorBundle, F: VectorBundle, same_rank: bool = False) -> None:
+    if not (isinstance(E, VectorBundle) and isinstance(F, VectorBundle)):
+        raise InvalidConnectionError(
+            "expected two VectorBundle objects (for hermitian line bundles use "
+            "HermitianLineBundle.find_isomorphism or .vector_bundle())"
+        )
     if E.X is not F.X and E.X != F.X:
         raise InvalidConnectionError("the two bundles live over different complexes")
     if E.ops.name != F.ops.name:

@@ -59,7 +59,10 @@ class VectorBundle:
         self._ops = field_ops(field, atol)
         self._atol = float(atol)
         n1 = X.n_simplices(1)
-        arr = np.asarray(transports)
+        try:
+            arr = np.asarray(transports)
+        except (TypeError, ValueError):
+            raise InvalidConnectionError("transports must be a rectangular array of shape (n_1, K, K)") from None
         if arr.ndim == 1 and arr.shape[0] == n1:
             arr = arr.reshape(n1, 1, 1)
         if arr.ndim != 3 or arr.shape[0] != n1 or arr.shape[1] != arr.shape[2] or arr.shape[1] == 0:
@@ -219,7 +222,9 @@ class VectorBundle:
     @cached_property
     def tree_transports(self) -> np.ndarray:
         """``(n_0, K, K)``: transport from the component root to each vertex along the forest."""
-        T = self.forest
+        return self._tree_transports(self.forest)
+
+    def _tree_transports(self, T: paths.SpanningForest) -> np.ndarray:
         ops = self._ops
         K = self.rank
         n0 = self._X.n_vertices
@@ -232,11 +237,15 @@ class VectorBundle:
         """Edge rows of the non-tree edges; edge ``(u, v)`` is the loop ``root → u → v → root``."""
         return self.forest.nontree
 
-    def monodromy_representation(self) -> np.ndarray:
-        """``(m, K, K)``: the monodromy ``T_v⁻¹ η_uv T_u`` of each loop generator (Prop. 5)."""
-        T = self.forest
+    def monodromy_representation(self, base: int | None = None) -> np.ndarray:
+        """``(m, K, K)``: the monodromy ``T_v⁻¹ η_uv T_u`` of each loop generator (Prop. 5).
+
+        ``base`` (a vertex) re-roots its component's spanning tree there; the generators are
+        then the non-tree edges of ``spanning_forest(X, base)``.
+        """
+        T = self.forest if base is None else paths.spanning_forest(self._X, base)
+        Tt = self.tree_transports if base is None else self._tree_transports(T)
         E = self._X.simplices(1)[T.nontree]
-        Tt = self.tree_transports
         Tinv, _ = self._ops.inv(Tt[E[:, 1]]) if T.nontree.size else (Tt[:0], None)
         return self._ops.matmul(Tinv, self._ops.matmul(self._eta[T.nontree], Tt[E[:, 0]]))
 

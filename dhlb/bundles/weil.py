@@ -38,7 +38,7 @@ from dhlb.bundles._mod2pi import solve_mod_2pi
 from dhlb.bundles._surface import surface_cycles
 from dhlb.bundles._util import coboundary, simplex_name, wrap_angle
 from dhlb.bundles.hermitian import HermitianLineBundle, _real_vector
-from dhlb.errors import CurvatureMismatchError, IntegralityError, NotClosedError
+from dhlb.errors import CurvatureMismatchError, IntegralityError, InvalidConnectionError, NotClosedError
 
 __all__ = [
     "integer_cycle_basis",
@@ -226,7 +226,7 @@ class BundlesWithCurvature:
         theta = np.zeros(b) if free_angles is None else np.asarray(free_angles, dtype=np.float64).reshape(-1)
         k = np.zeros(t, np.int64) if torsion is None else np.asarray(torsion, dtype=np.int64).reshape(-1)
         if theta.size != b or k.size != t:
-            raise CurvatureMismatchError(f"holonomy needs {b} free angles and {t} torsion residues, got {theta.size} and {k.size}")
+            raise InvalidConnectionError(f"holonomy needs {b} free angles and {t} torsion residues, got {theta.size} and {k.size}")
         # the free cocycles are dual to the free generators (pairing = identity); solve anyway
         x = np.linalg.solve(self._pair_free, theta - self._h0[:b]) if b else np.zeros(0)
         shift = self.cocycles[:, :b] @ x + self.cocycles[:, b:] @ k

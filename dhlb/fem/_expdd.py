@@ -113,12 +113,12 @@ def _prefix_squaring(y: np.ndarray) -> np.ndarray:
     return np.stack([band[d][:, 0] for d in range(k)], axis=1)
 
 
-def _cluster_partition(phases: np.ndarray) -> np.ndarray:
-    """Integer key per row encoding which classes share a cluster (single linkage, gap ``_GAP``)."""
+def _cluster_partition(phases: np.ndarray, gap: float) -> np.ndarray:
+    """Integer key per row encoding which classes share a cluster (single linkage, ``gap``)."""
     b, c = phases.shape
     order = np.argsort(phases, axis=1)
     srt = np.take_along_axis(phases, order, axis=1)
-    cid_sorted = np.concatenate([np.zeros((b, 1), int), np.cumsum(np.diff(srt, axis=1) > _GAP, axis=1)], axis=1)
+    cid_sorted = np.concatenate([np.zeros((b, 1), int), np.cumsum(np.diff(srt, axis=1) > gap, axis=1)], axis=1)
     cid = np.empty_like(cid_sorted)
     np.put_along_axis(cid, order, cid_sorted, axis=1)
     key = np.zeros(b, dtype=np.int64)
@@ -212,7 +212,7 @@ def expi_divided_difference(phases, multiplicities) -> np.ndarray:
     out = np.empty(b, dtype=complex)
     if b == 0:
         return out.reshape(shape)
-    keys = _cluster_partition(th) if c > 1 else np.zeros(b, dtype=np.int64)
+    keys = _cluster_partition(th, max(_GAP, float(mu.sum()))) if c > 1 else np.zeros(b, dtype=np.int64)
     for key in np.unique(keys):
         rows = np.nonzero(keys == key)[0]
         out[rows] = _group_value(th[rows], mu, _clusters_of_key(int(key), c))

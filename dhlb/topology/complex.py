@@ -337,7 +337,12 @@ class SimplicialComplex:
         """±1 per top simplex, a consistent orientation (see :func:`dhlb.topology.manifold.orientation`)."""
         from dhlb.topology.manifold import orientation
 
-        return orientation(self)
+        cached = self.__dict__.get("_orientation")
+        if cached is None:
+            cached = orientation(self)
+            cached.setflags(write=False)
+            self.__dict__["_orientation"] = cached
+        return cached
 
     def homology(self):
         """Integer homology H_0..H_dim with torsion (see :func:`dhlb.topology.homology.homology`)."""

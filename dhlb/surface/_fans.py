@@ -1,0 +1,152 @@
+"""Vertex fans of an oriented triangle mesh, vectorized (no loop over vertices or faces).
+
+Corner ``c = 3 f + p`` is the corner of face ``f`` at vertex ``v = F[f, p]``; it spans the angle
+from its *first edge* ``v → F[f, p+1]`` to its *second edge* ``v → F[f, p+2]``, counterclockwise
+for the mesh orientation. The next corner counterclockwise around ``v`` is the one whose first
+edge is this corner's second edge. Around an interior vertex the corners form a cycle, around a
+boundary vertex a chain starting at the corner whose first edge is a boundary edge. Prefix sums
+of the corner angles along each fan are computed by pointer jumping (``O(log degree)`` rounds).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from dhlb.errors import NonManifoldError
+
+__all__ = ["Fans", "vertex_fans", "AngleMap"]
+
+TWO_PI = 2.0 * np.pi
+
+
+@dataclass(frozen=True)
+class Fans:
+    """Corner chains around the vertices (compact numbering, corners ``3 f + p``)."""
+
+    vertex: np.ndarray  # (3m,) vertex of each corner
+    first: np.ndarray  # (3m,) target of the first edge
+    second: np.ndarray  # (3m,) target of the second edge
+    succ: np.ndarray  # (3m,) next corner counterclockwise, -1 at the end of a chain
+    twin: np.ndarray  # (3m,) corner whose first edge is the reverse of this first edge, -1 on the boundary
+    start: np.ndarray  # (N,) first corner of each fan (the reference edge is its first edge)
+    boundary: np.ndarray  # (N,) bool
+    prefix: np.ndarray  # (3m,) Euclidean angle from the reference edge to the first edge of the corner
+    rank: np.ndarray  # (3m,) position of the corner in its fan
+    total: np.ndarray  # (N,) Θ_v, the sum of the corner angles at v
+    count: np.ndarray  # (N,) number of corners at v
+    last: np.ndarray  # (N,) last corner of each fan
+
+
+def _lookup(keys_sorted, order, query) -> np.ndarray:
+    pos = np.minimum(np.searchsorted(keys_sorted, query), len(keys_sorted) - 1)
+    return np.where(keys_sorted[pos] == query, order[pos], -1)
+
+
+def vertex_fans(F: np.ndarray, n_vertices: int, alpha: np.ndarray) -> Fans:
+    """Fans of the consistently oriented manifold mesh F with corner angles ``alpha`` (m, 3)."""
+    N = int(n_vertices)
+    v = F.ravel()
+    a = np.roll(F, -1, axis=1).ravel()
+    b = np.roll(F, -2, axis=1).ravel()
+    key = v * N + a
+    order = np.argsort(key, kind="stable")
+    skey = key[order]
+    succ = _lookup(skey, order, v * N + b)
+    twin = _lookup(skey, order, a * N + v)
+    nc = v.size
+    pred = np.full(nc, -1, np.int64)
+    has = succ >= 0
+    pred[succ[has]] = np.nonzero(has)[0]
+    start = np.full(N, nc, np.int64)
+    np.minimum.at(start, v, np.arange(nc, dtype=np.int64))
+    heads = np.nonzero(pred < 0)[0]
+    boundary = np.zeros(N, bool)
+    boundary[v[heads]] = True
+    start[v[heads]] = heads
+    inner = np.nonzero(~boundary)[0]
+    succ = succ.copy()
+    succ[pred[start[inner]]] = -1  # cut each cycle before its start corner
+    val = alpha.ravel().astype(np.float64).copy()
+    cnt = np.ones(nc, np.int64)
+    nxt = succ.copy()
+    while True:  # pointer jumping: suffix sums along each chain
+        act = np.nonzero(nxt >= 0)[0]
+        if act.size == 0:
+            break
+        j = nxt[act]
+        val[act] = val[act] + val[j]
+        cnt[act] = cnt[act] + cnt[j]
+        nxt[act] = nxt[j]
+    total = val[start]
+    count = cnt[start]
+    per_vertex = np.bincount(v, minlength=N)
+    if np.any(per_vertex != count):
+        bad = int(np.argmax(per_vertex != count))
+        raise NonManifoldError(f"the faces at vertex {bad} (compact number) do not form one fan; "
+                               "validate the mesh with dhlb.surface.validate_surface")
+    last = np.full(N, -1, np.int64)
+    ends = np.nonzero(succ < 0)[0]
+    last[v[ends]] = ends
+    return Fans(v, a, b, succ, twin, start, boundary, total[v] - val, count[v] - cnt, total, count, last)
+
+
+class AngleMap:
+    """Piecewise-linear map between rescaled angles θ at a vertex and polar angles ψ in its tangent plane.
+
+    At vertex v the breakpoints are the edges of the fan: an edge with rescaled angle θ_e (see
+    :mod:`dhlb.surface.tangent`) maps to the polar angle ψ_e of its projection onto the plane
+    orthogonal to the vertex normal, measured from the projected reference edge. Between two
+    edges the map is linear; at a boundary vertex the gap from the last boundary edge to
+    ``θ = 2π`` maps linearly onto the remaining polar angles. Edges map exactly, and the map is
+    a bijection of the circle. Where the projected fan does not wind once around the normal
+    (extreme saddles, edges parallel to the normal, boundary vertices with Θ ≥ 2π) the vertex
+    falls back to ``ψ = θ``.
+    """
+
+    def __init__(self, vertex, theta, psi, n_vertices: int):
+        N = int(n_vertices)
+        order = np.lexsort((theta, vertex))
+        vertex, theta, psi = vertex[order], theta[order], psi[order]
+        nxt_same = np.r_[vertex[1:] == vertex[:-1], False]
+        ok_step = (theta[1:] > theta[:-1]) & (psi[1:] > psi[:-1])
+        bad = np.zeros(N, bool)
+        bad[vertex[:-1][nxt_same[:-1] & ~ok_step]] = True
+        starts = np.r_[True, ~nxt_same[:-1]]
+        bad[vertex[starts & ((theta != 0) | (psi != 0))]] = True
+        ends = ~nxt_same
+        bad[vertex[ends & ((theta != TWO_PI) | (psi != TWO_PI))]] = True
+        self.fallback = bad
+        keep = ~bad[vertex]
+        self._v, self._t, self._p = vertex[keep], theta[keep], psi[keep]
+
+    def _apply(self, vertex, x, src, dst) -> np.ndarray:
+        vertex = np.asarray(vertex, np.int64)
+        x = np.mod(np.asarray(x, np.float64), TWO_PI)
+        x = np.where(x >= TWO_PI, 0.0, x)
+        out = x.copy()
+        use = ~self.fallback[vertex]
+        if not np.any(use) or self._v.size == 0:
+            return out
+        qv, qx = vertex[use], x[use]
+        B = self._v.size
+        allv = np.concatenate([self._v, qv])
+        allx = np.concatenate([src, qx])
+        kind = np.concatenate([np.zeros(B, np.int8), np.ones(qv.size, np.int8)])
+        order = np.lexsort((kind, allx, allv))
+        idx = np.where(order < B, order, -1)
+        lastb = np.maximum.accumulate(idx)
+        k = np.empty(qv.size, np.int64)
+        k[order[order >= B] - B] = lastb[order >= B]
+        x0, x1, y0, y1 = src[k], src[k + 1], dst[k], dst[k + 1]
+        out[use] = y0 + (qx - x0) * (y1 - y0) / (x1 - x0)
+        return out
+
+    def to_polar(self, vertex, theta) -> np.ndarray:
+        """ψ for rescaled angles θ at the given vertices (values in [0, 2π))."""
+        return self._apply(vertex, theta, self._t, self._p)
+
+    def to_rescaled(self, vertex, psi) -> np.ndarray:
+        """θ for polar angles ψ at the given vertices (values in [0, 2π))."""
+        return self._apply(vertex, psi, self._p, self._t)
