@@ -185,3 +185,10 @@ __all__.append("InvalidParameterError")
 class InvalidCochainError(DhlbError, ValueError):
     """Values of a discrete form or chain do not fit it: wrong length, not integers (group Z),
     zero (group C*), an unknown coefficient group, or forms on different complexes/degrees combined."""
+
+
+class CurveIntersectionError(DhlbError, ValueError):
+    """Two curves whose linking number is asked for intersect (or touch to rounding accuracy)."""
+
+
+__all__.append("CurveIntersectionError")

@@ -72,7 +72,7 @@ class HermitianLineBundle:
     Parameters
     ----------
     X : SimplicialComplex
-    connection : (n_1,) complex, unit modulus, one per canonical edge (or an S¹/C* 1-form
+    connection : (n_1,) complex128, unit modulus, one per canonical edge (or an S¹/C* 1-form
         :class:`dhlb.forms.Cochain`)
     curvature : (n_2,) real, one per canonical triangle (or a real 2-form ``Cochain``)
     atol : float

@@ -95,8 +95,9 @@ class LineBundleClass:
     def is_trivial(self) -> bool:
         return bool(np.all(self.ops.close(self.values[None, :], np.ones((1, self.values.size)))))
 
-    def evaluate(self, cycle) -> complex | float | int:
-        """The value ``Π ω_e^{c_e}`` on an integer 1-cycle ``c`` (length n_1).
+    def evaluate(self, cycle):
+        """The value ``Π ω_e^{c_e}`` on an integer 1-cycle ``c`` (length n_1): a complex number
+        over C, a float over R, an int in ``1 .. p-1`` over GF(p).
 
         Raises
         ------

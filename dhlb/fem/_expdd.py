@@ -49,68 +49,81 @@ def _n_terms(radius: float) -> int:
     return q
 
 
-def _i_powers(qs: int, shift: int) -> np.ndarray:
-    """Complex coefficients ``i^q / (q + shift)!`` for ``q < qs``."""
-    return np.array([(1j ** (q % 4)) / factorial(q + shift) for q in range(qs)], dtype=complex)
+def _coefficients(qs: int, shift: int) -> tuple[np.ndarray, np.ndarray]:
+    """Real and imaginary parts of ``i^q / (q + shift)!`` for ``q < qs``."""
+    c = np.array([1.0 / factorial(q + shift) for q in range(qs)])
+    re = np.where(np.arange(qs) % 2 == 0, c * (1 - 2 * ((np.arange(qs) // 2) % 2)), 0.0)
+    im = np.where(np.arange(qs) % 2 == 1, c * (1 - 2 * ((np.arange(qs) // 2) % 2)), 0.0)
+    return re, im
+
+
+def _series(h: np.ndarray, shift: int) -> np.ndarray:
+    """``Σ_q i^q h[q] / (q + shift)!`` for real ``h`` of shape ``(qs, ...)``."""
+    re, im = _coefficients(h.shape[0], shift)
+    flat = h.reshape(h.shape[0], -1)
+    return (re @ flat + 1j * (im @ flat)).reshape(h.shape[1:])
 
 
 def _prefix_taylor(y: np.ndarray, need_all: bool) -> np.ndarray:
-    """Divided differences of ``exp`` at the prefixes of ``i*y`` (rows of ``y``, ``|y| <= 1``).
+    """Divided differences of ``exp`` at the prefixes of ``i*y`` (``y`` of shape ``(K, G)``, ``|y| <= 1``).
 
-    Returns ``(G, K)`` complex: column ``d`` is ``exp[iy_0, ..., iy_d]`` (only the last column is
+    Returns ``(K, G)`` complex: row ``d`` is ``exp[iy_0, ..., iy_d]`` (only the last row is
     filled when ``need_all`` is false).
     """
-    g, k = y.shape
-    out = np.zeros((g, k), dtype=complex)
+    k, g = y.shape
+    out = np.zeros((k, g), dtype=complex)
     qs = _n_terms(float(np.abs(y).max()) if y.size else 0.0)
-    h = np.empty((g, qs))
-    h[:, 0] = 1.0
+    h = np.empty((qs, g))
+    h[0] = 1.0
     for q in range(1, qs):
-        h[:, q] = h[:, q - 1] * y[:, 0]
+        np.multiply(h[q - 1], y[0], out=h[q])
     if need_all or k == 1:
-        out[:, 0] = h @ _i_powers(qs, 0)
+        out[0] = _series(h, 0)
     for d in range(1, k):
-        yd = y[:, d]
+        yd = y[d]
         for q in range(1, qs):
-            h[:, q] += yd * h[:, q - 1]
+            h[q] += yd * h[q - 1]
         if need_all or d == k - 1:
-            out[:, d] = h @ _i_powers(qs, d)
+            out[d] = _series(h, d)
     return out
 
 
 def _prefix_squaring(y: np.ndarray) -> np.ndarray:
-    """Like :func:`_prefix_taylor` (all prefixes) for rows of any radius, by scaling and squaring."""
-    g, k = y.shape
-    rad = np.abs(y).max(axis=1)
+    """Like :func:`_prefix_taylor` (all prefixes) for columns of any radius, by scaling and squaring."""
+    k, g = y.shape
+    rad = np.abs(y).max(axis=0)
     s = np.maximum(0, np.ceil(np.log2(np.maximum(rad, 1e-300) / _THETA))).astype(int)
     lam = np.ldexp(1.0, -s)
-    ys = y * lam[:, None]
+    ys = y * lam
     qs = _n_terms(float(np.abs(ys).max()))
-    band = []  # band[d][:, i] = F[i, i + d], F = exp(λ T)
-    h = None
+    band = []  # band[d][i] = F[i, i + d] with F = exp(λ T); shape (K - d, G)
+    h = np.empty((qs, k, g))
+    h[0] = 1.0
+    for q in range(1, qs):
+        np.multiply(h[q - 1], ys, out=h[q])
     for d in range(k):
-        if d == 0:
-            h = np.empty((g, k, qs))
-            h[:, :, 0] = 1.0
+        if d > 0:
+            h = h[:, :-1, :]
+            yy = ys[d:]
             for q in range(1, qs):
-                h[:, :, q] = h[:, :, q - 1] * ys
-        else:
-            h = h[:, :-1, :].copy()
-            yy = ys[:, d:]
-            for q in range(1, qs):
-                h[:, :, q] += yy * h[:, :, q - 1]
-        band.append((h @ _i_powers(qs, d)) * (lam ** d)[:, None])
+                h[q] += yy * h[q - 1]
+        band.append(_series(h, d) * lam ** d)
     for r in range(int(s.max()) if g else 0):
-        rows = np.nonzero(s > r)[0]
+        cols = np.nonzero(s > r)[0]
+        full = cols.size == g
+        cur = band if full else [b_[:, cols] for b_ in band]
         new = []
         for d in range(k):
-            acc = np.zeros((rows.size, k - d), dtype=complex)
-            for j in range(d + 1):
-                acc += band[j][rows, : k - d] * band[d - j][rows, j: j + k - d]
+            acc = cur[0][: k - d] * cur[d][:]
+            for j in range(1, d + 1):
+                acc += cur[j][: k - d] * cur[d - j][j: j + k - d]
             new.append(acc)
-        for d in range(k):
-            band[d][rows] = new[d]
-    return np.stack([band[d][:, 0] for d in range(k)], axis=1)
+        if full:
+            band = new
+        else:
+            for d in range(k):
+                band[d][:, cols] = new[d]
+    return np.stack([band[d][0] for d in range(k)], axis=0)
 
 
 def _cluster_partition(phases: np.ndarray, gap: float) -> np.ndarray:
@@ -146,36 +159,33 @@ def _clusters_of_key(key: int, c: int) -> list[list[int]]:
 
 
 def _group_value(phases: np.ndarray, mult: np.ndarray, clusters: list[list[int]]) -> np.ndarray:
-    """Divided differences for rows sharing one cluster partition."""
-    total = np.zeros(phases.shape[0], dtype=complex)
+    """Divided differences for rows sharing one cluster partition (``phases`` of shape ``(C, G)``)."""
+    total = np.zeros(phases.shape[1], dtype=complex)
     for cluster in clusters:
         seq = np.repeat(np.asarray(cluster), mult[cluster])
-        nodes = phases[:, seq]
-        centre = 0.5 * (nodes.max(axis=1) + nodes.min(axis=1))
-        y = nodes - centre[:, None]
+        nodes = phases[seq]
+        centre = 0.5 * (nodes.max(axis=0) + nodes.min(axis=0))
+        y = nodes - centre
         need_all = len(clusters) > 1
-        rad = np.abs(y).max(axis=1)
-        small = rad <= _THETA
-        v = np.empty(y.shape, dtype=complex)
+        small = np.abs(y).max(axis=0) <= _THETA
         if small.all():
             v = _prefix_taylor(y, need_all)
         else:
+            v = np.empty(y.shape, dtype=complex)
             if small.any():
-                v[small] = _prefix_taylor(y[small], True)
-            v[~small] = _prefix_squaring(y[~small])
-        v *= np.exp(1j * centre)[:, None]
-        for other in range(phases.shape[1]):
+                v[:, small] = _prefix_taylor(y[:, small], True)
+            v[:, ~small] = _prefix_squaring(y[:, ~small])
+        v *= np.exp(1j * centre)
+        for other in range(phases.shape[0]):
             if other in cluster:
                 continue
             for _ in range(int(mult[other])):
-                diff = 1j * (nodes - phases[:, [other]])
-                w = np.empty_like(v)
+                diff = 1j * (nodes - phases[other])
                 prev = 0.0
-                for d in range(v.shape[1]):
-                    w[:, d] = (v[:, d] - prev) / diff[:, d]
-                    prev = w[:, d]
-                v = w
-        total += v[:, -1]
+                for d in range(v.shape[0]):
+                    v[d] = (v[d] - prev) / diff[d]
+                    prev = v[d]
+        total += v[-1]
     return total
 
 
@@ -215,5 +225,5 @@ def expi_divided_difference(phases, multiplicities) -> np.ndarray:
     keys = _cluster_partition(th, max(_GAP, float(mu.sum()))) if c > 1 else np.zeros(b, dtype=np.int64)
     for key in np.unique(keys):
         rows = np.nonzero(keys == key)[0]
-        out[rows] = _group_value(th[rows], mu, _clusters_of_key(int(key), c))
+        out[rows] = _group_value(np.ascontiguousarray(th[rows].T), mu, _clusters_of_key(int(key), c))
     return out.reshape(shape)

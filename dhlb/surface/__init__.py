@@ -2,11 +2,29 @@
 
 :func:`validate_surface` checks a mesh, :func:`tangent_bundle` builds the n-th power of its
 discrete tangent bundle (a :class:`~dhlb.bundles.HermitianLineBundle` with geometry, frames and
-rescaled angles), :mod:`.guidance` gives alignment fields and :mod:`.directions` turns a section
-into 3D directions and singularities.
+rescaled angles), :mod:`.guidance` gives alignment fields (principal curvature via the discrete
+Hopf differential, the boundary, user vectors) and :mod:`.directions` turns a section into 3D
+directions, indices and singularities.
+
+Examples
+--------
+>>> import numpy as np
+>>> from dhlb.io import read_surface, example_path
+>>> from dhlb.surface import tangent_bundle, field_indices
+>>> tb = tangent_bundle(*read_surface(example_path("torus.obj")), n=4)
+>>> u = np.exp(1j * np.arange(tb.mesh.n_vertices))      # any nowhere-vanishing section
+>>> field_indices(tb, u).total                            # Poincaré–Hopf: n χ = 0
+0
 """
 
 from dhlb.surface.mesh import SurfaceMesh, validate_surface
 from dhlb.surface.tangent import TangentBundle, tangent_bundle
+from dhlb.surface.guidance import (Guidance, boundary_guidance, curvature_guidance, dihedral_angles,
+                                   hopf_differential, user_guidance)
+from dhlb.surface.directions import FieldIndices, Singularities, direction_vectors, field_indices, section_values
 
-__all__ = ["SurfaceMesh", "validate_surface", "TangentBundle", "tangent_bundle"]
+__all__ = [
+    "SurfaceMesh", "validate_surface", "TangentBundle", "tangent_bundle",
+    "Guidance", "boundary_guidance", "curvature_guidance", "dihedral_angles", "hopf_differential", "user_guidance",
+    "FieldIndices", "Singularities", "direction_vectors", "field_indices", "section_values",
+]

@@ -71,7 +71,7 @@ def vertex_fans(F: np.ndarray, n_vertices: int, alpha: np.ndarray) -> Fans:
     val = alpha.ravel().astype(np.float64).copy()
     cnt = np.ones(nc, np.int64)
     nxt = succ.copy()
-    while True:  # pointer jumping: suffix sums along each chain
+    for _ in range(int(np.ceil(np.log2(nc + 1))) + 1):  # pointer jumping: suffix sums along each chain
         act = np.nonzero(nxt >= 0)[0]
         if act.size == 0:
             break
@@ -82,8 +82,8 @@ def vertex_fans(F: np.ndarray, n_vertices: int, alpha: np.ndarray) -> Fans:
     total = val[start]
     count = cnt[start]
     per_vertex = np.bincount(v, minlength=N)
-    if np.any(per_vertex != count):
-        bad = int(np.argmax(per_vertex != count))
+    if np.any(per_vertex != count) or np.any(nxt >= 0):  # a second fan (a cycle left uncut) at some vertex
+        bad = int(np.argmax(per_vertex != count)) if np.any(per_vertex != count) else int(v[np.argmax(nxt >= 0)])
         raise NonManifoldError(f"the faces at vertex {bad} (compact number) do not form one fan; "
                                "validate the mesh with dhlb.surface.validate_surface")
     last = np.full(N, -1, np.int64)

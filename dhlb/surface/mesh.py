@@ -11,7 +11,8 @@ input rows, ``mesh.vertex_labels[v]`` is the input row of vertex ``v``) and face
 row ``mesh.face_rows[f]``. The complex ``mesh.complex`` is built from the input labels, so the
 layers below (topology, bundles) also name simplices in input vertex numbers.
 
-Checks, in this order: shapes and integer indices; a face repeating a vertex
+Checks, in this order (geometric checks after ``components="largest"`` dropped faces): shapes
+and integer indices; a face repeating a vertex
 (:class:`~dhlb.errors.DegenerateSimplexError`); duplicate faces, in either orientation
 (:class:`~dhlb.errors.InvalidSimplexError`); NaN/inf coordinates of used vertices
 (:class:`~dhlb.errors.NonFiniteError`); zero-area faces (DegenerateSimplexError, the criterion of
@@ -93,6 +94,9 @@ def _check_faces(P, T) -> None:
         how = "with the same orientation" if same[0] == same[1] else "with opposite orientations (a doubled sheet)"
         raise InvalidSimplexError(f"faces {r1} and {r2} are the same triangle {tuple(int(v) for v in srt[r2])} "
                                   f"{how}; remove one of them")
+
+
+def _check_geometry(P, T, rows) -> None:
     used = np.unique(T)
     bad = ~np.isfinite(P[used]).all(axis=1)
     if np.any(bad):
@@ -104,18 +108,19 @@ def _check_faces(P, T) -> None:
     if deg.size:
         r = int(deg[0])
         raise DegenerateSimplexError(
-            f"{deg.size} face(s) have zero area, first {_face(T, r)} (area {st.volumes[r]:.3g}); "
+            f"{deg.size} face(s) have zero area, first face {int(rows[r])} (vertices "
+            f"{', '.join(str(int(v)) for v in T[r])}) with area {st.volumes[r]:.3g}; "
             "remove or repair them (collinear vertices)")
 
 
-def _check_manifold(X, T) -> None:
+def _check_manifold(X, T, rows) -> None:
     _, _, _, counts = interior_pairs(X)
     if np.any(counts > 2):
         e = int(np.argmax(counts > 2))
         a, b = (int(v) for v in X.vertex_labels[X.simplices(1)[e]])
-        rows = np.nonzero(np.isin(T, [a]).any(axis=1) & np.isin(T, [b]).any(axis=1))[0]
+        at = rows[np.isin(T, [a]).any(axis=1) & np.isin(T, [b]).any(axis=1)]
         raise NonManifoldError(f"non-manifold edge ({a}, {b}): it lies in {int(counts[e])} faces "
-                               f"(rows {', '.join(str(int(r)) for r in rows[:6])}); a surface allows at most 2. "
+                               f"(rows {', '.join(str(int(r)) for r in at[:6])}); a surface allows at most 2. "
                                "Split or remove faces there")
     rep = manifold_report(X, limit=1)
     if not rep.is_manifold:
@@ -127,23 +132,25 @@ def _check_manifold(X, T) -> None:
         raise NonManifoldError(f"not a surface: {o}")
 
 
-def _orient(X, T, reorient: bool) -> np.ndarray:
+def _orient(X, T, rows, reorient: bool) -> np.ndarray:
     """Flip mask making the faces consistently oriented (all False if they already are)."""
     ok, edge = is_consistently_oriented(X, T)
     if ok:
         return np.zeros(len(T), bool)
     try:
         o = X.orientation()
-    except NonOrientableError:
+    except NonOrientableError as err:
+        at = getattr(err, "simplex", edge)
         raise NonOrientableError(
-            f"the surface is not orientable (like a Möbius band; no orientation of the faces at edge {edge} "
-            "is consistent). Direction fields here live in the tangent bundle of an oriented surface; "
-            "n-direction fields on non-orientable surfaces (a twisted bundle) are future work") from None
+            f"the surface is not orientable: it contains a Möbius band (carrying an orientation of the faces "
+            f"around it comes back reversed, e.g. at edge {at}). Direction fields are sections of the tangent "
+            "bundle of an oriented surface; n-direction fields on non-orientable surfaces (a twisted bundle) "
+            "are future work") from None
     if not reorient:
         a, b = edge
-        rows = np.nonzero(np.isin(T, [a]).any(axis=1) & np.isin(T, [b]).any(axis=1))[0]
+        at = rows[np.isin(T, [a]).any(axis=1) & np.isin(T, [b]).any(axis=1)]
         raise InconsistentOrientationError(
-            f"faces {int(rows[0])} and {int(rows[1])} traverse their common edge {edge} in the same direction: "
+            f"faces {int(at[0])} and {int(at[1])} traverse their common edge {edge} in the same direction: "
             "the faces are not consistently oriented. Pass reorient=True to flip faces into a consistent "
             "orientation (the majority orientation of each component is kept)")
     tri = X.index(2, T)
@@ -332,6 +339,7 @@ def validate_surface(V, F, *, reorient: bool = False, components: str = "all") -
     P, T = _parse(V, F)
     _check_faces(P, T)
     rows = np.arange(len(T), dtype=np.int64)
+    T0 = T
     X = SimplicialComplex(T)
     if components == "largest":
         ncomp, comp = X.connected_components()
@@ -342,13 +350,14 @@ def validate_surface(V, F, *, reorient: bool = False, components: str = "all") -
                           f"{int((~keep).sum())} faces dropped", DhlbWarning, stacklevel=2)
             T, rows = T[keep], rows[keep]
             X = SimplicialComplex(T)
-    if X.n_vertices < len(P):
-        unused = np.setdiff1d(np.arange(len(P)), X.vertex_labels)
+    _check_geometry(P, T, rows)
+    unused = np.setdiff1d(np.arange(len(P)), np.unique(T0))  # not counting dropped components
+    if unused.size:
         warnings.warn(f"{unused.size} vertices of V are used by no face and were dropped (first: "
                       f"{', '.join(str(int(v)) for v in unused[:5])}); mesh.vertex_labels maps compact "
                       "vertices to rows of V", UnreferencedVertexWarning, stacklevel=2)
-    _check_manifold(X, T)
-    flip = _orient(X, T, reorient)
+    _check_manifold(X, T, rows)
+    flip = _orient(X, T, rows, reorient)
     T = np.where(flip[:, None], T[:, [0, 2, 1]], T)
     faces = np.searchsorted(X.vertex_labels, T)
     return SurfaceMesh(np.ascontiguousarray(P[X.vertex_labels]), faces, X, rows, flip, len(P))

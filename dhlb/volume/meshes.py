@@ -301,9 +301,9 @@ def ball_tet_mesh(n=4, radius=1.0, center=(0.0, 0.0, 0.0)) -> TetMesh:
     ``(a_k a_{k+1} b_{k+1} c_{k+1})``, which agree on shared quadrilaterals because the
     diagonal always runs from the smaller vertex on layer ``k`` to the larger on layer ``k+1``.
     No tetrahedron has more than three vertices on the sphere, so none is flattened by the
-    projection, and the shape quality is bounded below independently of ``n`` (the minimum of
-    ``6√2 vol / L³`` is about 0.069; the Kuhn cube has 0.27). The boundary vertices lie on the
-    sphere; the enclosed volume is ``4π R³/3 − O(R³/n²)``.
+    projection, and the shape quality does not degrade as ``n`` grows (measured minimum of
+    ``6√2 vol / L³``: 0.059 for ``n = 1``, 0.067–0.069 for ``n = 2..12``; Kuhn cubes have 0.27).
+    The boundary vertices lie on the sphere; the enclosed volume is ``4π R³/3 − O(R³/n²)``.
 
     This replaces the classical "clip a grid and project its boundary", whose output has
     flattened and non-manifold elements where the sphere grazes grid points.
