@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 
 from dhlb import SimplicialComplex
 from dhlb.bundles import HermitianLineBundle
-from dhlb.errors import (DhlbWarning, InconsistentOrientationError, InvalidParameterError, NonFiniteError, NonManifoldError,
-                         SectionZeroError, ShapeError)
+from dhlb.errors import (DhlbWarning, InconsistentOrientationError, InvalidParameterError, NonFiniteError,
+                         NonManifoldError, SectionZeroError, ShapeError)
 from dhlb.volume import (box_tet_mesh, extract_filaments, face_zeros, hausdorff_distance, hopf_link,
                          linking_number, vortex_ring)
 
@@ -69,8 +69,8 @@ def test_ring_is_recovered_to_second_order():
     errs = []
     for m in (8, 16):
         mesh = box_tet_mesh(m, lower=-1.5, upper=1.5)
-        res = extract_filaments(HermitianLineBundle.trivial(mesh.complex), ring_section(mesh.points, c, np.array([0, 0, 1.0]), 1.0),
-                                mesh.points)
+        psi = ring_section(mesh.points, c, np.array([0, 0, 1.0]), 1.0)
+        res = extract_filaments(HermitianLineBundle.trivial(mesh.complex), psi, mesh.points)
         assert len(res) == 1 and res[0].closed
         ring = vortex_ring(1.0, center=c, n=4000)
         errs.append(hausdorff_distance(res[0].points, ring, spacing=2e-3))
@@ -132,7 +132,8 @@ def test_filament_structure_for_random_curved_bundles(seed, scale):
     tets = X.simplices(3)
     tri = X.simplices(2)
     for f in res:
-        pairs = np.stack([f.faces, np.roll(f.faces, -1)], axis=1) if f.closed else np.stack([f.faces[:-1], f.faces[1:]], axis=1)
+        nxt = np.roll(f.faces, -1) if f.closed else f.faces[1:]
+        pairs = np.stack([f.faces[:nxt.size], nxt], axis=1)
         for s, t in pairs:  # the two triangles span at most 4 vertices: a tetrahedron of the mesh
             verts = np.union1d(tri[s], tri[t])
             assert verts.size <= 4 and (verts.size < 4 or np.any(np.all(tets == verts, axis=1)))

@@ -109,7 +109,8 @@ def test_linking_bad_input():
 def test_polyline_and_hausdorff_distance():
     assert polyline_distance([[0.0, 0, 0]], vortex_ring(2.0, n=4)).tolist() == [pytest.approx(np.sqrt(2))]
     # ring vs a slightly bigger ring: exactly the radius difference (sampled finely)
-    assert hausdorff_distance(vortex_ring(1.0, n=100), vortex_ring(1.1, n=100), spacing=1e-3) == pytest.approx(0.1, abs=1e-9)
+    h = hausdorff_distance(vortex_ring(1.0, n=100), vortex_ring(1.1, n=100), spacing=1e-3)
+    assert h == pytest.approx(0.1, abs=1e-9)
     # a polygon vs its circle: the sagitta R (1 − cos(π/n)), within spacing / 2
     n = 12
     h = hausdorff_distance(vortex_ring(1.0, n=n), vortex_ring(1.0, n=4000), spacing=1e-3)

@@ -59,7 +59,8 @@ def test_ball_mesh_is_a_good_ball(n):
     assert np.allclose(np.linalg.norm(mesh.points[np.unique(B)] - c, axis=1), R, rtol=0, atol=1e-13)
     assert enclosed_volume(mesh.points - c, B) == pytest.approx(mesh.volumes.sum(), rel=1e-12)
     # the boundary is a closed surface of genus 0
-    V, E, F = np.unique(B).size, np.unique(np.sort(B[:, [0, 1, 1, 2, 0, 2]].reshape(-1, 2), axis=1), axis=0).shape[0], B.shape[0]
+    edges = np.unique(np.sort(B[:, [0, 1, 1, 2, 0, 2]].reshape(-1, 2), axis=1), axis=0)
+    V, E, F = np.unique(B).size, edges.shape[0], B.shape[0]
     assert V - E + F == 2
 
 

@@ -65,7 +65,9 @@ def test_per_vertex_velocity_is_the_exact_integral_of_the_linear_interpolant(see
 
 @pytest.mark.parametrize("order", [1, 2, 3])
 def test_edge_integral_converges_at_order_2q_plus_1(order):
-    v = lambda x: np.stack([np.sin(x[:, 1]) * np.exp(x[:, 0]), np.cos(x[:, 2] + x[:, 0]), np.exp(-x[:, 1] ** 2)], axis=1)  # noqa: E731
+    def v(x):
+        return np.stack([np.sin(x[:, 1]) * np.exp(x[:, 0]), np.cos(x[:, 2] + x[:, 0]), np.exp(-x[:, 1] ** 2)], axis=1)
+
     x0, d = np.array([[0.1, -0.3, 0.2]]), np.array([0.6, 0.48, 0.64])
     errs = []
     for h in (0.4, 0.2, 0.1):

@@ -36,12 +36,13 @@ import numpy as np
 __all__ = ["expi_divided_difference"]
 
 _GAP = 8.0          # single-linkage gap between clusters
-_THETA = 1.0        # Taylor radius (after centring / scaling)
-_QMAX = 24          # Taylor terms for radius _THETA: 1/24! < 2e-24
+_RADIUS = 2.0       # Taylor radius of a centred cluster without squaring
+_THETA = 1.0        # Taylor radius after scaling (squaring path)
+_QMAX = 40          # cap on Taylor terms (radius 2 needs 27)
 
 
 def _n_terms(radius: float) -> int:
-    """Number of Taylor terms so that ``radius^Q / Q! < 2e-18`` (radius <= _THETA)."""
+    """Number of Taylor terms so that ``radius^Q / Q! < 2e-18`` (radius <= _RADIUS)."""
     q, term = 1, radius
     while term > 2e-18 and q < _QMAX:
         q += 1
@@ -60,8 +61,16 @@ def _coefficients(qs: int, shift: int) -> tuple[np.ndarray, np.ndarray]:
 def _series(h: np.ndarray, shift: int) -> np.ndarray:
     """``Σ_q i^q h[q] / (q + shift)!`` for real ``h`` of shape ``(qs, ...)``."""
     re, im = _coefficients(h.shape[0], shift)
-    flat = h.reshape(h.shape[0], -1)
-    return (re @ flat + 1j * (im @ flat)).reshape(h.shape[1:])
+    if h.ndim == 2:
+        return re @ h + 1j * (im @ h)
+    out_re = re[0] * h[0]
+    out_im = np.zeros_like(out_re)
+    for q in range(1, h.shape[0]):
+        if q % 2:
+            out_im += im[q] * h[q]
+        else:
+            out_re += re[q] * h[q]
+    return out_re + 1j * out_im
 
 
 def _prefix_taylor(y: np.ndarray, need_all: bool) -> np.ndarray:
@@ -167,7 +176,7 @@ def _group_value(phases: np.ndarray, mult: np.ndarray, clusters: list[list[int]]
         centre = 0.5 * (nodes.max(axis=0) + nodes.min(axis=0))
         y = nodes - centre
         need_all = len(clusters) > 1
-        small = np.abs(y).max(axis=0) <= _THETA
+        small = np.abs(y).max(axis=0) <= _RADIUS
         if small.all():
             v = _prefix_taylor(y, need_all)
         else:
@@ -175,6 +184,9 @@ def _group_value(phases: np.ndarray, mult: np.ndarray, clusters: list[list[int]]
             if small.any():
                 v[:, small] = _prefix_taylor(y[:, small], True)
             v[:, ~small] = _prefix_squaring(y[:, ~small])
+        if not need_all:
+            total += v[-1] * np.exp(1j * centre)
+            continue
         v *= np.exp(1j * centre)
         for other in range(phases.shape[0]):
             if other in cluster:
@@ -222,8 +234,16 @@ def expi_divided_difference(phases, multiplicities) -> np.ndarray:
     out = np.empty(b, dtype=complex)
     if b == 0:
         return out.reshape(shape)
-    keys = _cluster_partition(th, max(_GAP, float(mu.sum()))) if c > 1 else np.zeros(b, dtype=np.int64)
+    spread = th.max(axis=1) - th.min(axis=1)
+    near = spread <= 2 * _RADIUS  # one cluster, plain Taylor series: the common case
+    one = [list(range(c))]
+    if near.all():
+        return _group_value(np.ascontiguousarray(th.T), mu, one).reshape(shape)
+    if near.any():
+        out[near] = _group_value(np.ascontiguousarray(th[near].T), mu, one)
+    far = np.nonzero(~near)[0]
+    keys = _cluster_partition(th[far], max(_GAP, float(mu.sum())))
     for key in np.unique(keys):
-        rows = np.nonzero(keys == key)[0]
+        rows = far[keys == key]
         out[rows] = _group_value(np.ascontiguousarray(th[rows].T), mu, _clusters_of_key(int(key), c))
     return out.reshape(shape)

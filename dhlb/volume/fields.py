@@ -99,7 +99,9 @@ def segment_velocity(x, q1, q2, circulation=1.0, core_radius: float = 0.0, *, ch
         with np.errstate(divide="ignore", invalid="ignore"):
             bracket = (ex * r2x + ey * r2y + ez * r2z) / n2 - (ex * r1x + ey * r1y + ez * r1z) / n1
             coef = np.where(den > 0, G * bracket / den, 0.0)  # a = 0 on a segment's line: 0
-        out[lo:lo + step] = np.stack([(coef * cx).sum(axis=1), (coef * cy).sum(axis=1), (coef * cz).sum(axis=1)], axis=1)
+        out[lo:lo + step, 0] = (coef * cx).sum(axis=1)
+        out[lo:lo + step, 1] = (coef * cy).sum(axis=1)
+        out[lo:lo + step, 2] = (coef * cz).sum(axis=1)
     return out / (4 * np.pi)
 
 

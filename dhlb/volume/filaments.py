@@ -154,7 +154,8 @@ def _check_inputs(bundle, section, points):
     if X is None or not hasattr(bundle, "connection"):
         raise InvalidParameterError(f"bundle must be a dhlb HermitianLineBundle, got {type(bundle).__name__}")
     if X.dim != 3:
-        raise NonManifoldError(f"filaments are traced in tetrahedral meshes; the bundle's complex has dimension {X.dim}")
+        raise NonManifoldError("filaments are traced in tetrahedral meshes; the bundle's complex has "
+                               f"dimension {X.dim}")
     P = np.asarray(points, dtype=np.float64)
     if P.shape != (X.n_vertices, 3):
         raise ShapeError(f"points must have shape ({X.n_vertices}, 3) (one per vertex of the complex), got {P.shape}")
@@ -358,8 +359,9 @@ def extract_filaments(bundle, section, points, *, placement: str = "balanced") -
     bad = flux.sum(axis=1) != 0
     if np.any(bad):
         t = int(np.argmax(bad))
-        raise CurvatureMismatchError(f"the index fluxes of the tetrahedron {tuple(int(v) for v in X.vertex_labels[X.simplices(3)[t]])} "
-                                     f"sum to {int(flux[t].sum())}, not 0: the bundle's curvature is not closed there")
+        tet = tuple(int(v) for v in X.vertex_labels[X.simplices(3)[t]])
+        raise CurvatureMismatchError(f"the index fluxes of the tetrahedron {tet} sum to {int(flux[t].sum())}, "
+                                     "not 0: the bundle's curvature is not closed there")
     crossed = np.nonzero(ind)[0]
     if crossed.size == 0:
         return FilamentSet((), ind, tie_edges=ties)

@@ -1,7 +1,8 @@
 """Gauss linking numbers of closed polylines, and the Hausdorff distance between polylines.
 
 Linking number (exact for polylines)
-    ``Lk(γ₁, γ₂) = 1/4π ∮∮ (γ₁ − γ₂) · (γ₁' × γ₂') / |γ₁ − γ₂|³`` is the degree of the Gauss map
+    ``Lk(γ₁, γ₂) = 1/4π ∮∮ (γ₁ − γ₂) · (γ₁' × γ₂') / |γ₁ − γ₂|³`` is the degree of the Gauss
+    map
     ``(s, t) ↦ (γ₂(t) − γ₁(s)) / |γ₂(t) − γ₁(s)|``. For a segment ``p₁ → p₂`` of ``γ₁`` and a
     segment ``p₃ → p₄`` of ``γ₂`` the differences ``q − p`` fill a planar parallelogram with
     corners ``r₁₃, r₂₃, r₂₄, r₁₄`` (``r_ij = p_j − p_i``), so the pair contributes the signed
@@ -62,7 +63,7 @@ def _triangle_solid_angle(a, b, c) -> np.ndarray:
 
 
 def gauss_linking_integral(a, b) -> float:
-    """``1/4π ∮∮ (γ₁ − γ₂)·(γ₁' × γ₂') / |γ₁ − γ₂|³`` for two closed polylines, as a float.
+    """The Gauss integral ``1/4π ∮∮ (γ₁ − γ₂)·(γ₁' × γ₂') / |γ₁ − γ₂|³`` of closed polylines.
 
     Exact (up to rounding) for disjoint polylines, where it is an integer; see the module docstring.
 

@@ -281,7 +281,8 @@ def box_tet_mesh(m=4, lower=(0.0, 0.0, 0.0), upper=(1.0, 1.0, 1.0)) -> TetMesh:
     """
     lo, hi = _vec3(lower, "lower"), _vec3(upper, "upper")
     if np.any(hi <= lo):
-        raise InvalidParameterError(f"the box needs lower < upper on every axis, got lower={lo.tolist()}, upper={hi.tolist()}")
+        raise InvalidParameterError(f"the box needs lower < upper on every axis, got lower={lo.tolist()}, "
+                                    f"upper={hi.tolist()}")
     X, U = cube_nd(3, m, return_points=True)
     return check_tet_mesh(lo + U * (hi - lo), X.simplices(3))
 

@@ -53,10 +53,12 @@ def _load_extension():
         for path in sorted(glob.glob(os.path.join(folder, "PyfTetWildWrapper*"))):
             if path.endswith(tuple(importlib.machinery.EXTENSION_SUFFIXES)):
                 loader = importlib.machinery.ExtensionFileLoader(name, path)
-                module = importlib.util.module_from_spec(importlib.util.spec_from_file_location(name, path, loader=loader))
+                spec = importlib.util.spec_from_file_location(name, path, loader=loader)
+                module = importlib.util.module_from_spec(spec)
                 loader.exec_module(module)
                 return module
-    raise ModuleNotFoundError(f"pytetwild is installed but its compiled extension was not found; reinstall it ({_INSTALL})")
+    raise ModuleNotFoundError("pytetwild is installed but its compiled extension was not found; "
+                              f"reinstall it ({_INSTALL})")
 
 
 def _backend():
@@ -128,7 +130,8 @@ def _closed_surface(V, F) -> tuple[np.ndarray, np.ndarray]:
     cnt = np.bincount(X.faces(2).ravel(), minlength=X.n_simplices(1))
     if np.any(cnt != 2):
         e = int(np.argmax(cnt != 2))
-        raise NonManifoldError(f"the surface must be closed: its edge {tuple(int(v) for v in X.vertex_labels[X.simplices(1)[e]])} "
+        edge = tuple(int(v) for v in X.vertex_labels[X.simplices(1)[e]])
+        raise NonManifoldError(f"the surface must be closed: its edge {edge} "
                                f"lies in {cnt[e]} triangle(s), not 2; close or repair the surface first")
     Fc = np.searchsorted(X.vertex_labels, np.asarray(F, dtype=np.int64))
     return mc.points, Fc

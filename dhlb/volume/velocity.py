@@ -61,14 +61,16 @@ def _as_points(points) -> np.ndarray:
         raise ShapeError(f"points must have shape (N, 3), got {P.shape}")
     bad = ~np.isfinite(P).all(axis=1)
     if np.any(bad):
-        raise NonFiniteError(f"the position of vertex {int(np.argmax(bad))} is not finite: {P[np.argmax(bad)].tolist()}")
+        v = int(np.argmax(bad))
+        raise NonFiniteError(f"the position of vertex {v} is not finite: {P[v].tolist()}")
     return P
 
 
 def _as_edges(edges, N: int) -> np.ndarray:
     E = np.asarray(edges)
     if E.ndim != 2 or E.shape[1] != 2 or not np.issubdtype(E.dtype, np.integer):
-        raise ShapeError(f"edges must be an integer array of shape (n_edges, 2), got {E.dtype} array of shape {E.shape}")
+        raise ShapeError(f"edges must be an integer array of shape (n_edges, 2), got {E.dtype} array of "
+                         f"shape {E.shape}")
     if E.size and (E.min() < 0 or E.max() >= N):
         r = int(np.argmax((E < 0).any(axis=1) | (E >= N).any(axis=1)))
         raise ShapeError(f"edge #{r} {tuple(int(v) for v in E[r])} refers to a vertex outside 0 .. {N - 1}")
@@ -130,14 +132,16 @@ def edge_circulation(points, edges, velocity, *, order: int = DEFAULT_ORDER) -> 
         return np.einsum("eqk,q,ek->e", u, w, e)
     V = np.asarray(velocity)
     if V.dtype == object or not (np.issubdtype(V.dtype, np.floating) or np.issubdtype(V.dtype, np.integer)):
-        raise ShapeError(f"velocity must be a callable or a real (N, 3) array, got {type(velocity).__name__} of dtype {V.dtype}")
+        raise ShapeError(f"velocity must be a callable or a real (N, 3) array, got {type(velocity).__name__} "
+                         f"of dtype {V.dtype}")
     V = V.astype(np.float64)
     if V.shape != P.shape:
         raise ShapeError(f"per-vertex velocities must have one 3-vector per vertex, shape {P.shape}; got {V.shape}")
     bad = ~np.isfinite(V).all(axis=1)
     if np.any(bad):
         i = int(np.argmax(bad))
-        raise NonFiniteError(f"the velocity at vertex {i} is not finite: {V[i].tolist()} ({int(bad.sum())} vertices affected)")
+        raise NonFiniteError(f"the velocity at vertex {i} is not finite: {V[i].tolist()} "
+                             f"({int(bad.sum())} vertices affected)")
     return 0.5 * np.einsum("ek,ek->e", V[E[:, 0]] + V[E[:, 1]], e)
 
 

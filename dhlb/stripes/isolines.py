@@ -1,0 +1,201 @@
+"""Isolines ``α ≡ c (mod 2π)`` of a stripe pattern as polylines, by marching triangles.
+
+The pattern is cut into sub-triangles on which α is linear (:meth:`StripeTexture.subdivision`):
+plain faces as they are and the three cones of each branch triangle (both exact), and a fine
+grid in the cones of each zero face (the barycenter blown up, so isolines run into the zero).
+In each sub-triangle the level sets of the linear α at ``c + 2πk`` (every k in its range) are
+segments; for line fields (``n = 2``) α is defined up to sign and the levels are ``±c + 2πk``
+(the level set of ``cos α = cos c``). Crossing points of neighbouring sub-triangles are merged
+(within ``tol``) and the segments are chained into polylines without a loop over segments:
+every undirected segment gives two half-edges, the successor of ``u → v`` is the other
+half-edge leaving v, and chains are ranked by pointer jumping. Points where more than two
+segments meet (a zero of index ``|n| ≥ 2``, where several isolines end) split into separate ends.
+
+Examples
+--------
+>>> import numpy as np
+>>> from dhlb.surface import validate_surface
+>>> from dhlb.stripes import stripe_form, texture_coordinates, isolines
+>>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+>>> form = stripe_form(validate_surface(V, [[0, 1, 2], [1, 3, 2]]), np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+>>> iso = isolines(texture_coordinates(form, np.exp(0.5j * np.pi * np.array(V)[:, 0])), level=np.pi / 4)
+>>> len(iso.polylines), iso.points[iso.polylines[0]][:, 0].round(12).tolist()   # the line x = 1/2
+(1, [0.5, 0.5, 0.5])
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
+
+from dhlb.errors import InvalidParameterError, NonFiniteError
+
+__all__ = ["Isolines", "isolines"]
+
+TWO_PI = 2.0 * np.pi
+_SIDES = np.array([[0, 1], [1, 2], [2, 0]])
+
+
+@dataclass(frozen=True)
+class Isolines:
+    """Polylines of ``α ≡ level`` (``≡ ±level`` for n = 2).
+
+    Attributes
+    ----------
+    level : float
+    points : (P, 3) float, positions;  faces : (P,) int64 and bary : (P, 3): a face containing each point
+    segments : (S, 2) int64 rows of ``points``
+    polylines : tuple of int64 arrays (rows of ``points``, in order; a closed one repeats its first point)
+    closed : (L,) bool
+    """
+
+    level: float
+    points: np.ndarray
+    faces: np.ndarray
+    bary: np.ndarray
+    segments: np.ndarray
+    polylines: tuple
+    closed: np.ndarray
+
+
+def _march(sub, levels):
+    """Crossing points (face, bary) of each level segment: arrays for the first and the second end."""
+    ends = [[], []]
+    for L0 in levels:
+        vmin, vmax = sub.alpha.min(axis=1), sub.alpha.max(axis=1)
+        k_lo = np.floor((vmin - L0) / TWO_PI).astype(np.int64) + 1
+        cnt = np.maximum(np.floor((vmax - L0) / TWO_PI).astype(np.int64) - k_lo + 1, 0)
+        tri = np.repeat(np.arange(len(cnt)), cnt)
+        k = k_lo[tri] + np.arange(tri.size) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+        L = L0 + TWO_PI * k
+        v = sub.alpha[tri]
+        above = v >= L[:, None]
+        cross = above[:, _SIDES[:, 0]] != above[:, _SIDES[:, 1]]
+        ok = cross.sum(axis=1) == 2
+        tri, L, v, cross = tri[ok], L[ok], v[ok], cross[ok]
+        which = np.argsort(~cross, axis=1, kind="stable")[:, :2]
+        r = np.arange(tri.size)[:, None]
+        a, b = _SIDES[which, 0], _SIDES[which, 1]
+        va, vb = v[r, a], v[r, b]
+        t = (L[:, None] - va) / (vb - va)
+        B = sub.bary[tri]
+        pts = B[r, a] + t[..., None] * (B[r, b] - B[r, a])
+        for e in range(2):
+            ends[e].append((sub.face[tri], pts[:, e]))
+    return [(np.concatenate([x[0] for x in ends[e]]), np.concatenate([x[1] for x in ends[e]])) for e in range(2)]
+
+
+def _chain(seg: np.ndarray, n_nodes: int) -> tuple[list, np.ndarray]:
+    """Order segments (S, 2) over nodes 0..n_nodes-1 into polylines (node arrays) and closed flags."""
+    seg = seg[seg[:, 0] != seg[:, 1]]
+    seg = np.unique(np.sort(seg, axis=1), axis=0)
+    if seg.size == 0:
+        return [], np.zeros(0, bool)
+    deg = np.bincount(seg.ravel(), minlength=n_nodes)
+    orig = np.arange(n_nodes)
+    high = deg[seg] > 2  # split junctions: every segment end gets its own node there
+    if np.any(high):
+        new = n_nodes + np.arange(int(high.sum()))
+        orig = np.concatenate([orig, seg[high]])
+        seg = seg.copy()
+        seg[high] = new
+        n_nodes = orig.size
+        deg = np.bincount(seg.ravel(), minlength=n_nodes)
+    S = len(seg)
+    tail = seg.ravel()  # half-edge 2s: seg[s,0] -> seg[s,1]; 2s+1: reverse
+    head = seg[:, ::-1].ravel()
+    H = 2 * S
+    order = np.argsort(tail, kind="stable")
+    start = np.searchsorted(tail[order], np.arange(n_nodes))
+    o1 = order[start[head]]
+    o2 = order[np.minimum(start[head] + 1, H - 1)]
+    rev = np.arange(H) ^ 1
+    nxt = np.where(o1 != rev, o1, np.where(deg[head] == 2, o2, -1))
+    nxt = np.where(deg[head] == 1, -1, nxt)
+    ncomp, comp = connected_components(sp.coo_matrix((np.ones(S), (seg[:, 0], seg[:, 1])), shape=(n_nodes,) * 2),
+                                       directed=False)
+    used = np.zeros(n_nodes, bool)
+    used[seg.ravel()] = True
+    open_comp = np.zeros(ncomp, bool)
+    open_comp[comp[(deg == 1) & used]] = True
+    hcomp = comp[tail]
+    cyc_root = np.zeros(H, bool)
+    first = np.full(ncomp, H, np.int64)
+    np.minimum.at(first, hcomp, np.arange(H))
+    c_ids = np.nonzero(~open_comp & (first < H))[0]
+    h0 = first[c_ids]  # even: the forward half-edge of the first segment of the cycle
+    cyc_root[h0] = True
+    prev = np.full(H, -1, np.int64)
+    has = nxt >= 0
+    prev[nxt[has]] = np.nonzero(has)[0]
+    cut = np.concatenate([prev[h0], prev[h0 ^ 1]])
+    nxt[cut[cut >= 0]] = -1
+    prev = np.full(H, -1, np.int64)
+    has = nxt >= 0
+    prev[nxt[has]] = np.nonzero(has)[0]
+    par = np.where(prev >= 0, prev, np.arange(H))
+    dist = (prev >= 0).astype(np.int64)
+    while np.any(par[par] != par):  # pointer jumping: root and distance from it
+        dist = dist + dist[par]
+        par = par[par]
+    srt = np.lexsort((dist, par))
+    bounds = np.nonzero(np.r_[True, par[srt][1:] != par[srt][:-1]])[0]
+    roots = par[srt][bounds]
+    lasts = srt[np.r_[bounds[1:], H] - 1]
+    keep = cyc_root[roots] | (open_comp[hcomp[roots]] & (tail[roots] < head[lasts]))
+    chains = np.split(srt, bounds[1:])
+    polylines = [orig[np.r_[tail[ch], head[ch[-1]]]] for ch, k in zip(chains, keep) if k]
+    return polylines, cyc_root[roots][keep]
+
+
+def isolines(texture, level: float = 0.0, *, refine: int = 8, tol: float | None = None) -> Isolines:
+    """The isolines ``α ≡ level (mod 2π)`` of a :class:`~dhlb.stripes.StripeTexture` as polylines.
+
+    Parameters
+    ----------
+    texture : StripeTexture
+    level : float
+        The value c; for line fields (n = 2) the curves ``α ≡ ±c`` (where ``cos α = cos c``).
+    refine : int
+        Grid size in each cone of a zero face (other faces are exact).
+    tol : float, optional
+        Distance below which crossing points are merged (default ``1e-7 ×`` mean edge length).
+
+    Examples
+    --------
+    See the module docstring.
+    """
+    c = float(level)
+    if not np.isfinite(c):
+        raise NonFiniteError(f"level must be finite, got {level!r}")
+    mesh = texture.mesh
+    sub = texture.subdivision(refine)
+    c = float(np.mod(c + np.pi, TWO_PI) - np.pi)
+    levels = [c] if texture.form.n == 1 or c in (0.0, -np.pi) else [c, -c]
+    (f0, b0), (f1, b1) = _march(sub, levels)
+    faces = np.concatenate([f0, f1])
+    bary = np.concatenate([b0, b1])
+    P = np.einsum("pc,pcd->pd", bary, mesh.points[mesh.faces[faces]])
+    E = mesh.complex.simplices(1)
+    mean_edge = float(np.mean(np.linalg.norm(mesh.points[E[:, 1]] - mesh.points[E[:, 0]], axis=1)))
+    tol = 1e-7 * mean_edge if tol is None else float(tol)
+    if not tol >= 0:
+        raise InvalidParameterError(f"tol must be >= 0, got {tol!r}")
+    n = len(P)
+    if n:
+        pairs = cKDTree(P).query_pairs(tol, output_type="ndarray")
+        g = sp.coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+        _, lab = connected_components(g, directed=False)
+    else:
+        lab = np.zeros(0, np.int64)
+    rep, node = np.unique(lab, return_index=True)[1], np.unique(lab, return_inverse=True)[1].ravel()
+    S = len(f0)
+    seg = np.stack([node[:S], node[S:]], axis=1)
+    polylines, closed = _chain(seg, rep.size)
+    seg = np.unique(np.sort(seg[seg[:, 0] != seg[:, 1]], axis=1), axis=0)
+    return Isolines(c if texture.form.n == 1 else abs(c), P[rep], faces[rep], bary[rep], seg.astype(np.int64),
+                    tuple(np.asarray(p, np.int64) for p in polylines), np.asarray(closed, bool))
