@@ -81,7 +81,9 @@ class _FloatOps:
         n = A.shape[1]
         if A.shape[0] == 0:
             return np.eye(n, dtype=self.dtype)
-        _, s, vh = np.linalg.svd(A)
+        # full V only when there are fewer rows than columns (else V is square anyway):
+        # full U would cost (rows)^2 memory on large loop-generator systems
+        _, s, vh = np.linalg.svd(A, full_matrices=A.shape[0] < n)
         tol = self.atol * max(1.0, float(s[0]) if s.size else 1.0)
         rank = int(np.sum(s > tol))
         return vh[rank:].conj().T.astype(self.dtype)

@@ -33,6 +33,7 @@ from dhlb.errors import (
     InvalidConnectionError,
     NonFiniteError,
     NonManifoldError,
+    NonOrientableError,
     NotClosedError,
 )
 
@@ -289,15 +290,22 @@ class HermitianLineBundle:
         """``∫_C Ω = Σ C_t Ω_t`` over an integral 2-cycle ``C`` (checked: ``∂C = 0``)."""
         return float(self._chain(cycle, 2) @ self._Om)
 
-    def degree(self) -> int:
-        """``deg L = (1/2π) Σ_t o_t Ω_t`` over a closed oriented surface (``o = X.orientation()``).
+    def fundamental_cycle(self, orientation=None) -> np.ndarray:
+        """The fundamental 2-cycle ``Σ_t o_t t`` of the closed oriented surface X.
+
+        Parameters
+        ----------
+        orientation : (n_2,) array of ±1, optional
+            The orientation per canonical triangle (e.g. the orientation of a mesh's faces:
+            ``X.orientation_of(F)`` reordered to the rows of ``X.simplices(2)``). Default:
+            ``X.orientation()`` (+1 on the first triangle of each component).
 
         Raises
         ------
         NonManifoldError
             X is not a closed surface (names an edge with one triangle).
         NonOrientableError
-            X is not orientable.
+            X is not orientable, or ``orientation`` is not a consistent orientation.
         """
         X = self._X
         if X.dim != 2:
@@ -306,7 +314,36 @@ class HermitianLineBundle:
         if np.any(cnt == 1):
             e = int(np.argmax(cnt == 1))
             raise NonManifoldError(f"the degree needs a closed surface, but edge {simplex_name(X, 1, e)} lies in one triangle only")
-        o = X.orientation()
+        if orientation is None:
+            return np.asarray(X.orientation(), dtype=np.int64)
+        o = np.asarray(orientation)
+        if o.shape != (X.n_simplices(2),) or not np.all(np.abs(o) == 1):
+            raise NonOrientableError(f"orientation must be one ±1 per triangle ({X.n_simplices(2)} values)")
+        o = o.astype(np.int64)
+        bad = np.nonzero(X.boundary(2) @ o)[0]
+        if bad.size:
+            raise NonOrientableError(
+                f"the given orientation is not consistent at edge {simplex_name(X, 1, int(bad[0]))}"
+            )
+        return o
+
+    def degree(self, orientation=None) -> int:
+        """``deg L = (1/2π) Σ_t o_t Ω_t`` over a closed oriented surface.
+
+        Parameters
+        ----------
+        orientation : (n_2,) array of ±1, optional
+            See :meth:`fundamental_cycle`; the default ``X.orientation()`` may be opposite to
+            the orientation a mesh's face order means (the degree then changes sign).
+
+        Raises
+        ------
+        NonManifoldError
+            X is not a closed surface (names an edge with one triangle).
+        NonOrientableError
+            X is not orientable.
+        """
+        o = self.fundamental_cycle(orientation)
         total = float(o @ self._Om) / (2 * np.pi)
         deg = int(np.round(total))
         if abs(total - deg) > 1e-6 * max(1.0, float(np.abs(self._Om).sum()) / (2 * np.pi)):

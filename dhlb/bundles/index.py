@@ -94,7 +94,7 @@ def index_sum(L, section, cycle=None) -> int:
     ``(1/2π) ∫_C Ω`` (the degree, for the fundamental cycle)."""
     ind = index_form(L, section)
     if cycle is None:
-        cycle = L.X.orientation()
+        cycle = L.fundamental_cycle()
     else:
         cycle = L._chain(cycle, 2)
     return int(np.asarray(cycle, dtype=np.int64) @ ind)

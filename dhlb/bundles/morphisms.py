@@ -201,15 +201,33 @@ def find_isomorphism(E: VectorBundle, F: VectorBundle, *, rng=None, max_enumerat
             A = A % ops.p
         N = ops.nullspace(A)
         if N.shape[1] == 0:
-            return None
+            return _no_isomorphism(ops, ME, MF, E, F)
         f = _invertible_in_span(ops, N, K, rng, max_enumeration)
         if f is None:
-            return None
+            return _no_isomorphism(ops, ME, MF, E, F)
         roots.append(f)
     roots = np.stack(roots).astype(ops.dtype)
     TEinv, _ = ops.inv(E.tree_transports)
     f = ops.matmul(F.tree_transports, ops.matmul(roots[T.component], TEinv))
-    return f if is_morphism(E, F, f) else None
+    return f if is_morphism(E, F, f) else _no_isomorphism(ops, ME, MF, E, F)
+
+
+_MAX_CONDITION = 1e8  # beyond this, floating-point monodromies cannot decide conjugacy
+
+
+def _no_isomorphism(ops, ME, MF, E: VectorBundle, F: VectorBundle):
+    """``None``, unless floating-point conditioning makes that answer untrustworthy (then raise)."""
+    if ops.exact:
+        return None
+    mats = [m for m in (ME, MF, E.tree_transports, F.tree_transports) if m.size]
+    cond = max((float(np.max(np.linalg.cond(m))) for m in mats), default=1.0)
+    if not np.isfinite(cond) or cond > _MAX_CONDITION:
+        raise ConvergenceError(
+            f"cannot decide isomorphism in floating point: monodromy/transport matrices have condition "
+            f"number {cond:.3g} > {_MAX_CONDITION:.0e}; use unitary/orthogonal transports (metric=True), "
+            f"exact arithmetic over GF(p), or a smaller complex"
+        )
+    return None
 
 
 def is_isomorphic(E: VectorBundle, F: VectorBundle, **kwargs) -> bool:

@@ -88,10 +88,12 @@ def _prefix_taylor(y: np.ndarray, need_all: bool) -> np.ndarray:
         np.multiply(h[q - 1], y[0], out=h[q])
     if need_all or k == 1:
         out[0] = _series(h, 0)
+    tmp = np.empty(g)
     for d in range(1, k):
         yd = y[d]
         for q in range(1, qs):
-            h[q] += yd * h[q - 1]
+            np.multiply(yd, h[q - 1], out=tmp)
+            h[q] += tmp
         if need_all or d == k - 1:
             out[d] = _series(h, d)
     return out

@@ -111,8 +111,8 @@ def _dirichlet(g, vol, n, tensor, r):
         requests += [(i, j, _unit(n, i, j, k, q)) for k, q in ls]
     out = np.zeros((m, nv, nv), dtype=complex)
     # diagonal: no curvature in the exponent, Θ terms cancel
-    qd = np.einsum("makl,mkq,maqr->malr", tensor, g, tensor)
-    diag = g[:, np.arange(nv), np.arange(nv)] + np.einsum("malr,alr->ma", qd, _xi_diagonal(n))
+    qd = np.swapaxes(tensor, -1, -2) @ (g[:, None] @ tensor)       # (W^aᵀ G W^a), (m, n+1, n+1, n+1)
+    diag = g[:, np.arange(nv), np.arange(nv)] + (qd * _xi_diagonal(n)).sum(axis=(2, 3))
     out[:, np.arange(nv), np.arange(nv)] = vol[:, None] * diag
     if npair == 0:
         return out, None
@@ -126,11 +126,11 @@ def _dirichlet(g, vol, n, tensor, r):
         xi_full[:, :, k, q] = xi_u[:, :, t]
         xi_full[:, :, q, k] = xi_u[:, :, t]
     wa, wb = tensor[:, a], tensor[:, b]                      # W^a[k, l] = Ω_akl, (m, P, n+1, n+1)
-    quad = np.einsum("mpkl,mkq,mpqr->mplr", wa, g, wb)      # (W^aᵀ G W^b)_{l l'}
-    pa = np.einsum("mpk,mpkl->mpl", g[:, b, :], wa)          # (G W^a)_{b l}
-    pb = np.einsum("mpk,mpkl->mpl", g[:, a, :], wb)          # (G W^b)_{a l}
-    val = (g[:, a, b] * lam + np.einsum("mplr,mplr->mp", quad, xi_full)
-           + 1j * (np.einsum("mpl,mpl->mp", pa, th_a) - np.einsum("mpl,mpl->mp", pb, th_b)))
+    quad = np.swapaxes(wa, -1, -2) @ (g[:, None] @ wb)     # (W^aᵀ G W^b)_{l l'}
+    pa = (g[:, b, None, :] @ wa)[:, :, 0, :]                 # (G W^a)_{b l}
+    pb = (g[:, a, None, :] @ wb)[:, :, 0, :]                 # (G W^b)_{a l}
+    val = (g[:, a, b] * lam + (quad * xi_full).sum(axis=(2, 3))
+           + 1j * ((pa * th_a).sum(axis=2) - (pb * th_b).sum(axis=2)))
     off = r * vol[:, None] * val
     out[:, b, a] = off
     out[:, a, b] = np.conj(off)
