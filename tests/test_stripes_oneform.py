@@ -74,7 +74,7 @@ def test_spacing_is_relative_to_the_mean_edge_length():
 def test_vector_field_has_all_signs_positive():
     mesh = validate_surface(*icosphere(1))
     rng = np.random.default_rng(1)
-    form = stripe_form(mesh, rng.normal(size=(mesh.n_vertices, 3)), 1, frequency=1.0)
+    form = stripe_form(mesh, rng.normal(size=(mesh.n_vertices, 3)), 1, frequency=0.5)
     assert np.all(form.edge_sign == 1) and not form.is_branch.any()
     L = form.line_bundle
     assert np.allclose(np.angle(L.connection), np.angle(np.exp(1j * form.omega)))

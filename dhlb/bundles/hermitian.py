@@ -274,6 +274,10 @@ class HermitianLineBundle:
 
     # ------------------------------------------------------------------ curvature integrals
     def _chain(self, chain, k: int) -> np.ndarray:
+        if hasattr(chain, "coefficients") and hasattr(chain, "k"):  # a dhlb.forms.Chain
+            if chain.k != k:
+                raise NotClosedError(f"expected a {k}-chain, got a {chain.k}-chain")
+            chain = chain.coefficients
         c = np.asarray(chain)
         n = self._X.n_simplices(k)
         if c.ndim != 1 or c.size != n or not (np.issubdtype(c.dtype, np.integer) or np.all(c == np.round(c))):

@@ -1,0 +1,14 @@
+"""Layer 4: finite elements on hermitian line bundles — Θ/Λ/Ξ integrals, mass and Dirichlet matrices, solvers."""
+from dhlb.fem.assembly import bundle_matrices, dirichlet_matrix, lumped_mass, mass_matrix
+from dhlb.fem.solvers import EigenResult, backward_errors, smallest_eigenpairs, solve
+
+__all__ = [
+    "bundle_matrices",
+    "dirichlet_matrix",
+    "lumped_mass",
+    "mass_matrix",
+    "EigenResult",
+    "backward_errors",
+    "smallest_eigenpairs",
+    "solve",
+]

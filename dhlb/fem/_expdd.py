@@ -33,7 +33,7 @@ from math import factorial
 
 import numpy as np
 
-__all__ = ["expi_divided_difference"]
+__all__ = ["expi_divided_difference", "divided_difference_columns"]
 
 _GAP = 8.0          # single-linkage gap between clusters
 _RADIUS = 2.0       # Taylor radius of a centred cluster without squaring
@@ -170,15 +170,15 @@ def _clusters_of_key(key: int, c: int) -> list[list[int]]:
 
 
 def _group_value(phases: np.ndarray, mult: np.ndarray, clusters: list[list[int]]) -> np.ndarray:
-    """Divided differences for rows sharing one cluster partition (``phases`` of shape ``(C, G)``)."""
+    """Divided differences for columns sharing one cluster partition (``phases`` of shape ``(C, G)``)."""
     total = np.zeros(phases.shape[1], dtype=complex)
+    need_all = len(clusters) > 1
     for cluster in clusters:
         seq = np.repeat(np.asarray(cluster), mult[cluster])
-        nodes = phases[seq]
-        centre = 0.5 * (nodes.max(axis=0) + nodes.min(axis=0))
-        y = nodes - centre
-        need_all = len(clusters) > 1
-        small = np.abs(y).max(axis=0) <= _RADIUS
+        cls = phases[cluster]
+        centre = 0.5 * (cls.max(axis=0) + cls.min(axis=0))
+        y = (cls - centre)[np.searchsorted(cluster, seq)]
+        small = np.abs(cls - centre).max(axis=0) <= _RADIUS
         if small.all():
             v = _prefix_taylor(y, need_all)
         else:
@@ -190,6 +190,7 @@ def _group_value(phases: np.ndarray, mult: np.ndarray, clusters: list[list[int]]
             total += v[-1] * np.exp(1j * centre)
             continue
         v *= np.exp(1j * centre)
+        nodes = phases[seq]
         for other in range(phases.shape[0]):
             if other in cluster:
                 continue
@@ -201,6 +202,27 @@ def _group_value(phases: np.ndarray, mult: np.ndarray, clusters: list[list[int]]
                     prev = v[d]
         total += v[-1]
     return total
+
+
+def divided_difference_columns(th: np.ndarray, mu: np.ndarray) -> np.ndarray:
+    """:func:`expi_divided_difference` for phases stored as columns, ``th`` of shape ``(C, B)``."""
+    c, b = th.shape
+    out = np.empty(b, dtype=complex)
+    if b == 0:
+        return out
+    spread = th.max(axis=0) - th.min(axis=0)
+    near = spread <= 2 * _RADIUS  # one cluster, plain Taylor series: the common case
+    one = [list(range(c))]
+    if near.all():
+        return _group_value(th, mu, one)
+    if near.any():
+        out[near] = _group_value(th[:, near], mu, one)
+    far = np.nonzero(~near)[0]
+    keys = _cluster_partition(th[:, far].T, max(_GAP, float(mu.sum())))
+    for key in np.unique(keys):
+        cols = far[keys == key]
+        out[cols] = _group_value(th[:, cols], mu, _clusters_of_key(int(key), c))
+    return out
 
 
 def expi_divided_difference(phases, multiplicities) -> np.ndarray:
@@ -231,21 +253,5 @@ def expi_divided_difference(phases, multiplicities) -> np.ndarray:
     th = np.asarray(phases, dtype=float)
     mu = np.asarray(multiplicities, dtype=int).reshape(-1)
     shape = th.shape[:-1]
-    th = th.reshape(-1, th.shape[-1])
-    b, c = th.shape
-    out = np.empty(b, dtype=complex)
-    if b == 0:
-        return out.reshape(shape)
-    spread = th.max(axis=1) - th.min(axis=1)
-    near = spread <= 2 * _RADIUS  # one cluster, plain Taylor series: the common case
-    one = [list(range(c))]
-    if near.all():
-        return _group_value(np.ascontiguousarray(th.T), mu, one).reshape(shape)
-    if near.any():
-        out[near] = _group_value(np.ascontiguousarray(th[near].T), mu, one)
-    far = np.nonzero(~near)[0]
-    keys = _cluster_partition(th[far], max(_GAP, float(mu.sum())))
-    for key in np.unique(keys):
-        rows = far[keys == key]
-        out[rows] = _group_value(np.ascontiguousarray(th[rows].T), mu, _clusters_of_key(int(key), c))
-    return out.reshape(shape)
+    cols = np.ascontiguousarray(th.reshape(-1, th.shape[-1]).T)
+    return divided_difference_columns(cols, mu).reshape(shape)

@@ -112,7 +112,7 @@ def _dirichlet(g, vol, n, tensor, r):
     out = np.zeros((m, nv, nv), dtype=complex)
     # diagonal: no curvature in the exponent, Θ terms cancel
     qd = np.swapaxes(tensor, -1, -2) @ (g[:, None] @ tensor)       # (W^aᵀ G W^a), (m, n+1, n+1, n+1)
-    diag = g[:, np.arange(nv), np.arange(nv)] + (qd * _xi_diagonal(n)).sum(axis=(2, 3))
+    diag = g[:, np.arange(nv), np.arange(nv)] + np.einsum("malr,alr->ma", qd, _xi_diagonal(n))
     out[:, np.arange(nv), np.arange(nv)] = vol[:, None] * diag
     if npair == 0:
         return out, None
@@ -129,8 +129,8 @@ def _dirichlet(g, vol, n, tensor, r):
     quad = np.swapaxes(wa, -1, -2) @ (g[:, None] @ wb)     # (W^aᵀ G W^b)_{l l'}
     pa = (g[:, b, None, :] @ wa)[:, :, 0, :]                 # (G W^a)_{b l}
     pb = (g[:, a, None, :] @ wb)[:, :, 0, :]                 # (G W^b)_{a l}
-    val = (g[:, a, b] * lam + (quad * xi_full).sum(axis=(2, 3))
-           + 1j * ((pa * th_a).sum(axis=2) - (pb * th_b).sum(axis=2)))
+    val = (g[:, a, b] * lam + np.einsum("mplr,mplr->mp", quad, xi_full)
+           + 1j * (np.einsum("mpl,mpl->mp", pa, th_a) - np.einsum("mpl,mpl->mp", pb, th_b)))
     off = r * vol[:, None] * val
     out[:, b, a] = off
     out[:, a, b] = np.conj(off)

@@ -128,9 +128,13 @@ def render_stripes_png(path, texture, *, k: int | None = None, view=(1.0, -1.6, 
     if mark_singularities:
         E = mesh.complex.simplices(1)
         mean_edge = float(np.mean(np.linalg.norm(P[E[:, 1]] - P[E[:, 0]], axis=1)))
-        pts = np.vstack([texture.zero_points, texture.branch_points]) - c
+        sf = np.r_[texture.zero_faces, texture.branch_faces]
         kind = np.r_[np.sign(texture.zero_index[texture.zero_faces]), np.zeros(texture.branch_faces.size)]
-        rad = 0.3 * mean_edge
+        seen = facing[sf] > 0 if closed else np.ones(sf.size, bool)
+        pts = np.vstack([texture.zero_points, texture.branch_points])[seen] - c
+        kind = kind[seen]
+        extent = float(np.ptp(np.stack([(P - c) @ right, (P - c) @ upv], axis=1), axis=0).max()) or 1.0
+        rad = min(0.3 * mean_edge, 0.012 * extent)
         ang = np.linspace(0, 2 * np.pi, 11)
         ring = rad * np.stack([np.cos(ang), np.sin(ang)], axis=1)
         fan = np.stack([np.zeros((10, 2)), ring[:-1], ring[1:]], axis=1)
@@ -147,8 +151,8 @@ def render_stripes_png(path, texture, *, k: int | None = None, view=(1.0, -1.6, 
     FigureCanvasAgg(fig)
     ax = fig.add_axes((0, 0, 1, 1))
     ax.set_axis_off()
-    ax.add_collection(PolyCollection(polys, facecolors=rgba, edgecolors=rgba, linewidths=0.15, closed=True,
-                                     antialiaseds=True), autolim=False)
+    ax.add_collection(PolyCollection(polys, facecolors=rgba, edgecolors=rgba, linewidths=0.25, closed=True,
+                                     antialiaseds=False), autolim=False)
     Q = P - c
     pxy = np.stack([Q @ right, Q @ upv], axis=1)
     lo, hi = pxy.min(axis=0), pxy.max(axis=0)

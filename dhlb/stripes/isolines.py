@@ -8,8 +8,10 @@ segments; for line fields (``n = 2``) α is defined up to sign and the levels ar
 (the level set of ``cos α = cos c``). Crossing points of neighbouring sub-triangles are merged
 (within ``tol``) and the segments are chained into polylines without a loop over segments:
 every undirected segment gives two half-edges, the successor of ``u → v`` is the other
-half-edge leaving v, and chains are ranked by pointer jumping. Points where more than two
-segments meet (a zero of index ``|n| ≥ 2``, where several isolines end) split into separate ends.
+half-edge leaving v, and chains are ranked by pointer jumping. Polylines end at the zeros
+(where ``|n|`` isolines of each level end, ``2|n|`` for line fields) and at the boundary; points
+where more than two segments meet split into separate ends. On a closed surface every open
+polyline ends at zeros; branch points are passed (the isolines turn around them).
 
 Examples
 --------
@@ -89,8 +91,11 @@ def _march(sub, levels):
     return [(np.concatenate([x[0] for x in ends[e]]), np.concatenate([x[1] for x in ends[e]])) for e in range(2)]
 
 
-def _chain(seg: np.ndarray, n_nodes: int) -> tuple[list, np.ndarray]:
-    """Order segments (S, 2) over nodes 0..n_nodes-1 into polylines (node arrays) and closed flags."""
+def _chain(seg: np.ndarray, n_nodes: int, split=None) -> tuple[list, np.ndarray]:
+    """Order segments (S, 2) over nodes 0..n_nodes-1 into polylines (node arrays) and closed flags.
+
+    Polylines end at nodes of degree 1, at junctions (degree > 2) and at the nodes marked in ``split``.
+    """
     seg = seg[seg[:, 0] != seg[:, 1]]
     seg = np.unique(np.sort(seg, axis=1), axis=0)
     if seg.size == 0:
@@ -98,6 +103,8 @@ def _chain(seg: np.ndarray, n_nodes: int) -> tuple[list, np.ndarray]:
     deg = np.bincount(seg.ravel(), minlength=n_nodes)
     orig = np.arange(n_nodes)
     high = deg[seg] > 2  # split junctions: every segment end gets its own node there
+    if split is not None:
+        high |= np.asarray(split, bool)[seg] & (deg[seg] > 1)
     if np.any(high):
         new = n_nodes + np.arange(int(high.sum()))
         orig = np.concatenate([orig, seg[high]])
@@ -174,7 +181,8 @@ def isolines(texture, level: float = 0.0, *, refine: int = 8, tol: float | None 
         raise NonFiniteError(f"level must be finite, got {level!r}")
     mesh = texture.mesh
     sub = texture.subdivision(refine)
-    c = float(np.mod(c + np.pi, TWO_PI) - np.pi)
+    if not -np.pi <= c < np.pi:
+        c = float(np.mod(c + np.pi, TWO_PI) - np.pi)
     levels = [c] if texture.form.n == 1 or c in (0.0, -np.pi) else [c, -c]
     (f0, b0), (f1, b1) = _march(sub, levels)
     faces = np.concatenate([f0, f1])
@@ -195,7 +203,8 @@ def isolines(texture, level: float = 0.0, *, refine: int = 8, tol: float | None 
     rep, node = np.unique(lab, return_index=True)[1], np.unique(lab, return_inverse=True)[1].ravel()
     S = len(f0)
     seg = np.stack([node[:S], node[S:]], axis=1)
-    polylines, closed = _chain(seg, rep.size)
+    at_zero = (texture.zero_index[faces[rep]] != 0) & (np.abs(bary[rep] - 1.0 / 3.0).max(axis=1) < 1e-12)
+    polylines, closed = _chain(seg, rep.size, split=at_zero)
     seg = np.unique(np.sort(seg[seg[:, 0] != seg[:, 1]], axis=1), axis=0)
     return Isolines(c if texture.form.n == 1 else abs(c), P[rep], faces[rep], bary[rep], seg.astype(np.int64),
                     tuple(np.asarray(p, np.int64) for p in polylines), np.asarray(closed, bool))

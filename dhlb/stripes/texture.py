@@ -213,7 +213,7 @@ class StripeTexture:
         if zf.size:
             r = int(refine)
             a, b = np.meshgrid(np.arange(r + 1), np.arange(r + 1), indexing="ij")
-            rho, tau = (a / r).ravel(), (b / r).ravel()
+            rho, tau = ((a / r) ** 2).ravel(), (b / r).ravel()  # radial nodes denser near the zero
             node = lambda x, y: x * (r + 1) + y  # noqa: E731
             ga, gb = np.meshgrid(np.arange(r), np.arange(r), indexing="ij")
             ga, gb = ga.ravel(), gb.ravel()

@@ -77,7 +77,7 @@ __all__ = ["Filament", "FilamentSet", "extract_filaments", "face_zeros"]
 _CLAMP_TOL = 1e-9  # barycentric coordinates below -tol count as "outside the face"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Filament:
     """One filament: a closed loop or a chain from boundary to boundary.
 
@@ -105,7 +105,7 @@ class Filament:
         return float(np.linalg.norm(np.diff(P, axis=0), axis=1).sum())
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class FilamentSet:
     """The filaments of a section and what was found along the way (a sequence of :class:`Filament`).
 
@@ -257,8 +257,8 @@ def _tet_signs(X, P) -> np.ndarray:
     return np.sign(vol)
 
 
-def _pair_ambiguous(t, flux_t, faces_t, start, face_pos):
-    """(entry node, exit node) pairs in tetrahedron t, matching entries to exits by distance."""
+def _pair_ambiguous(flux_t, faces_t, start, face_pos):
+    """(entry node, exit node) pairs in one tetrahedron, matching entries to exits by distance."""
     ins, outs = [], []
     for a in range(4):
         f, k = int(faces_t[a]), int(flux_t[a])
@@ -392,7 +392,7 @@ def extract_filaments(bundle, section, points, *, placement: str = "balanced") -
     succ[start[fin]] = start[fout]
     amb = np.nonzero(k_out >= 2)[0]
     for t in amb:  # rare: only tetrahedra crossed more than once
-        for a, b in _pair_ambiguous(t, flux[t], F3[t], start, face_pos):
+        for a, b in _pair_ambiguous(flux[t], F3[t], start, face_pos):
             succ[a] = b
     if amb.size:
         warnings.warn(f"{amb.size} tetrahedra are crossed by more than one filament; entries and exits were paired "
