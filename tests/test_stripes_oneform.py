@@ -6,6 +6,7 @@ import warnings
 
 import numpy as np
 import pytest
+import scipy.sparse as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -52,7 +53,7 @@ def test_constant_field_on_flat_mesh_integrates_exactly(n):
 def test_intrinsic_equals_extrinsic_on_flat_meshes(seed, n):
     mesh = flat_square(5, 4, jitter=0.35, seed=seed)
     rng = np.random.default_rng(seed)
-    X = np.column_stack([rng.normal(size=(mesh.n_vertices, 2)), rng.normal(size=mesh.n_vertices)])  # normal part dropped
+    X = rng.normal(size=(mesh.n_vertices, 3))  # the normal part is dropped
     nu = rng.uniform(0.05, 0.3, mesh.n_vertices)
     a = stripe_form(mesh, X, n, frequency=nu)
     b = stripe_form(mesh, X, n, frequency=nu, method="extrinsic")
@@ -151,6 +152,16 @@ def test_double_cover_energy_is_twice_the_real_bundle_energy(name, seed):
     z = dc.lift(psi)
     e_cover = np.sum(wt * np.abs(z[Et[:, 1]] - dc.bundle.connection * z[Et[:, 0]]) ** 2)
     assert np.isclose(e_cover, 2 * e_real, rtol=1e-12)
+    # conjugate-symmetric functions = the real subspace P x; Hermitian forms restrict to real symmetric ones
+    x = np.column_stack([psi.real, psi.imag]).ravel()
+    P = dc.embedding()
+    assert np.allclose(P @ x, z)
+    H = sp.random(2 * N, 2 * N, density=0.05, random_state=seed % 2**32) * (1 + 1j)
+    H = H + H.conj().T
+    R = dc.restrict(H)
+    assert R.dtype == np.float64 and abs(R - R.T).max() < 1e-14
+    assert np.isclose(x @ (R @ x), np.real(np.conj(z) @ (H @ z)))
+    assert np.array_equal(dc.points, np.concatenate([form.mesh.points, form.mesh.points]))
     assert dc.complex.counts == (2 * N, 2 * len(E), 2 * int((~form.is_branch).sum()))
     # lifts of regular faces are triangles of the cover; branch faces close up on the other sheet
     lifts = dc.face_lifts

@@ -34,7 +34,8 @@ def printed_larg(n, t):
     ti, tj, tk = t.T
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.select([(tk <= ti) & (tk <= tj), (ti <= tj) & (ti <= tk)],
-                         [np.pi * n / 3 * (1 + (tj - ti) / (1 - 3 * tk)), np.pi * n / 3 * (3 + (tk - tj) / (1 - 3 * ti))],
+                         [np.pi * n / 3 * (1 + (tj - ti) / (1 - 3 * tk)),
+                          np.pi * n / 3 * (3 + (tk - tj) / (1 - 3 * ti))],
                          np.pi * n / 3 * (5 + (ti - tk) / (1 - 3 * tj)))
 
 

@@ -197,7 +197,8 @@ def test_zero_faces_wind_n_times_and_are_continuous_off_the_zero(seed, n, r):
         p, q = p / p.sum(1, keepdims=True), q / q.sum(1, keepdims=True)
         fz = np.repeat(zf, len(ray))
         vp, vq = tex.evaluate(fz, np.tile(p, (zf.size, 1))), tex.evaluate(fz, np.tile(q, (zf.size, 1)))
-        assert np.allclose(np.cos(vp), np.cos(vq), atol=1e-6) and (n == 2 or np.allclose(np.sin(vp), np.sin(vq), atol=1e-6))
+        assert np.allclose(np.cos(vp), np.cos(vq), atol=1e-6)
+        assert n == 2 or np.allclose(np.sin(vp), np.sin(vq), atol=1e-6)
 
 
 @settings(max_examples=10, deadline=None)
@@ -255,5 +256,7 @@ def test_bad_sections_name_the_vertex():
         tex.evaluate(0, [[0.5, 0.5]])
     with pytest.raises(ShapeError):
         tex.evaluate([0.5], [[1, 0, 0]])
+    with pytest.raises(ShapeError, match="one per point"):
+        tex.evaluate([0, 1], [[1, 0, 0]] * 3)
     with pytest.raises(InvalidParameterError):
         tex.subdivision(0)

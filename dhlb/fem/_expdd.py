@@ -73,12 +73,24 @@ def _series(h: np.ndarray, shift: int) -> np.ndarray:
     return out_re + 1j * out_im
 
 
+_CHUNK = 8192       # columns per block: keeps the Taylor recursion in cache
+
+
 def _prefix_taylor(y: np.ndarray, need_all: bool) -> np.ndarray:
-    """Divided differences of ``exp`` at the prefixes of ``i*y`` (``y`` of shape ``(K, G)``, ``|y| <= 1``).
+    """Divided differences of ``exp`` at the prefixes of ``i*y`` (``y`` of shape ``(K, G)``, ``|y| <= 2``).
 
     Returns ``(K, G)`` complex: row ``d`` is ``exp[iy_0, ..., iy_d]`` (only the last row is
     filled when ``need_all`` is false).
     """
+    if y.shape[1] <= _CHUNK:
+        return _prefix_taylor_block(y, need_all)
+    out = np.empty(y.shape, dtype=complex)
+    for s in range(0, y.shape[1], _CHUNK):
+        out[:, s: s + _CHUNK] = _prefix_taylor_block(y[:, s: s + _CHUNK], need_all)
+    return out
+
+
+def _prefix_taylor_block(y: np.ndarray, need_all: bool) -> np.ndarray:
     k, g = y.shape
     out = np.zeros((k, g), dtype=complex)
     qs = _n_terms(float(np.abs(y).max()) if y.size else 0.0)

@@ -134,16 +134,17 @@ def curvature_tensor(omega, dim=None) -> np.ndarray:
     (0.5, -0.5, 0.5, 0.0)
     """
     arr, n, batched = parse_omega(omega, dim)
-    out = _tensor(arr, n)
+    out = np.moveaxis(tensor_last(arr, n), -1, 0)
     return out if batched else out[0]
 
 
-def _tensor(arr: np.ndarray, n: int) -> np.ndarray:
-    out = np.zeros((arr.shape[0], n + 1, n + 1, n + 1))
+def tensor_last(arr: np.ndarray, n: int) -> np.ndarray:
+    """The antisymmetric tensor with the simplex axis last: ``(n+1, n+1, n+1, m)``."""
+    out = np.zeros((n + 1, n + 1, n + 1, arr.shape[0]))
     for t, (a, b, c) in enumerate(local_triangles(n)):
         v = arr[:, t]
-        out[:, a, b, c] = out[:, b, c, a] = out[:, c, a, b] = v
-        out[:, b, a, c] = out[:, a, c, b] = out[:, c, b, a] = -v
+        out[a, b, c] = out[b, c, a] = out[c, a, b] = v
+        out[b, a, c] = out[a, c, b] = out[c, b, a] = -v
     return out
 
 
@@ -184,13 +185,13 @@ def local_gauge_connection(omega, dim=None) -> np.ndarray:
     [(1+0j), (1+0j), 1j]
     """
     arr, n, batched = parse_omega(omega, dim)
-    t = _tensor(arr, n)
+    t = tensor_last(arr, n)
     e = local_edges(n)
-    out = np.exp(1j * t[:, 0, e[:, 0], e[:, 1]])
+    out = np.exp(1j * t[0, e[:, 0], e[:, 1]]).T
     return out if batched else out[0]
 
 
-def parse_connection(connection, m: int, n: int, arr: np.ndarray, tensor: np.ndarray) -> np.ndarray:
+def parse_connection(connection, m: int, n: int, arr: np.ndarray) -> np.ndarray:
     """Validate ``(m, C(n+1,2))`` unit complex connection values against the curvature."""
     r = np.asarray(connection)
     ne = comb(n + 1, 2)

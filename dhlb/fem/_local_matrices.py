@@ -12,13 +12,13 @@ import numpy as np
 
 from dhlb.errors import ShapeError
 from dhlb.fem._local_data import (
-    _tensor,
     check_closed,
     local_edges,
     parse_connection,
     parse_gram,
     parse_omega,
     parse_volume,
+    tensor_last,
 )
 from dhlb.fem._moments import pair_moments
 
@@ -49,7 +49,11 @@ def _unit(n: int, *idx: int) -> np.ndarray:
 
 
 def _inputs(gram, volume, omega, connection, dim):
-    """Parse and broadcast; returns ``(G or None, vol, omega, n, tensor, r, batched)``."""
+    """Parse and broadcast.
+
+    Returns ``(G, vol, n, tensor, r, batched)`` with the simplex axis LAST: ``G (n+1, n+1, m)`` (or
+    None), ``vol (m,)``, ``tensor (n+1, n+1, n+1, m)``, ``r (C(n+1,2), m)``.
+    """
     g, sizes = None, {}
     if gram is not None:
         g, dim, b_g = parse_gram(gram)
@@ -62,46 +66,50 @@ def _inputs(gram, volume, omega, connection, dim):
         sizes["connection"] = np.shape(connection)[0]
     given = {k: v for k, v in sizes.items() if v is not None}
     m = max(given.values(), default=1)
-    bad = {k: v for k, v in given.items() if v != m}
-    if bad:
+    if any(v != m for v in given.values()):
         raise ShapeError(f"inconsistent numbers of simplices: {given}")
-    batched = bool(given)
     arr = np.broadcast_to(arr, (m, arr.shape[1]))
-    vol = np.broadcast_to(vol, (m,))
+    vol = np.ascontiguousarray(np.broadcast_to(vol, (m,)))
     if g is not None:
-        g = np.broadcast_to(g, (m, n + 1, n + 1))
+        g = np.ascontiguousarray(np.moveaxis(np.broadcast_to(g, (m, n + 1, n + 1)), 0, -1))
     check_closed(arr, n)
-    tensor = _tensor(arr, n)
+    tensor = tensor_last(arr, n)
     e = local_edges(n)
     if connection is None:
-        r = np.exp(1j * tensor[:, 0, e[:, 0], e[:, 1]])
+        r = np.exp(1j * tensor[0, e[:, 0], e[:, 1]])
     else:
-        r = parse_connection(connection, m, n, arr, tensor)
-    return g, vol, n, tensor, r, batched
+        r = np.ascontiguousarray(parse_connection(connection, m, n, arr).T)
+    return g, vol, n, tensor, r, bool(given)
+
+
+def _finish(out: np.ndarray, batched: bool) -> np.ndarray:
+    out = np.moveaxis(out, -1, 0)
+    return np.ascontiguousarray(out) if batched else out[0].copy()
 
 
 def _mass(vol, n, tensor, r, th=None):
-    m = vol.shape[0]
+    """``M[b, a, :]`` with the simplex axis last."""
+    m, nv = vol.shape[0], n + 1
     e = local_edges(n)
-    a, b = e[:, 0], e[:, 1]
-    out = np.zeros((m, n + 1, n + 1), dtype=complex)
-    diag = 2.0 / ((n + 1) * (n + 2))
-    out[:, np.arange(n + 1), np.arange(n + 1)] = diag * vol[:, None]
+    out = np.zeros((nv, nv, m), dtype=complex)
+    out[np.arange(nv), np.arange(nv)] = 2.0 / ((n + 1) * (n + 2)) * vol
     if len(e):
         if th is None:
             th = pair_moments(tensor, [(int(i), int(j), _unit(n, i, j)) for i, j in e])
-        off = r * vol[:, None] * th
-        out[:, b, a] = off
-        out[:, a, b] = np.conj(off)
+        off = r * vol * th
+        out[e[:, 1], e[:, 0]] = off
+        out[e[:, 0], e[:, 1]] = np.conj(off)
     return out
 
 
 def _dirichlet(g, vol, n, tensor, r):
-    m = vol.shape[0]
+    """``A[b, a, :]`` with the simplex axis last, and ``Θ_ab(a, b)`` per local edge (for the mass)."""
+    m, nv = vol.shape[0], n + 1
     e = local_edges(n)
-    a, b = e[:, 0], e[:, 1]
-    npair, nv = len(e), n + 1
     ls = [(k, q) for k in range(nv) for q in range(k, nv)]
+    sym = np.empty((nv, nv), dtype=int)          # position of Ξ(l, l') in the request list
+    for t, (k, q) in enumerate(ls):
+        sym[k, q] = sym[q, k] = t
     requests = []
     for i, j in e:
         i, j = int(i), int(j)
@@ -109,32 +117,32 @@ def _dirichlet(g, vol, n, tensor, r):
         requests += [(i, j, _unit(n, i, k)) for k in range(nv)]
         requests += [(i, j, _unit(n, j, k)) for k in range(nv)]
         requests += [(i, j, _unit(n, i, j, k, q)) for k, q in ls]
-    out = np.zeros((m, nv, nv), dtype=complex)
-    # diagonal: no curvature in the exponent, Θ terms cancel
-    qd = np.swapaxes(tensor, -1, -2) @ (g[:, None] @ tensor)       # (W^aᵀ G W^a), (m, n+1, n+1, n+1)
-    diag = g[:, np.arange(nv), np.arange(nv)] + np.einsum("malr,alr->ma", qd, _xi_diagonal(n))
-    out[:, np.arange(nv), np.arange(nv)] = vol[:, None] * diag
-    if npair == 0:
+    out = np.zeros((nv, nv, m), dtype=complex)
+    # diagonal: no curvature in the exponent and the Θ terms cancel
+    xid = _xi_diagonal(n)
+    for a in range(nv):
+        quad = np.einsum("klm,kqm,qrm->lrm", tensor[a], g, tensor[a], optimize=True)
+        out[a, a] = vol * (g[a, a] + np.einsum("lrm,lr->m", quad, xid[a]))
+    if len(e) == 0:
         return out, None
-    mom = pair_moments(tensor, requests).reshape(m, npair, -1)
-    lam = mom[:, :, 0]
-    th_a = mom[:, :, 1: 1 + nv]
-    th_b = mom[:, :, 1 + nv: 1 + 2 * nv]
-    xi_u = mom[:, :, 1 + 2 * nv:]
-    xi_full = np.empty((m, npair, nv, nv), dtype=complex)
-    for t, (k, q) in enumerate(ls):
-        xi_full[:, :, k, q] = xi_u[:, :, t]
-        xi_full[:, :, q, k] = xi_u[:, :, t]
-    wa, wb = tensor[:, a], tensor[:, b]                      # W^a[k, l] = Ω_akl, (m, P, n+1, n+1)
-    quad = np.swapaxes(wa, -1, -2) @ (g[:, None] @ wb)     # (W^aᵀ G W^b)_{l l'}
-    pa = (g[:, b, None, :] @ wa)[:, :, 0, :]                 # (G W^a)_{b l}
-    pb = (g[:, a, None, :] @ wb)[:, :, 0, :]                 # (G W^b)_{a l}
-    val = (g[:, a, b] * lam + np.einsum("mplr,mplr->mp", quad, xi_full)
-           + 1j * (np.einsum("mpl,mpl->mp", pa, th_a) - np.einsum("mpl,mpl->mp", pb, th_b)))
-    off = r * vol[:, None] * val
-    out[:, b, a] = off
-    out[:, a, b] = np.conj(off)
-    return out, th_a[:, np.arange(npair), b]
+    mom = pair_moments(tensor, requests).reshape(len(e), -1, m)
+    th_ab = np.empty((len(e), m), dtype=complex)
+    for p, (a, b) in enumerate(e):
+        lam = mom[p, 0]
+        th_a = mom[p, 1: 1 + nv]                       # Θ_ab(a, l)
+        th_b = mom[p, 1 + nv: 1 + 2 * nv]              # Θ_ab(b, l)
+        xi_ab = mom[p, 1 + 2 * nv:][sym]               # Ξ_ab(l, l'), (n+1, n+1, m)
+        wa, wb = tensor[a], tensor[b]                  # W^a[k, l] = Ω_akl
+        quad = np.einsum("klm,kqm,qrm->lrm", wa, g, wb, optimize=True)   # (W^aᵀ G W^b)_{l l'}
+        pa = np.einsum("km,klm->lm", g[b], wa)                             # (G W^a)_{b l}
+        pb = np.einsum("km,klm->lm", g[a], wb)                             # (G W^b)_{a l}
+        val = (g[a, b] * lam + np.einsum("lrm,lrm->m", quad, xi_ab)
+               + 1j * (np.einsum("lm,lm->m", pa, th_a) - np.einsum("lm,lm->m", pb, th_b)))
+        off = r[p] * vol * val
+        out[b, a] = off
+        out[a, b] = np.conj(off)
+        th_ab[p] = th_a[b]
+    return out, th_ab
 
 
 def local_mass_matrices(volume, omega, connection=None, *, dim=None) -> np.ndarray:
@@ -165,8 +173,7 @@ def local_mass_matrices(volume, omega, connection=None, *, dim=None) -> np.ndarr
     True
     """
     _, vol, n, tensor, r, batched = _inputs(None, volume, omega, connection, dim)
-    out = _mass(vol, n, tensor, r)
-    return out if batched else out[0]
+    return _finish(_mass(vol, n, tensor, r), batched)
 
 
 def local_dirichlet_matrices(gram, volume, omega, connection=None) -> np.ndarray:
@@ -196,8 +203,7 @@ def local_dirichlet_matrices(gram, volume, omega, connection=None) -> np.ndarray
     (True, True)
     """
     g, vol, n, tensor, r, batched = _inputs(gram, volume, omega, connection, None)
-    out = _dirichlet(g, vol, n, tensor, r)[0]
-    return out if batched else out[0]
+    return _finish(_dirichlet(g, vol, n, tensor, r)[0], batched)
 
 
 def local_matrices(gram, volume, omega, connection=None) -> tuple[np.ndarray, np.ndarray]:
@@ -214,4 +220,4 @@ def local_matrices(gram, volume, omega, connection=None) -> tuple[np.ndarray, np
     g, vol, n, tensor, r, batched = _inputs(gram, volume, omega, connection, None)
     dirichlet, th = _dirichlet(g, vol, n, tensor, r)
     mass = _mass(vol, n, tensor, r, th)
-    return (mass, dirichlet) if batched else (mass[0], dirichlet[0])
+    return _finish(mass, batched), _finish(dirichlet, batched)

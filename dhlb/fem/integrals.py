@@ -78,6 +78,7 @@ from dhlb.fem._local_data import (
     local_gauge_connection,
     local_triangles,
     parse_omega,
+    tensor_last,
 )
 
 __all__ = [
@@ -169,7 +170,7 @@ def _pair_integral(omega, idx, extra, dim):
     p = np.zeros(n + 1, dtype=int)
     for v in extra:
         p[v] += 1
-    val = pair_moments(curvature_tensor(arr, n), [(int(idx[0]), int(idx[1]), p)])[:, 0]
+    val = pair_moments(tensor_last(arr, n), [(int(idx[0]), int(idx[1]), p)])[0]
     return val if batched else val[0]
 
 

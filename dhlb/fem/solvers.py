@@ -173,6 +173,7 @@ class EigenResult:
     converged : bool
     backend : str, name of the factorization backend
     shift : float, the shift ``σ`` that was factorized (``A − σM``)
+    block_size : int, number of vectors iterated (each iteration solves that many right-hand sides)
     """
 
     eigenvalues: np.ndarray
@@ -182,6 +183,7 @@ class EigenResult:
     converged: bool
     backend: str
     shift: float
+    block_size: int = 0
 
 
 def _fix_phase(U: np.ndarray) -> np.ndarray:
@@ -345,9 +347,9 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
             raise InvalidOperatorError(f"A is not positive semidefinite: found the eigenvalue {lam[0]:.6g} "
                                        f"< -ε = {shift:.3g}; pass sigma= to search near a chosen value")
         if np.all(ok):
-            return EigenResult(lam, _fix_phase(Uk), it, eta, True, be.name, shift)
+            return EigenResult(lam, _fix_phase(Uk), it, eta, True, be.name, shift, p)
         lam_old = lam
-    res = EigenResult(lam, _fix_phase(Uk), maxiter, eta, False, be.name, shift)
+    res = EigenResult(lam, _fix_phase(Uk), maxiter, eta, False, be.name, shift, p)
     err = ConvergenceError(f"smallest_eigenpairs: not converged after {maxiter} iterations "
                            f"(largest backward error {eta.max():.3g} > tol = {tol:.3g}); increase maxiter, "
                            "loosen tol, or pass a better v0")

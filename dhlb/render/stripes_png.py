@@ -117,7 +117,8 @@ def render_stripes_png(path, texture, *, k: int | None = None, view=(1.0, -1.6, 
     ff = np.repeat(faces, nt)
     g = fn(texture.evaluate(ff, np.tile(cen, (nf, 1))))
     g = np.nan_to_num(0.5 * (1 + g), nan=0.5)
-    col = np.asarray(dark, float)[None, :3] + g[:, None] * (np.asarray(light, float) - np.asarray(dark, float))[None, :3]
+    c0, c1 = np.asarray(dark, float)[:3], np.asarray(light, float)[:3]
+    col = c0[None, :] + g[:, None] * (c1 - c0)[None, :]
     col = np.clip(col * lam[ff][:, None], 0, 1)
     X = np.einsum("tc,fcd->ftd", nodes, P[F[faces]] - c)  # (nf, K, 3)
     Y = X[:, tris]  # (nf, nt, 3, 3)

@@ -21,9 +21,9 @@ Examples
 """
 
 from dhlb.stripes.oneform import DoubleCover, StripeForm, stripe_form
-from dhlb.stripes.texture import StripeTexture, larg, texture_coordinates
+from dhlb.stripes.texture import StripeTexture, Subdivision, larg, texture_coordinates
 from dhlb.stripes.isolines import Isolines, isolines
 from dhlb.stripes.output import stripes_sidecar, write_stripes_obj
 
-__all__ = ["DoubleCover", "StripeForm", "stripe_form", "StripeTexture", "larg", "texture_coordinates",
+__all__ = ["DoubleCover", "StripeForm", "stripe_form", "StripeTexture", "Subdivision", "larg", "texture_coordinates",
            "Isolines", "isolines", "stripes_sidecar", "write_stripes_obj"]

@@ -64,8 +64,13 @@ class Isolines:
     closed: np.ndarray
 
 
-def _march(sub, levels):
-    """Crossing points (face, bary) of each level segment: arrays for the first and the second end."""
+def _march(sub, levels, corners):
+    """Crossing points (face, bary) of each level segment: arrays for the first and the second end.
+
+    ``corners`` (T, 3, 3) are the positions of the sub-triangle corners; each crossed side is
+    interpolated from its lexicographically smaller end, so that both faces of a mesh edge
+    compute the same point up to the rounding of the values.
+    """
     ends = [[], []]
     for L0 in levels:
         vmin, vmax = sub.alpha.min(axis=1), sub.alpha.max(axis=1)
@@ -82,6 +87,12 @@ def _march(sub, levels):
         which = np.argsort(~cross, axis=1, kind="stable")[:, :2]
         r = np.arange(tri.size)[:, None]
         a, b = _SIDES[which, 0], _SIDES[which, 1]
+        C = corners[tri]
+        d = C[r, b] - C[r, a]
+        nz = d != 0
+        first = np.take_along_axis(d, np.argmax(nz, axis=2)[..., None], axis=2)[..., 0]
+        swap = first < 0
+        a, b = np.where(swap, b, a), np.where(swap, a, b)
         va, vb = v[r, a], v[r, b]
         t = (L[:, None] - va) / (vb - va)
         B = sub.bary[tri]
@@ -170,7 +181,8 @@ def isolines(texture, level: float = 0.0, *, refine: int = 8, tol: float | None 
     refine : int
         Grid size in each cone of a zero face (other faces are exact).
     tol : float, optional
-        Distance below which crossing points are merged (default ``1e-7 ×`` mean edge length).
+        Distance below which crossing points are merged (default ``1e-10 ×`` mean edge length). Isolines
+        closer than this (e.g. the two sides of a hairpin at a level within ~tol of a fold) are merged.
 
     Examples
     --------
@@ -184,13 +196,14 @@ def isolines(texture, level: float = 0.0, *, refine: int = 8, tol: float | None 
     if not -np.pi <= c < np.pi:
         c = float(np.mod(c + np.pi, TWO_PI) - np.pi)
     levels = [c] if texture.form.n == 1 or c in (0.0, -np.pi) else [c, -c]
-    (f0, b0), (f1, b1) = _march(sub, levels)
+    corners = np.einsum("tcj,tjd->tcd", sub.bary, mesh.points[mesh.faces[sub.face]])
+    (f0, b0), (f1, b1) = _march(sub, levels, corners)
     faces = np.concatenate([f0, f1])
     bary = np.concatenate([b0, b1])
     P = np.einsum("pc,pcd->pd", bary, mesh.points[mesh.faces[faces]])
     E = mesh.complex.simplices(1)
     mean_edge = float(np.mean(np.linalg.norm(mesh.points[E[:, 1]] - mesh.points[E[:, 0]], axis=1)))
-    tol = 1e-7 * mean_edge if tol is None else float(tol)
+    tol = 1e-10 * mean_edge if tol is None else float(tol)
     if not tol >= 0:
         raise InvalidParameterError(f"tol must be >= 0, got {tol!r}")
     n = len(P)

@@ -32,10 +32,9 @@ on the double cover is one ψ_i ∈ C ≅ R² per vertex; the energy term of edg
 ``η_ij = C R(ω̂_ij)`` (reflection, ``C = diag(1, −1)`` the conjugation) on ``v = (Re ψ, Im ψ)``:
 :attr:`StripeForm.bundle` is this :class:`~dhlb.bundles.VectorBundle` over ``"R"``. The
 holonomy of a face has determinant ``s_ij s_jk s_ki``: branch triangles are exactly the faces
-whose holonomy is a reflection. :attr:`StripeForm.double_cover` gives the equivalent complex
-data: the double-cover complex K̃ (regular faces lifted twice, branch faces omitted) with the
-hermitian line bundle ``r = e^{iω̃}``, ``Ω = dω̃``; a conjugate-symmetric ψ lifts to
-``ψ̃ = (ψ, ψ̄)`` and its energy there is twice the energy in the real bundle.
+whose holonomy is a reflection. :attr:`StripeForm.double_cover` is the equivalent complex data
+(:class:`DoubleCover`): K̃ with the line bundle ``e^{iω̃}``, ``Ω = dω̃``, where ``ψ̃ = (ψ, ψ̄)``
+has twice the energy of ψ in the real bundle.
 
 Examples
 --------
@@ -58,6 +57,7 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+import scipy.sparse as sp
 
 from dhlb.bundles.hermitian import HermitianLineBundle
 from dhlb.bundles.vector_bundle import VectorBundle
@@ -81,18 +81,25 @@ class DoubleCover:
     walked from its first corner (for a branch face the walk ends on ``τ(p) = p ± N``, and the
     face has no lift in K̃).
 
+    The conjugate-symmetric functions are the real subspace ``ψ̃ = P x`` of :meth:`embedding`
+    (``x`` interleaved ``(Re ψ_0, Im ψ_0, Re ψ_1, …)``); a Hermitian form H on K̃ restricts to the
+    real symmetric ``Re(Pᴴ H P)`` (:meth:`restrict`), e.g. a Dirichlet and a mass matrix of
+    ``bundle`` over the geometry ``points`` give the real 2N × 2N eigenproblem of §4.1–§4.2.
+
     Attributes
     ----------
-    complex : SimplicialComplex on the vertices ``0 .. 2N−1``
+    complex : SimplicialComplex on the vertices ``0 .. 2N−1`` (regular faces lifted twice, all edges)
     bundle : HermitianLineBundle, connection ``e^{iω̃}`` and curvature ``dω̃``
     n_base_vertices : int
     face_lifts : (m, 3) int64
+    points : (2N, 3) float, the position of each cover vertex (that of the vertex below it)
     """
 
     complex: SimplicialComplex
     bundle: HermitianLineBundle
     n_base_vertices: int
     face_lifts: np.ndarray
+    points: np.ndarray
 
     def lift(self, psi) -> np.ndarray:
         """The conjugate-symmetric lift ``ψ̃ = (ψ, ψ̄)`` of one complex value per base vertex."""
@@ -101,14 +108,31 @@ class DoubleCover:
             raise ShapeError(f"psi needs one value per base vertex ({self.n_base_vertices}), got {z.size}")
         return np.concatenate([z, np.conj(z)])
 
+    def embedding(self) -> sp.csr_matrix:
+        """The real-linear map ``P`` (2N × 2N, complex) with ``P x = lift(x[0::2] + 1j x[1::2])``."""
+        N = self.n_base_vertices
+        v = np.arange(N)
+        rows = np.concatenate([v, v, v + N, v + N])
+        cols = np.concatenate([2 * v, 2 * v + 1, 2 * v, 2 * v + 1])
+        vals = np.concatenate([np.ones(N), np.full(N, 1j), np.ones(N), np.full(N, -1j)])
+        return sp.csr_matrix((vals, (rows, cols)), shape=(2 * N, 2 * N))
+
+    def restrict(self, matrix) -> sp.csr_matrix:
+        """``Re(Pᴴ H P)``: a Hermitian form on the cover restricted to conjugate-symmetric functions (real, 2N × 2N)."""
+        H = sp.csr_matrix(matrix)
+        n = 2 * self.n_base_vertices
+        if H.shape != (n, n):
+            raise ShapeError(f"the matrix must be {n} x {n} (one row per vertex of the double cover), got {H.shape}")
+        P = self.embedding()
+        return sp.csr_matrix((P.conj().T @ H @ P).real)
+
 
 def _vertex_name(mesh: SurfaceMesh, v: int) -> str:
     return f"vertex {int(mesh.vertex_labels[v])}"
 
 
 def _edge_name(mesh: SurfaceMesh, e: int) -> str:
-    a, b = (int(x) for x in mesh.vertex_labels[mesh.complex.simplices(1)[e]])
-    return f"edge ({a}, {b})"
+    return "edge ({}, {})".format(*(int(x) for x in mesh.vertex_labels[mesh.complex.simplices(1)[e]]))
 
 
 def _per_vertex_positive(mesh: SurfaceMesh, value, what: str) -> np.ndarray:
@@ -277,11 +301,13 @@ class StripeForm:
         om[Xt.index(1, np.stack([a, b], 1))] = np.where(a < b, val, -val)
         L = HermitianLineBundle(Xt, np.exp(1j * om), Xt.coboundary(1) @ om if Xt.dim >= 2 else np.zeros(0))
         lifts.setflags(write=False)
-        return DoubleCover(Xt, L, N, lifts)
+        pts = np.concatenate([self.mesh.points, self.mesh.points])
+        pts.setflags(write=False)
+        return DoubleCover(Xt, L, N, lifts, pts)
 
     def __repr__(self) -> str:
-        return (f"StripeForm(n={self.n}, method={self.method!r}, branch_faces={int(self.is_branch.sum())}, "
-                f"{self.mesh!r})")
+        nb = int(self.is_branch.sum())
+        return f"StripeForm(n={self.n}, method={self.method!r}, branch_faces={nb}, {self.mesh!r})"
 
 
 def _directions(tb: TangentBundle, directions, method: str) -> tuple[np.ndarray, np.ndarray]:

@@ -36,7 +36,6 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 
@@ -155,7 +154,10 @@ class StripeTexture:
         f = np.asarray(faces)
         if not np.issubdtype(f.dtype, np.integer):
             raise ShapeError(f"faces must be integers (rows of mesh.faces), got dtype {f.dtype}")
-        f = np.broadcast_to(f.astype(np.int64).reshape(-1) if f.ndim else f.astype(np.int64), (len(t),))
+        f = f.astype(np.int64).reshape(-1)
+        if f.size not in (1, len(t)):
+            raise ShapeError(f"faces must be one face or one per point ({len(t)}), got {f.size}")
+        f = np.broadcast_to(f, (len(t),))
         bad = (f < 0) | (f >= self.mesh.n_faces)
         if np.any(bad):
             raise InvalidParameterError(f"face {int(f[np.argmax(bad)])} is not a row of mesh.faces "
