@@ -68,7 +68,7 @@ def test_isolines_on_closed_surfaces(name, seed, n, c):
         count = np.bincount(np.argmin(d, axis=1)[df >= 1e-12], minlength=len(zp))
     else:
         count = np.zeros(len(zp), np.int64)
-    per_level = 1 if n == 1 or np.isclose(np.sin(c), 0, atol=1e-12) else 2
+    per_level = 1 if n == 1 or abs(np.sin(c)) < 1e-6 else 2  # line fields: ±c (snapped to one level near 0, π)
     assert np.array_equal(count, per_level * np.abs(tex.zero_index[tex.zero_faces]))
 
 

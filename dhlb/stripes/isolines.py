@@ -177,7 +177,8 @@ def isolines(texture, level: float = 0.0, *, refine: int = 8, tol: float | None 
     ----------
     texture : StripeTexture
     level : float
-        The value c; for line fields (n = 2) the curves ``α ≡ ±c`` (where ``cos α = cos c``).
+        The value c; for line fields (n = 2) the curves ``α ≡ ±c`` (where ``cos α = cos c``); there a
+        level within 1e-6 of 0 or π is snapped to it (``±c`` would be two curves closer than ``tol``).
     refine : int
         Grid size in each cone of a zero face (other faces are exact).
     tol : float, optional
@@ -195,6 +196,8 @@ def isolines(texture, level: float = 0.0, *, refine: int = 8, tol: float | None 
     sub = texture.subdivision(refine)
     if not -np.pi <= c < np.pi:
         c = float(np.mod(c + np.pi, TWO_PI) - np.pi)
+    if texture.form.n == 2 and abs(np.sin(c)) < 1e-6:  # ±c would be two nearly coincident curves: snap
+        c = 0.0 if abs(c) < 1.0 else -np.pi
     levels = [c] if texture.form.n == 1 or c in (0.0, -np.pi) else [c, -c]
     corners = np.einsum("tcj,tjd->tcd", sub.bary, mesh.points[mesh.faces[sub.face]])
     (f0, b0), (f1, b1) = _march(sub, levels, corners)
