@@ -16,16 +16,8 @@ from dhlb.errors import (
     NotClosedError,
 )
 from dhlb.topology.homology import cohomology
-from tests.strategies import closed_manifolds, closed_surfaces, pure_simplex_lists, rp2, simplex_lists, sphere, torus7
+from tests.strategies import closed_manifolds, closed_surfaces, rich_complexes, rp2, sphere, torus7
 
-
-def rich_complexes(max_dim: int = 4):
-    """Random complexes of dimension 2..max_dim with enough simplices to have loops and cycles."""
-    options = [pure_simplex_lists(dim=2, max_vertices=8, min_size=4, max_size=18),
-               simplex_lists(max_vertices=7, max_dim=max_dim, min_size=5, max_size=16)]
-    if max_dim >= 3:
-        options.append(pure_simplex_lists(dim=3, max_vertices=7, min_size=2, max_size=10))
-    return st.one_of(*options).map(SimplicialComplex)
 
 TET = SimplicialComplex(sphere(2))  # boundary of the tetrahedron, fundamental cycle [1, -1, 1, -1]
 

@@ -150,7 +150,6 @@ def projective_space(n: int, return_points: bool = False):
     0
     """
     n = check_int(n, "n", 0)
-    d = n + 1
     faces = _cross_polytope_flags(n)  # (m, d, d)
     first = np.argmax(faces != 0, axis=2)
     lead = np.take_along_axis(faces, first[:, :, None], axis=2)

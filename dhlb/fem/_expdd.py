@@ -37,7 +37,7 @@ __all__ = ["expi_divided_difference", "divided_difference_columns"]
 
 _GAP = 8.0          # single-linkage gap between clusters
 _RADIUS = 2.0       # Taylor radius of a centred cluster without squaring
-_THETA = 1.0        # Taylor radius after scaling (squaring path)
+_THETA = 0.25       # Taylor radius after scaling (squaring path)
 _QMAX = 40          # cap on Taylor terms (radius 2 needs 27)
 
 
@@ -113,6 +113,15 @@ def _prefix_taylor_block(y: np.ndarray, need_all: bool) -> np.ndarray:
 
 def _prefix_squaring(y: np.ndarray) -> np.ndarray:
     """Like :func:`_prefix_taylor` (all prefixes) for columns of any radius, by scaling and squaring."""
+    if y.shape[1] <= _CHUNK:
+        return _prefix_squaring_block(y)
+    out = np.empty(y.shape, dtype=complex)
+    for s in range(0, y.shape[1], _CHUNK):
+        out[:, s: s + _CHUNK] = _prefix_squaring_block(y[:, s: s + _CHUNK])
+    return out
+
+
+def _prefix_squaring_block(y: np.ndarray) -> np.ndarray:
     k, g = y.shape
     rad = np.abs(y).max(axis=0)
     s = np.maximum(0, np.ceil(np.log2(np.maximum(rad, 1e-300) / _THETA))).astype(int)
