@@ -11,10 +11,11 @@ from hypothesis import strategies as st
 
 from dhlb import SimplicialComplex
 from dhlb.errors import InvalidSimplexError, NonManifoldError, SimplexNotFoundError
-from dhlb.topology.structure import (barycentric_subdivision, boundary_complex, closed_star, coface_counts,
+from dhlb.topology.structure import (boundary_complex, closed_star, coface_counts,
                                      components, connected_components, incidence, link,
-                                     link_component_counts, parent_indices, relabeled, skeleton, star,
+                                     link_component_counts, parent_indices, skeleton, star,
                                      subcomplex, subfaces)
+from dhlb.topology.subdivision import barycentric_subdivision, relabeled
 from tests.strategies import balls, complexes, pure_simplex_lists, simplex_lists, sphere, torus7
 
 

@@ -23,13 +23,8 @@ from dhlb.topology.manifold import (
     manifold_report,
     require_manifold,
 )
-from dhlb.topology.structure import (
-    closed_star,
-    components,
-    incidence,
-    relabeled,
-    subcomplex,
-)
+from dhlb.topology.structure import closed_star, components, incidence, subcomplex
+from dhlb.topology.subdivision import barycentric_subdivision, relabeled
 
 __all__ = [
     "SimplicialComplex",
@@ -53,6 +48,7 @@ __all__ = [
     "closed_star",
     "components",
     "incidence",
+    "barycentric_subdivision",
     "relabeled",
     "subcomplex",
 ]

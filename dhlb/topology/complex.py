@@ -310,8 +310,8 @@ class SimplicialComplex:
         return boundary_complex(self)
 
     def barycentric_subdivision(self):
-        """Barycentric subdivision (see :func:`dhlb.topology.structure.barycentric_subdivision`)."""
-        from dhlb.topology.structure import barycentric_subdivision
+        """Barycentric subdivision (see :func:`dhlb.topology.subdivision.barycentric_subdivision`)."""
+        from dhlb.topology.subdivision import barycentric_subdivision
 
         return barycentric_subdivision(self)
 

@@ -1,0 +1,91 @@
+"""Barycentric subdivision and relabeling of simplicial complexes (vectorized)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from dhlb.errors import InvalidSimplexError
+from dhlb.topology.complex import SimplicialComplex
+from dhlb.topology.structure import _from_blocks, maximal_mask
+
+__all__ = ["barycentric_subdivision", "relabeled"]
+
+
+def barycentric_subdivision(X: SimplicialComplex) -> tuple[SimplicialComplex, np.ndarray]:
+    """The barycentric subdivision Sd X and the map from its vertices to the simplices of X.
+
+    The vertices of Sd X are the simplices of X, numbered by dimension then row: the k-simplex
+    with row r is vertex ``sum(counts[:k]) + r``. A j-simplex of Sd X is a flag
+    σ_0 ⊂ σ_1 ⊂ … ⊂ σ_j of simplices of X.
+
+    Returns
+    -------
+    Sd : SimplicialComplex
+    vertex_map : ndarray, shape (n_vertices(Sd), 2)
+        ``vertex_map[w] = (k, row)`` of the simplex of X that vertex w stands for.
+
+    Examples
+    --------
+    >>> Sd, vmap = barycentric_subdivision(SimplicialComplex([(0, 1, 2)]))
+    >>> Sd.counts, Sd.euler_characteristic
+    ((7, 12, 6), 1)
+    >>> vmap[-1].tolist()
+    [2, 0]
+    """
+    counts = np.asarray(X.counts, np.int64)
+    offset = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    blocks = []
+    for m in range(X.dim + 1):
+        top = np.nonzero(maximal_mask(X, m))[0]
+        if top.size == 0:
+            continue
+        flags = []
+        for perm in _permutations(m + 1):
+            cols = np.empty((top.size, m + 1), np.int64)
+            cur = top
+            cols[:, m] = offset[m] + cur
+            for i in range(m, 0, -1):  # drop vertex perm[i] (its rank among perm[:i+1]) from sigma_i
+                pos = int(np.sum(perm[:i] < perm[i]))
+                cur = np.asarray(X.faces(i))[cur, pos]
+                cols[:, i - 1] = offset[i - 1] + cur
+            flags.append(cols)
+        blocks.append(np.concatenate(flags))
+    vertex_map = np.column_stack([np.repeat(np.arange(counts.size), counts),
+                                  np.concatenate([np.arange(c) for c in counts])]).astype(np.int64)
+    return _from_blocks(blocks), vertex_map
+
+
+def _permutations(n: int) -> np.ndarray:
+    from itertools import permutations
+
+    return np.array(list(permutations(range(n))), np.int64)
+
+
+def relabeled(X: SimplicialComplex, permutation) -> SimplicialComplex:
+    """The same complex with compact vertex v renamed ``permutation[v]``.
+
+    ``permutation`` holds one distinct non-negative integer label per vertex of X.
+
+    Examples
+    --------
+    >>> X = SimplicialComplex([(0, 1, 2), (2, 3)])
+    >>> relabeled(X, [3, 2, 1, 0]).simplices(2).tolist()
+    [[1, 2, 3]]
+    """
+    perm = np.asarray(permutation)
+    if perm.ndim != 1 or perm.shape[0] != X.n_vertices:
+        raise InvalidSimplexError(f"a relabeling needs one label per vertex ({X.n_vertices}), "
+                                  f"got shape {perm.shape}")
+    if perm.dtype == bool or not np.issubdtype(perm.dtype, np.integer):
+        raise InvalidSimplexError(f"new vertex labels must be integers, got dtype {perm.dtype}")
+    perm = perm.astype(np.int64)
+    if np.any(perm < 0):
+        v = int(np.argmax(perm < 0))
+        raise InvalidSimplexError(f"new label {int(perm[v])} of vertex {v} is negative")
+    uniq, first, cnt = np.unique(perm, return_index=True, return_counts=True)
+    if np.any(cnt > 1):
+        lab = uniq[cnt > 1][0]
+        a, b = np.nonzero(perm == lab)[0][:2]
+        raise InvalidSimplexError(f"vertices {a} and {b} both get the new label {int(lab)}; "
+                                  f"a relabeling must be injective")
+    return _from_blocks([perm[X.simplices(j)[maximal_mask(X, j)]] for j in range(X.dim + 1)])
