@@ -21,7 +21,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from dhlb.errors import NonFiniteError, ShapeError
-from dhlb.fem._local_matrices import local_dirichlet_matrices, local_mass_matrices, local_matrices
+from dhlb.fem._fast_local import fast_local_matrices
+from dhlb.fem._local_matrices import local_mass_matrices
 from dhlb.topology.structure import subfaces
 
 __all__ = ["mass_matrix", "dirichlet_matrix", "bundle_matrices", "lumped_mass"]
@@ -53,14 +54,15 @@ def _local_data(bundle, geometry):
     return X, rows, vol, omega, r
 
 
-def _scatter(rows: np.ndarray, local: np.ndarray, n_vertices: int) -> sp.csr_matrix:
-    """Sum ``local[s, b, a]`` into ``K[rows[s, b], rows[s, a]]``."""
-    k = rows.shape[1]
-    I = np.repeat(rows, k, axis=1).ravel()
-    J = np.tile(rows, (1, k)).ravel()
-    K = sp.coo_matrix((local.reshape(-1), (I, J)), shape=(n_vertices, n_vertices)).tocsr()
-    K.sum_duplicates()
-    return K
+def _scatter(X, local: np.ndarray) -> sp.csr_matrix:
+    """Sum ``local[s, b, a]`` into ``K[v_b, v_a]`` (``v = X.simplices(n)[s]``) on the vertex-adjacency pattern."""
+    adj = X.vertex_adjacency
+    pos = X.top_entry_positions.ravel()
+    local = local.reshape(-1)
+    nnz = adj.indices.size
+    data = np.bincount(pos, weights=local.real, minlength=nnz).astype(complex)
+    data.imag = np.bincount(pos, weights=local.imag, minlength=nnz)
+    return sp.csr_matrix((data, adj.indices.copy(), adj.indptr.copy()), shape=(X.n_vertices, X.n_vertices))
 
 
 def _weights(weights, m: int) -> np.ndarray:
@@ -109,10 +111,14 @@ def mass_matrix(bundle, geometry, *, lumped: bool = False, weights=None) -> sp.c
         w = vol if weights is None else vol * _weights(weights, vol.size)
         diag = np.bincount(rows.ravel(), weights=np.repeat(w / (n + 1), n + 1), minlength=X.n_vertices)
         return sp.diags(diag.astype(complex), format="csr")
-    local = local_mass_matrices(vol, omega, r, dim=n)
+    if n in (2, 3):
+        gram = np.asarray(geometry.barycentric_gradient_gram, dtype=float)
+        local = fast_local_matrices(gram, vol, omega, r)[0]
+    else:
+        local = local_mass_matrices(vol, omega, r, dim=n)
     if weights is not None:
         local = local * _weights(weights, vol.size)[:, None, None]
-    return _scatter(rows, local, X.n_vertices)
+    return _scatter(X, local)
 
 
 def dirichlet_matrix(bundle, geometry) -> sp.csr_matrix:
@@ -131,7 +137,7 @@ def dirichlet_matrix(bundle, geometry) -> sp.csr_matrix:
     """
     X, rows, vol, omega, r = _local_data(bundle, geometry)
     gram = np.asarray(geometry.barycentric_gradient_gram, dtype=float)
-    return _scatter(rows, local_dirichlet_matrices(gram, vol, omega, r), X.n_vertices)
+    return _scatter(X, fast_local_matrices(gram, vol, omega, r)[1])
 
 
 def bundle_matrices(bundle, geometry, *, lumped: bool = False) -> tuple[sp.csr_matrix, sp.csr_matrix]:
@@ -148,11 +154,10 @@ def bundle_matrices(bundle, geometry, *, lumped: bool = False) -> tuple[sp.csr_m
     """
     X, rows, vol, omega, r = _local_data(bundle, geometry)
     gram = np.asarray(geometry.barycentric_gradient_gram, dtype=float)
+    Ml, Al = fast_local_matrices(gram, vol, omega, r)
     if lumped:
-        A = _scatter(rows, local_dirichlet_matrices(gram, vol, omega, r), X.n_vertices)
-        return A, mass_matrix(bundle, geometry, lumped=True)
-    Ml, Al = local_matrices(gram, vol, omega, r)
-    return _scatter(rows, Al, X.n_vertices), _scatter(rows, Ml, X.n_vertices)
+        return _scatter(X, Al), mass_matrix(bundle, geometry, lumped=True)
+    return _scatter(X, Al), _scatter(X, Ml)
 
 
 def lumped_mass(geometry) -> np.ndarray:

@@ -9,6 +9,7 @@ The structural operations (star, link, skeleta, components, subdivision) live in
 from __future__ import annotations
 
 from functools import cached_property
+from typing import NamedTuple
 
 import numpy as np
 import scipy.sparse as sp
@@ -17,7 +18,17 @@ from dhlb.errors import InvalidSimplexError, SimplexNotFoundError
 from dhlb.topology import _keys
 from dhlb.topology._input import parse_rows, parse_simplices
 
-__all__ = ["SimplicialComplex"]
+__all__ = ["SimplicialComplex", "VertexAdjacency"]
+
+
+class VertexAdjacency(NamedTuple):
+    """CSR pattern of vertex adjacency; see :attr:`SimplicialComplex.vertex_adjacency`."""
+
+    indptr: np.ndarray
+    indices: np.ndarray
+    diagonal: np.ndarray
+    upper: np.ndarray
+    lower: np.ndarray
 
 
 class SimplicialComplex:
@@ -258,6 +269,58 @@ class SimplicialComplex:
             mats.append(sp.csc_matrix((signs, (f.ravel(), cols)), shape=(self.n_simplices(k - 1), n_k)).tocsr())
         mats.append(sp.csr_matrix((self.n_simplices(self._dim), 0), dtype=np.int64))
         return mats
+
+    @cached_property
+    def vertex_adjacency(self) -> "VertexAdjacency":
+        """CSR pattern of the vertex adjacency (diagonal + both directions of every edge).
+
+        Operators on vertex functions (mass, Laplacians) share this pattern; ``upper[e]`` and
+        ``lower[e]`` are the data positions of the entries ``(i, j)`` and ``(j, i)`` of the
+        canonical edge ``e = (i < j)``, ``diagonal[v]`` that of ``(v, v)``.
+
+        Examples
+        --------
+        >>> adj = SimplicialComplex([(0, 1, 2)]).vertex_adjacency
+        >>> adj.indptr.tolist(), adj.indices.tolist(), adj.upper.tolist()
+        ([0, 3, 6, 9], [0, 1, 2, 0, 1, 2, 0, 1, 2], [1, 2, 5])
+        """
+        N = self._n
+        E = self._rows[1] if self._dim >= 1 else np.zeros((0, 2), np.int64)
+        i = np.concatenate([np.arange(N), E[:, 0], E[:, 1]])
+        j = np.concatenate([np.arange(N), E[:, 1], E[:, 0]])
+        order = np.lexsort((j, i))
+        pos = np.empty(i.size, np.int64)
+        pos[order] = np.arange(i.size)
+        indptr = np.zeros(N + 1, np.int64)
+        np.cumsum(np.bincount(i, minlength=N), out=indptr[1:])
+        n1 = E.shape[0]
+        out = VertexAdjacency(indptr, j[order], pos[:N], pos[N:N + n1], pos[N + n1:])
+        for a in out:
+            a.setflags(write=False)
+        return out
+
+    @cached_property
+    def top_entry_positions(self) -> np.ndarray:
+        """Shape ``(n_top, k, k)``, ``k = dim + 1``: data position in :attr:`vertex_adjacency` of the
+        entry ``(v_b, v_a)`` for the local vertices ``a, b`` of each top simplex ``v = simplices(dim)[s]``.
+
+        Summing per-simplex local matrices into a global vertex operator is one ``bincount``.
+        """
+        from dhlb.topology.structure import subfaces
+
+        n = self._dim
+        rows = self._rows[n]
+        adj = self.vertex_adjacency
+        pos = np.empty((rows.shape[0], n + 1, n + 1), np.int64)
+        for a in range(n + 1):
+            pos[:, a, a] = adj.diagonal[rows[:, a]]
+        if n >= 1:
+            edges = subfaces(self, n, 1)
+            for p, (a, b) in enumerate(_keys.combination_columns(n + 1, 2).tolist()):
+                pos[:, b, a] = adj.lower[edges[:, p]]  # v_a < v_b: (v_b, v_a) is below the diagonal
+                pos[:, a, b] = adj.upper[edges[:, p]]
+        pos.setflags(write=False)
+        return pos
 
     def maximal_simplices(self) -> list[np.ndarray]:
         """For each k, the k-simplices that are faces of no (k+1)-simplex."""

@@ -109,9 +109,18 @@ def subfaces(X: SimplicialComplex, j: int, k: int) -> np.ndarray:
         return rows.astype(np.int64)
     if k == j - 1:
         return np.asarray(X.faces(j))[:, ::-1]  # face omitting i is the i-th from the end in lex order
-    cols = _keys.combination_columns(j + 1, k + 1)
-    sub = rows[:, cols].reshape(-1, k + 1)
-    return X.index(k, X.vertex_labels[sub]).reshape(rows.shape[0], cols.shape[0])
+    # recursion over facets: the k-face S of a j-simplex is a k-face of the facet omitting the
+    # largest local vertex not in S (pure index arithmetic, no look-ups)
+    facets = np.asarray(X.faces(j))
+    sub = subfaces(X, j - 1, k)
+    inner = {tuple(c): p for p, c in enumerate(_keys.combination_columns(j, k + 1).tolist())}
+    combos = _keys.combination_columns(j + 1, k + 1).tolist()
+    out = np.empty((rows.shape[0], len(combos)), dtype=np.int64)
+    for c, S in enumerate(combos):
+        omit = max(set(range(j + 1)) - set(S))
+        rel = tuple(v if v < omit else v - 1 for v in S)
+        out[:, c] = sub[facets[:, omit], inner[rel]]
+    return out
 
 
 def coface_counts(X: SimplicialComplex, k: int) -> np.ndarray:
