@@ -49,7 +49,9 @@ def test_hermitian_psd_for_random_bundles(seed, shape, scale):
     A, M = bundle_matrices(L, EuclideanComplex(X, points=P))
     _check_hermitian_psd(A, M)
     # the two single-purpose assemblers agree with the shared one
-    assert abs(A - dirichlet_matrix(L, EuclideanComplex(X, points=P))).max() <= 1e-13 * abs(A).max()
+    geo = EuclideanComplex(X, points=P)
+    assert abs(A - dirichlet_matrix(L, geo)).max() <= 1e-13 * abs(A).max()
+    assert abs(M - mass_matrix(L, geo)).max() <= 1e-13 * abs(M).max()
 
 
 def test_closed_surface_with_degree_is_psd_and_has_no_kernel():

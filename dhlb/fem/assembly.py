@@ -21,8 +21,9 @@ import numpy as np
 import scipy.sparse as sp
 
 from dhlb.errors import NonFiniteError, ShapeError
-from dhlb.fem._fast_local import fast_local_matrices
-from dhlb.fem._local_matrices import local_mass_matrices
+from dhlb.fem._fast_local import fast_local_entries, fast_local_matrices
+from dhlb.fem._local_matrices import local_mass_matrices, local_matrices
+from dhlb.topology import _keys
 from dhlb.topology.structure import subfaces
 
 __all__ = ["mass_matrix", "dirichlet_matrix", "bundle_matrices", "lumped_mass"]
@@ -56,12 +57,33 @@ def _local_data(bundle, geometry):
 
 def _scatter(X, local: np.ndarray) -> sp.csr_matrix:
     """Sum ``local[s, b, a]`` into ``K[v_b, v_a]`` (``v = X.simplices(n)[s]``) on the vertex-adjacency pattern."""
-    adj = X.vertex_adjacency
     pos = X.top_entry_positions.ravel()
     local = local.reshape(-1)
+    return _csr(X, [pos], [local.real], [local.imag])
+
+
+def _scatter_entries(X, off: np.ndarray, diag: np.ndarray) -> sp.csr_matrix:
+    """As :func:`_scatter` for Hermitian local matrices in the compact layout of
+    :func:`dhlb.fem._fast_local.fast_local_entries` (``off[p] = K_s[b, a]`` for local edge ``p = (a, b)``)."""
+    n = X.dim
+    P = X.top_entry_positions
+    pairs = _keys.combination_columns(n + 1, 2)
+    low = P[:, pairs[:, 1], pairs[:, 0]].T.ravel()  # (E, m) -> entries (v_b, v_a)
+    up = P[:, pairs[:, 0], pairs[:, 1]].T.ravel()
+    dia = P[:, np.arange(n + 1), np.arange(n + 1)].T.ravel()
+    off = off.ravel()
+    return _csr(X, [low, up, dia], [off.real, off.real, diag.ravel()], [off.imag, -off.imag, None])
+
+
+def _csr(X, positions, real_parts, imag_parts) -> sp.csr_matrix:
+    adj = X.vertex_adjacency
     nnz = adj.indices.size
-    data = np.bincount(pos, weights=local.real, minlength=nnz).astype(complex)
-    data.imag = np.bincount(pos, weights=local.imag, minlength=nnz)
+    pos = np.concatenate(positions)
+    re = np.concatenate(real_parts)
+    data = np.bincount(pos, weights=re, minlength=nnz).astype(complex)
+    im = [(p, w) for p, w in zip(positions, imag_parts) if w is not None]
+    if im:
+        data.imag = np.bincount(np.concatenate([p for p, _ in im]), weights=np.concatenate([w for _, w in im]), minlength=nnz)
     return sp.csr_matrix((data, adj.indices.copy(), adj.indptr.copy()), shape=(X.n_vertices, X.n_vertices))
 
 
@@ -154,10 +176,14 @@ def bundle_matrices(bundle, geometry, *, lumped: bool = False) -> tuple[sp.csr_m
     """
     X, rows, vol, omega, r = _local_data(bundle, geometry)
     gram = np.asarray(geometry.barycentric_gradient_gram, dtype=float)
-    Ml, Al = fast_local_matrices(gram, vol, omega, r)
-    if lumped:
-        return _scatter(X, Al), mass_matrix(bundle, geometry, lumped=True)
-    return _scatter(X, Al), _scatter(X, Ml)
+    if X.dim in (2, 3):
+        m_off, m_diag, a_off, a_diag = fast_local_entries(gram, vol, omega, r)
+        A = _scatter_entries(X, a_off, a_diag)
+        M = _scatter_entries(X, m_off, m_diag)
+    else:
+        Ml, Al = local_matrices(gram, vol, omega, r)
+        A, M = _scatter(X, Al), _scatter(X, Ml)
+    return (A, mass_matrix(bundle, geometry, lumped=True)) if lumped else (A, M)
 
 
 def lumped_mass(geometry) -> np.ndarray:
