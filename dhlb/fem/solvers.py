@@ -323,8 +323,8 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
         if not np.all(np.isfinite(W)):
             raise InvalidOperatorError("the shifted solve produced non-finite values; A - σM is numerically singular")
         W = W / np.linalg.norm(W, axis=0)
-        Q, _ = np.linalg.qr(W)
-        AQ, MQ = A @ Q, M @ Q
+        Q, MQ = _m_orthonormalize(W, M)
+        AQ = A @ Q
         Ap, Mp = Q.conj().T @ AQ, Q.conj().T @ MQ
         Ap, Mp = 0.5 * (Ap + Ap.conj().T), 0.5 * (Mp + Mp.conj().T)
         try:
@@ -355,6 +355,26 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
                            "loosen tol, or pass a better v0")
     err.result = res
     raise err
+
+
+def _m_orthonormalize(W: np.ndarray, M) -> tuple[np.ndarray, np.ndarray]:
+    """An M-orthonormal basis ``Q`` of ``span W`` and ``M Q`` (eigen-decomposed Gram matrix, twice).
+
+    Cheaper than a Householder QR for tall, skinny blocks; when the columns are numerically
+    dependent (Gram eigenvalue ratio below 1e-12) a Householder QR restores a full-rank basis first.
+    """
+    Q, MQ = W, M @ W
+    for _ in range(2):  # the second pass restores orthogonality lost to rounding
+        G = Q.conj().T @ MQ
+        s, V = np.linalg.eigh(0.5 * (G + G.conj().T))
+        if s[0] <= 1e-12 * s[-1]:
+            Q = np.linalg.qr(Q)[0]
+            MQ = M @ Q
+            G = Q.conj().T @ MQ
+            s, V = np.linalg.eigh(0.5 * (G + G.conj().T))
+        T = V / np.sqrt(s)
+        Q, MQ = Q @ T, MQ @ T
+    return Q, MQ
 
 
 def solve(A, M, lam, b, *, backend=None) -> np.ndarray:
