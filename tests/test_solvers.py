@@ -258,3 +258,22 @@ def test_typed_errors_on_bad_input():
         smallest_eigenpairs(A, M, k=1, v0=np.ones(9))
     with pytest.raises(NonFiniteError):
         smallest_eigenpairs(A, M, k=1, v0=np.full(10, np.inf))
+
+
+def test_block_size_option_and_cluster_message():
+    import scipy.sparse as sp_
+
+    from dhlb.errors import ConvergenceError as _CE
+    from dhlb.errors import InvalidParameterError as _IPE
+    from dhlb.fem.solvers import smallest_eigenpairs as _se
+
+    # a 12-fold cluster just above the lowest eigenvalue
+    d = np.concatenate([[0.0], 1.0 + 1e-7 * np.arange(12), 5.0 + np.arange(40)])
+    A, M = sp_.diags(d).tocsr(), sp_.identity(d.size, format="csr")
+    res = _se(A, M, k=2, block_size=16)
+    assert res.converged and res.block_size == 16
+    np.testing.assert_allclose(res.eigenvalues, d[:2], atol=1e-9)
+    with pytest.raises(_IPE, match="block_size"):
+        _se(A, M, k=3, block_size=2)
+    with pytest.raises(_CE, match="raise block_size"):
+        _se(A, M, k=2, block_size=3, maxiter=3)
