@@ -10,16 +10,7 @@ from dhlb.bundles.paths import fundamental_cycles, loop_group_presentation
 from dhlb.errors import InvalidConnectionError, NotAPathError
 from dhlb.topology.homology import homology
 from dhlb.topology.intlinalg import smith_normal_form
-from tests.strategies import closed_surfaces, pure_simplex_lists, rp2, simplex_lists, torus7
-
-
-def rich_complexes(max_dim: int = 4):
-    """Random complexes of dimension 2..max_dim with enough simplices to have loops and cycles."""
-    options = [pure_simplex_lists(dim=2, max_vertices=8, min_size=4, max_size=18),
-               simplex_lists(max_vertices=7, max_dim=max_dim, min_size=5, max_size=16)]
-    if max_dim >= 3:
-        options.append(pure_simplex_lists(dim=3, max_vertices=7, min_size=2, max_size=10))
-    return st.one_of(*options).map(SimplicialComplex)
+from tests.strategies import closed_surfaces, rich_complexes, rp2, torus7
 
 
 def random_orthogonal(rng, n, K):

@@ -191,9 +191,13 @@ def render_field_png(path, V, F, directions=None, singularities=None, *, view=(1
     # one line width for all items (per-item widths cost a dash computation each)
     ax.add_collection(PolyCollection(tris, facecolors=colors, edgecolors=edgecols, linewidths=glyph_width,
                                      closed=True, antialiaseds=True), autolim=False)
+    return finish_figure(fig, ax, path, xy, W / H, title, dpi, background)
+
+
+def finish_figure(fig, ax, path, xy, aspect, title, dpi, background) -> str:
+    """Frame the projected points ``xy`` with a small margin, add the title, write the PNG."""
     lo, hi = xy.min(axis=0), xy.max(axis=0)
     mid, half = (lo + hi) / 2, 0.53 * max((hi - lo).max(), 1e-12)
-    aspect = W / H
     ax.set_xlim(mid[0] - half * max(aspect, 1), mid[0] + half * max(aspect, 1))
     ax.set_ylim(mid[1] - half / min(aspect, 1), mid[1] + half / min(aspect, 1))
     if title:

@@ -11,12 +11,11 @@ phase change, within a budget of sub-triangles.
 
 from __future__ import annotations
 
-import os
 
 import numpy as np
 
 from dhlb.errors import InvalidParameterError
-from dhlb.render.png import _camera, _matplotlib, _unit
+from dhlb.render.png import _camera, _matplotlib, _unit, finish_figure
 
 __all__ = ["render_stripes_png", "face_grid"]
 
@@ -156,13 +155,4 @@ def render_stripes_png(path, texture, *, k: int | None = None, view=(1.0, -1.6, 
                                      antialiaseds=False), autolim=False)
     Q = P - c
     pxy = np.stack([Q @ right, Q @ upv], axis=1)
-    lo, hi = pxy.min(axis=0), pxy.max(axis=0)
-    mid, half = (lo + hi) / 2, 0.53 * max((hi - lo).max(), 1e-12)
-    aspect = W / H
-    ax.set_xlim(mid[0] - half * max(aspect, 1), mid[0] + half * max(aspect, 1))
-    ax.set_ylim(mid[1] - half / min(aspect, 1), mid[1] + half / min(aspect, 1))
-    if title:
-        ax.text(0.02, 0.98, title, transform=ax.transAxes, va="top", ha="left", fontsize=10)
-    out = os.fspath(path)
-    fig.savefig(out, format="png", dpi=dpi, facecolor=background)
-    return out
+    return finish_figure(fig, ax, path, pxy, W / H, title, dpi, background)
