@@ -1,5 +1,15 @@
 """Layer 4: finite elements on hermitian line bundles — Θ/Λ/Ξ integrals, mass and Dirichlet matrices, solvers."""
 from dhlb.fem.assembly import bundle_matrices, dirichlet_matrix, lumped_mass, mass_matrix
+from dhlb.fem.integrals import (
+    expi_divided_difference,
+    expi_moment,
+    lambda_,
+    local_dirichlet_matrices,
+    local_mass_matrices,
+    local_matrices,
+    theta,
+    xi,
+)
 from dhlb.fem.solvers import EigenResult, backward_errors, smallest_eigenpairs, solve
 
 __all__ = [
@@ -7,6 +17,14 @@ __all__ = [
     "dirichlet_matrix",
     "lumped_mass",
     "mass_matrix",
+    "expi_divided_difference",
+    "expi_moment",
+    "lambda_",
+    "local_dirichlet_matrices",
+    "local_mass_matrices",
+    "local_matrices",
+    "theta",
+    "xi",
     "EigenResult",
     "backward_errors",
     "smallest_eigenpairs",

@@ -62,6 +62,11 @@ def local_triangles(n: int) -> np.ndarray:
     return _combos(_check_dim(n), 3)
 
 
+def _t(row) -> tuple:
+    """A vertex tuple of plain ints (for messages)."""
+    return tuple(int(v) for v in row)
+
+
 def _check_dim(n) -> int:
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise InvalidParameterError(f"simplex dimension must be an integer >= 1, got {n!r}")
@@ -106,7 +111,7 @@ def parse_omega(omega, dim=None):
     bad = ~np.isfinite(arr)
     if bad.any():
         s, t = np.argwhere(bad)[0]
-        raise NonFiniteError(f"curvature of simplex {s} on local triangle {tuple(local_triangles(n)[t])} "
+        raise NonFiniteError(f"curvature of simplex {s} on local triangle {_t(local_triangles(n)[t])} "
                              f"is {arr[s, t]}; all curvature values must be finite")
     return arr, n, batched
 
@@ -152,9 +157,9 @@ def check_closed(arr: np.ndarray, n: int) -> None:
     """Raise :class:`NotClosedError` if Ω is not closed on some local tetrahedron."""
     if n < 3:
         return
-    tri = {tuple(t): i for i, t in enumerate(local_triangles(n))}
+    tri = {_t(t): i for i, t in enumerate(local_triangles(n))}
     scale = 1.0 + np.abs(arr).max(axis=1)
-    for a, b, c, d in _combos(n, 4):
+    for a, b, c, d in map(_t, _combos(n, 4)):
         dom = arr[:, tri[b, c, d]] - arr[:, tri[a, c, d]] + arr[:, tri[a, b, d]] - arr[:, tri[a, b, c]]
         bad = np.abs(dom) > CLOSED_ATOL * scale
         if bad.any():
@@ -203,15 +208,15 @@ def parse_connection(connection, m: int, n: int, arr: np.ndarray) -> np.ndarray:
     r = np.broadcast_to(r.astype(complex), (m, ne))
     if not np.all(np.isfinite(r)):
         s, e = np.argwhere(~np.isfinite(r))[0]
-        raise NonFiniteError(f"connection of simplex {s} on local edge {tuple(local_edges(n)[e])} is not finite")
+        raise NonFiniteError(f"connection of simplex {s} on local edge {_t(local_edges(n)[e])} is not finite")
     off = np.abs(np.abs(r) - 1.0) > UNIT_ATOL
     if off.any():
         s, e = np.argwhere(off)[0]
         raise InvalidConnectionError(
-            f"connection of simplex {s} on local edge {tuple(local_edges(n)[e])} is {r[s, e]:.6g}, "
+            f"connection of simplex {s} on local edge {_t(local_edges(n)[e])} is {r[s, e]:.6g}, "
             "not a unit complex number; a hermitian connection is unitary (use exp(1j*angle))")
-    idx = {tuple(e): i for i, e in enumerate(local_edges(n))}
-    for t, (a, b, c) in enumerate(local_triangles(n)):
+    idx = {_t(e): i for i, e in enumerate(local_edges(n))}
+    for t, (a, b, c) in enumerate(map(_t, local_triangles(n))):
         hol = r[:, idx[a, b]] * r[:, idx[b, c]] * np.conj(r[:, idx[a, c]])
         bad = np.abs(hol - np.exp(1j * arr[:, t])) > HOLONOMY_ATOL
         if bad.any():
