@@ -367,13 +367,15 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
 
 
 def _m_orthonormalize(W: np.ndarray, M) -> tuple[np.ndarray, np.ndarray]:
-    """An M-orthonormal basis ``Q`` of ``span W`` and ``M Q`` (eigen-decomposed Gram matrix, twice).
+    """An M-orthonormal basis ``Q`` of ``span W`` and ``M Q`` (eigen-decomposed Gram matrix).
 
-    Cheaper than a Householder QR for tall, skinny blocks; when the columns are numerically
-    dependent (Gram eigenvalue ratio below 1e-12) a Householder QR restores a full-rank basis first.
+    Cheaper than a Householder QR for tall, skinny blocks. A second pass restores the
+    orthogonality lost to rounding when the Gram matrix is ill-conditioned; when the columns are
+    numerically dependent (eigenvalue ratio below 1e-12) a Householder QR restores a full-rank
+    basis first.
     """
     Q, MQ = W, M @ W
-    for _ in range(2):  # the second pass restores orthogonality lost to rounding
+    for _ in range(2):
         G = Q.conj().T @ MQ
         s, V = np.linalg.eigh(0.5 * (G + G.conj().T))
         if s[0] <= 1e-12 * s[-1]:
@@ -383,6 +385,8 @@ def _m_orthonormalize(W: np.ndarray, M) -> tuple[np.ndarray, np.ndarray]:
             s, V = np.linalg.eigh(0.5 * (G + G.conj().T))
         T = V / np.sqrt(s)
         Q, MQ = Q @ T, MQ @ T
+        if s[0] > 1e-4 * s[-1]:  # well conditioned: orthogonal to ~eps·cond; no second pass needed
+            break
     return Q, MQ
 
 
