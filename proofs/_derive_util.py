@@ -25,23 +25,28 @@ def lemma7_antiderivative(n: int, c, x):
         *[(-1) ** k * (c * x) ** (n - k) / sp.factorial(n - k) for k in range(n + 1)]) * sp.exp(c * x)
 
 
+_EXP = sp.Function("EXPTAG")   # opaque stand-in for exp: sympy's expand cannot move it into denominators
+
+
 def _split_exp(term):
-    """``term = rest * exp(E)`` with ``rest`` free of ``exp``; returns ``(rest, E)``."""
+    """``term = rest * EXPTAG(E1)^k1 ...`` -> ``(rest, Σ k E)``."""
     rest, expo = sp.Integer(1), sp.Integer(0)
     for f in sp.Mul.make_args(term):
-        if isinstance(f, sp.exp):
+        if isinstance(f, _EXP):
             expo += f.args[0]
-        elif isinstance(f, sp.Pow) and isinstance(f.base, sp.exp):
+        elif isinstance(f, sp.Pow) and isinstance(f.base, _EXP):
             expo += f.base.args[0] * f.exp
         else:
+            assert not f.has(_EXP), f"exponential inside {f}"
             rest *= f
     return rest, sp.expand(expo)
 
 
 def to_terms(expr) -> dict:
-    """``expr = Σ_E R_E exp(E)`` as a dict ``{E: R_E}`` (``expr`` a sum of products, no exp in denominators)."""
+    """``expr = Σ_E R_E exp(E)`` as a dict ``{E: R_E}`` (exponentials must not sit in denominators)."""
+    tagged = sp.sympify(expr).replace(sp.exp, lambda arg: _EXP(arg))
     groups: dict = {}
-    for term in sp.Add.make_args(sp.expand(expr)):
+    for term in sp.Add.make_args(sp.expand(tagged)):
         rest, expo = _split_exp(term)
         groups[expo] = groups.get(expo, 0) + rest
     return groups

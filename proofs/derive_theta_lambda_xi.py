@@ -92,7 +92,9 @@ def check_n2(w, forms):
     for key, f in forms.items():
         i, j = key[1], key[2]
         g = forms[(key[0], j, i) + key[3:]]
-        assert sp.simplify(sp.expand(g - sp.conjugate(f), complex=True)) == 0, key
+        assert all(sp.cancel(r) == 0 for r in to_terms(g - sp.conjugate(f)).values()), key
+        if i > j:       # the flat limit of the conjugate pair follows
+            continue
         p = [0, 0, 0]
         for v in key[3:]:
             p[v] += 1
