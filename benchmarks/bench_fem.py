@@ -65,24 +65,29 @@ def time_assembly(n: int, m: int) -> None:
 
 
 def time_eigensolve(A, M) -> None:
-    t0 = time.perf_counter()
-    res = smallest_eigenpairs(A, M, k=1)
-    t_eig = time.perf_counter() - t0
+    """Best of two runs each (the first factorization in a process pays for page faults)."""
+    t_eig, res = float("inf"), None
+    for _ in range(2):
+        t0 = time.perf_counter()
+        res = smallest_eigenpairs(A, M, k=1)
+        t_eig = min(t_eig, time.perf_counter() - t0)
     backend = SuperLUBackend()
     eps = default_shift(A, M)
-    t0 = time.perf_counter()
-    fac = backend.factorize((A + eps * M).tocsc(), positive_definite=True)
-    t_fac = time.perf_counter() - t0
     b = np.random.default_rng(0).standard_normal((A.shape[0], res.block_size)) + 0j
-    t0 = time.perf_counter()
-    for _ in range(max(1, res.iterations)):
-        fac.solve(b)
-    t_sol = time.perf_counter() - t0
+    t_fac = t_sol = float("inf")
+    for _ in range(2):
+        t0 = time.perf_counter()
+        fac = backend.factorize((A + eps * M).tocsc(), positive_definite=True)
+        t_fac = min(t_fac, time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        for _ in range(max(1, res.iterations)):
+            fac.solve(b)
+        t_sol = min(t_sol, time.perf_counter() - t0)
     raw = t_fac + t_sol
     print(
         f"eigen solve N={A.shape[0]:,}: {t_eig:.2f} s, {res.iterations} iterations of a block of "
         f"{res.block_size}; raw backend work: factorization {t_fac:.2f} s + the same solves {t_sol:.2f} s; "
-        f"ratio {t_eig / raw:.2f} (target <= 1.3)"
+        f"ratio {t_eig / raw:.2f} (target <= 1.3; best of two runs each)"
     )
 
 

@@ -333,7 +333,8 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
         W = W / np.linalg.norm(W, axis=0)
         Q, MQ = _m_orthonormalize(W, M)
         AQ = A @ Q
-        Ap, Mp = Q.conj().T @ AQ, Q.conj().T @ MQ
+        Qh = Q.conj().T
+        Ap, Mp = Qh @ AQ, Qh @ MQ
         Ap, Mp = 0.5 * (Ap + Ap.conj().T), 0.5 * (Mp + Mp.conj().T)
         try:
             theta, C = sla.eigh(Ap, Mp)
@@ -341,10 +342,10 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
             raise InvalidOperatorError(f"M is not positive definite (projected mass not PD: {err})") from err
         order = np.argsort(np.abs(theta - shift), kind="stable")
         theta, C = theta[order], C[:, order]
-        U, MU, AU = Q @ C, MQ @ C, AQ @ C
+        U, MU = Q @ C, MQ @ C
         sel = np.argsort(theta[:k], kind="stable")
         lam, Uk = theta[:k][sel], U[:, :k][:, sel]
-        R = AU[:, :k][:, sel] - MU[:, :k][:, sel] * lam[None, :]
+        R = AQ @ C[:, :k][:, sel] - MU[:, :k][:, sel] * lam[None, :]  # only the k wanted residuals
         eta = _eta(R, lam, Uk, normA, normM)
         ok = eta <= tol
         if lam_old is not None:
@@ -376,7 +377,7 @@ def _m_orthonormalize(W: np.ndarray, M) -> tuple[np.ndarray, np.ndarray]:
     """
     Q, MQ = W, M @ W
     for _ in range(2):
-        G = Q.conj().T @ MQ
+        G = Q.T.conj() @ MQ
         s, V = np.linalg.eigh(0.5 * (G + G.conj().T))
         if s[0] <= 1e-12 * s[-1]:
             Q = np.linalg.qr(Q)[0]
