@@ -135,3 +135,23 @@ def test_mismatched_complexes_are_refused():
     Y, Q = cube_nd(2, 3, return_points=True)
     with pytest.raises(ShapeError, match="different complexes"):
         mass_matrix(HermitianLineBundle.trivial(X), EuclideanComplex(Y, points=Q))
+
+
+def test_one_dimensional_complexes():
+    """n = 1: P1 on an interval, and a twisted ring whose lowest eigenvalue is (θ/2π)²."""
+    from dhlb.fem import smallest_eigenpairs
+
+    X = SimplicialComplex([(0, 1), (1, 2)])
+    geo = EuclideanComplex(X, points=np.array([[0.0], [1.0], [3.0]]))
+    A, M = bundle_matrices(HermitianLineBundle.trivial(X), geo)
+    assert np.allclose(A.toarray(), [[1, -1, 0], [-1, 1.5, -0.5], [0, -0.5, 0.5]])
+    assert np.allclose(M.toarray(), np.array([[2, 1, 0], [1, 6, 2], [0, 2, 4]]) / 6)
+    N, theta = 200, np.pi / 2
+    ring = SimplicialComplex([(i, (i + 1) % N) for i in range(N)])
+    geo = EuclideanComplex(ring, edge_lengths=np.full(ring.n_simplices(1), 2 * np.pi / N))
+    ang = np.zeros(ring.n_simplices(1))
+    ang[0] = theta  # all holonomy on one edge (a gauge choice)
+    L = HermitianLineBundle.from_angles(ring, ang, np.zeros(0))
+    A, M = bundle_matrices(L, geo)
+    lam = smallest_eigenpairs(A, M, k=1).eigenvalues[0]
+    assert abs(lam - (theta / (2 * np.pi)) ** 2) < 1e-4

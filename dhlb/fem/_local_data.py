@@ -106,7 +106,8 @@ def parse_omega(omega, dim=None):
     if arr.ndim not in (1, 2):
         raise ShapeError(f"curvature must have shape (m, C(n+1,3)) or (C(n+1,3),), got {arr.shape}")
     batched = arr.ndim == 2
-    arr = arr.reshape(-1, arr.shape[-1]) if batched else arr[None, :]
+    if not batched:
+        arr = arr[None, :]
     n = dim_from_triangles(arr.shape[1], dim)
     bad = ~np.isfinite(arr)
     if bad.any():
