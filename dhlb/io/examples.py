@@ -10,6 +10,8 @@ __all__ = ["EXAMPLES", "example_path"]
 EXAMPLES = {
     "torus.obj": "closed torus surface, 288 vertices, 576 triangles (genus 1, H = Z, Z^2, Z)",
     "solid-torus.mesh": "solid torus, 144 vertices, 384 tetrahedra, boundary triangles included (H = Z, Z, 0, 0)",
+    "spot.obj": "Keenan Crane's cow Spot (CC0), 2930 vertices, 5856 triangles, closed genus 0",
+    "saddle.obj": "saddle z = (x² − y²)/2 over the unit disk, 631 vertices, 1176 triangles, one boundary loop",
 }
 
 
@@ -19,7 +21,7 @@ def example_path(name: str = "torus.obj") -> str:
     Parameters
     ----------
     name : str
-        One of :data:`EXAMPLES` (``"torus.obj"``, ``"solid-torus.mesh"``).
+        One of :data:`EXAMPLES` (``"torus.obj"``, ``"solid-torus.mesh"``, ``"spot.obj"``, ``"saddle.obj"``).
 
     Raises
     ------
