@@ -4,8 +4,9 @@
   (:func:`dhlb.surface.energy_matrices`, the engine's curvature-corrected matrices), computed by
   :func:`dhlb.fem.smallest_eigenpairs`; ``u`` is M-normalized and its energy is ``λ = uᴴ A_s u``.
 * **Aligned field** (Eq. 6.6): ``(A_s − λ_t M) ũ = M q`` for a guidance field q, ``u = ũ/‖ũ‖_M``
-  and ``t = (1 + ‖ũ‖_M)⁻¹`` (Appendix A: t increases monotonically with λ_t below the smallest
-  eigenvalue; λ_t = 0 is the seed's default). Guidance: principal curvature through the discrete
+  and ``t = (1 + ‖ũ‖_M)⁻¹`` for the guidance scaled to ``‖q‖_M = 1`` (Appendix A: t is the weight of
+  the alignment term in ``E_{s,t} = (1 − t) E_s − t E_l``; it decreases strictly from 1 (λ_t → −∞,
+  pure alignment) to 0 (λ_t → λ_1, the smoothest field); λ_t = 0 is the seed's default). Guidance: principal curvature through the discrete
   Hopf differential (``"curvature"``: q^{n/2}; ``"min-curvature"``: (−q)^{n/2}), the boundary
   tangent (``"boundary"``, ``"boundary-normal"``), per-vertex 3D vectors, or per-vertex complex
   values in the frames of :class:`~dhlb.surface.TangentBundle` (:mod:`dhlb.surface.guidance`).
@@ -165,10 +166,11 @@ def direction_field(V, F=None, n: int = 1, s: float = 0.0, align=None, lam: floa
                           "residual": float(res.residuals[0]), "converged": bool(res.converged)})
         else:
             q = guide.values[idx]
-            ut = solve(Ac, Mc, lam, Mc @ q, backend=backend)
-            norm = float(np.sqrt(max((ut.conj() @ (Mc @ ut)).real, 0.0)))
-            if norm == 0.0:
+            qn = float(np.sqrt(max((q.conj() @ (Mc @ q)).real, 0.0)))
+            if qn == 0.0:
                 raise InvalidParameterError("the guidance vanishes on a connected component; give guidance there")
+            ut = solve(Ac, Mc, lam, Mc @ (q / qn), backend=backend)     # Appendix A assumes ‖φ‖_M = 1
+            norm = float(np.sqrt(max((ut.conj() @ (Mc @ ut)).real, 0.0)))
             uc = ut / norm
             ts.append(1.0 / (1.0 + norm))
             stats.append({"backend": getattr(backend, "name", backend or "default"), "iterations": 0,
