@@ -1,5 +1,6 @@
 """Layer 4: finite elements on hermitian line bundles — Θ/Λ/Ξ integrals, mass and Dirichlet matrices, solvers."""
 from dhlb.fem.assembly import bundle_matrices, dirichlet_matrix, lumped_mass, mass_matrix
+from dhlb.fem.connection import connection_laplacian, connection_mass, cotan_edge_weights
 from dhlb.fem.integrals import (
     expi_divided_difference,
     expi_moment,
@@ -17,6 +18,9 @@ __all__ = [
     "dirichlet_matrix",
     "lumped_mass",
     "mass_matrix",
+    "connection_laplacian",
+    "connection_mass",
+    "cotan_edge_weights",
     "expi_divided_difference",
     "expi_moment",
     "lambda_",

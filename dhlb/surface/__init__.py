@@ -30,5 +30,15 @@ __all__ = [
     "SurfaceMesh", "validate_surface", "TangentBundle", "tangent_bundle",
     "Guidance", "boundary_guidance", "curvature_guidance", "dihedral_angles", "hopf_differential", "user_guidance",
     "FieldIndices", "Singularities", "direction_vectors", "field_indices", "section_values",
-    "energy_matrices", "boundary_form", "DirectionField", "direction_field", "guidance_for",
+    "energy_matrices", "boundary_form", "DirectionField", "direction_field", "guidance_for", "stripe_pattern",
 ]
+
+
+def __getattr__(name):
+    # ``dhlb.surface.stripe_pattern`` (the name) lives in the stripes application, which
+    # itself builds on this package: import it lazily to keep the import graph acyclic.
+    if name == "stripe_pattern":
+        from dhlb.stripes.pattern import stripe_pattern
+
+        return stripe_pattern
+    raise AttributeError(f"module 'dhlb.surface' has no attribute {name!r}")

@@ -1,0 +1,241 @@
+r"""Cotangent connection Laplacians of vector bundles (the discrete energy ``Σ w_ij |v_j − η_ij v_i|²``).
+
+For a bundle of rank k over a pure n-dimensional Euclidean simplicial complex (a
+:class:`~dhlb.bundles.VectorBundle` over R or C, with ``η_ij`` per canonical edge ``i < j``
+meaning ``v_j = η_ij v_i`` for a parallel section, or a
+:class:`~dhlb.bundles.HermitianLineBundle`, ``η_ij = r_ij``) the **connection Laplacian** is the
+matrix of the quadratic form
+
+.. math:: E(v) = \sum_{i<j} w_{ij}\, |v_j - \eta_{ij} v_i|^2 = v^H A v ,
+
+on sections ``v`` stored interleaved, ``v[i·k + a]`` = component a at vertex i. The edge
+weights are the P1 (cotangent) weights ``w_ij = −Σ_σ s_σ c^σ_ij`` with the local stiffness
+``c^σ_ij = vol(σ) ⟨∇λ_i, ∇λ_j⟩`` of each top simplex σ ∋ i, j (Theorem 16; for triangles
+``w_ij = (cot β_ij + cot β_ji)/2``) and optional factors ``s_σ`` per top simplex (e.g. 0 for the
+branch triangles of a stripe pattern, seed part 2, §3.2). Expanding the square:
+
+* off-diagonal blocks ``A[j, i] = −w_ij η_ij`` and ``A[i, j] = −w_ij η_ijᴴ`` (for ``k = 1``
+  exactly the entries of ``docs/conventions.md``);
+* diagonal blocks ``A[i, i] = Σ_{j>i} w_ij η_ijᴴ η_ij + Σ_{j<i} w_ji I``. If every transport is
+  orthogonal / unitary this is ``(Σ_σ s_σ c^σ_ii) I``, which is how it is computed then (so that
+  the trivial bundle of rank 1 gives exactly :meth:`EuclideanComplex.stiffness_matrix`).
+
+Unlike :func:`dhlb.fem.dirichlet_matrix` (the curvature-corrected finite elements of a line
+bundle) this is the plain "discrete connection" energy: exact for flat bundles, and the energy
+of the stripe-pattern and direction-field papers. A is Hermitian (real symmetric for real
+bundles) and positive semidefinite if all ``s_σ >= 0`` and the weights ``w_ij`` are (e.g. a
+Delaunay triangulation); in general only the trivial-bundle part is guaranteed PSD.
+
+Examples
+--------
+>>> import numpy as np
+>>> from dhlb import SimplicialComplex
+>>> from dhlb.bundles import VectorBundle
+>>> from dhlb.geometry import EuclideanComplex
+>>> from dhlb.fem import connection_laplacian
+>>> X = SimplicialComplex([(0, 1, 2), (1, 2, 3)])
+>>> geo = EuclideanComplex(X, points=[[0, 0], [1, 0], [0, 1], [1, 1]])
+>>> A = connection_laplacian(VectorBundle.trivial(X, 1), geo)
+>>> bool((A != geo.stiffness_matrix()).nnz == 0)
+True
+>>> R = np.array([[0.0, -1.0], [1.0, 0.0]])                   # quarter turn on every edge
+>>> A2 = connection_laplacian(VectorBundle(X, np.tile(R, (5, 1, 1)), metric=True), geo)
+>>> A2.shape, bool(abs(A2 - A2.T).max() == 0), round(float(np.linalg.eigvalsh(A2.toarray()).min()), 12)
+((8, 8), True, 0.0)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
+from dhlb.topology import _keys
+from dhlb.topology.structure import subfaces
+
+__all__ = ["connection_laplacian", "connection_mass", "cotan_edge_weights"]
+
+
+def _check_geometry(X, geometry):
+    G = getattr(geometry, "complex", None)
+    if G is None or not hasattr(geometry, "cotan_weights"):
+        raise TypeError(f"geometry must be a dhlb.geometry.EuclideanComplex, got {type(geometry).__name__}")
+    if G is not X and G != X:
+        raise ShapeError("the bundle and the geometry live on different complexes; build both on the same "
+                         "SimplicialComplex")
+    if not X.is_pure:
+        raise ShapeError("the connection Laplacian needs a pure complex (every simplex a face of a top simplex)")
+
+
+def _simplex_weights(weights, X) -> np.ndarray:
+    m = X.n_simplices(X.dim)
+    if weights is None:
+        return np.ones(m)
+    try:
+        w = np.asarray(weights, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ShapeError(f"simplex_weights must be one number per top simplex ({m})") from None
+    if w.ndim == 0:
+        w = np.full(m, float(w))
+    if w.shape != (m,):
+        raise ShapeError(f"simplex_weights must be one number per top simplex ({m}), got shape {w.shape}")
+    bad = ~np.isfinite(w)
+    if np.any(bad):
+        s = int(np.argmax(bad))
+        raise NonFiniteError(f"simplex_weights[{s}] = {w[s]} (top simplex {X.simplices(X.dim)[s].tolist()}) is "
+                             "not finite")
+    bad = w < 0
+    if np.any(bad):
+        s = int(np.argmax(bad))
+        raise InvalidParameterError(f"simplex_weights[{s}] = {w[s]} (top simplex {X.simplices(X.dim)[s].tolist()}) "
+                                    "is negative; the factors must be >= 0 (0 removes the simplex from the energy)")
+    return w
+
+
+def _transports(bundle) -> tuple[np.ndarray, bool]:
+    """``(n_1, k, k)`` transports (float or complex) and whether they are all orthogonal / unitary."""
+    if hasattr(bundle, "connection") and hasattr(bundle, "curvature") and not hasattr(bundle, "transports"):
+        return np.asarray(bundle.connection, np.complex128).reshape(-1, 1, 1), True
+    if not hasattr(bundle, "transports"):
+        raise TypeError(f"bundle must be a VectorBundle or a HermitianLineBundle, got {type(bundle).__name__}")
+    field = bundle.field
+    if field not in ("R", "C"):
+        raise InvalidParameterError(f"the connection Laplacian needs a bundle over R or C, got the field {field!r}")
+    T = np.asarray(bundle.transports, np.float64 if field == "R" else np.complex128)
+    if bundle.metric:
+        return T, True
+    k = T.shape[1]
+    gram = np.einsum("eba,ebc->eac", T.conj(), T)
+    return T, bool(np.all(np.abs(gram - np.eye(k)) <= 16 * np.finfo(float).eps))
+
+
+def cotan_edge_weights(geometry, *, simplex_weights=None) -> np.ndarray:
+    """The weights ``w_ij = −Σ_σ s_σ c^σ_ij`` per canonical edge (rows of ``complex.simplices(1)``).
+
+    For triangle meshes ``w_ij = (cot β_ij + cot β_ji)/2`` (one term on boundary edges); the
+    weighted graph Laplacian with these weights is the P1 stiffness matrix.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> from dhlb.geometry import EuclideanComplex
+    >>> geo = EuclideanComplex(SimplicialComplex([(0, 1, 2)]), points=[[0, 0], [1, 0], [0, 1]])
+    >>> cotan_edge_weights(geo).round(12).tolist()      # edges (0,1) (0,2) (1,2); cot 90° = 0, cot 45° = 1
+    [0.5, 0.5, 0.0]
+    """
+    X = geometry.complex
+    sw = _simplex_weights(simplex_weights, X)
+    n = X.dim
+    if n == 0:
+        return np.zeros(X.n_simplices(1))
+    c = np.asarray(geometry.cotan_weights, dtype=np.float64)
+    pairs = _keys.combination_columns(n + 1, 2)
+    loc = -c[:, pairs[:, 0], pairs[:, 1]] * sw[:, None]
+    return np.bincount(subfaces(X, n, 1).ravel(), weights=loc.ravel(), minlength=X.n_simplices(1))
+
+
+def connection_laplacian(bundle, geometry, *, simplex_weights=None) -> sp.csr_matrix:
+    """The cotangent connection Laplacian ``A`` with ``vᴴ A v = Σ_{i<j} w_ij |v_j − η_ij v_i|²``.
+
+    Parameters
+    ----------
+    bundle : VectorBundle (field ``"R"`` or ``"C"``, rank k) or HermitianLineBundle (k = 1)
+        Transports ``η_ij`` per canonical edge of ``geometry.complex``.
+    geometry : EuclideanComplex
+        The metric of a pure complex of any dimension n >= 1 (the same complex as the bundle).
+    simplex_weights : float or (n_top,) array of numbers >= 0, optional
+        A factor ``s_σ`` per top simplex scaling its contribution to every edge weight
+        (default 1; 0 removes the simplex, e.g. the branch triangles of a stripe pattern).
+
+    Returns
+    -------
+    scipy.sparse.csr_matrix, shape (N k, N k)
+        Float64 for real bundles, complex128 otherwise; section index ``i·k + a``.
+
+    Raises
+    ------
+    ShapeError
+        Bundle and geometry on different complexes, a non-pure complex, bad ``simplex_weights`` shape.
+    NonFiniteError, InvalidParameterError
+        NaN/inf or negative ``simplex_weights`` (naming the top simplex); a bundle over a finite field.
+
+    Examples
+    --------
+    A line bundle on a flat square, ``r = e^{iνΔx}``: the plane wave ``e^{iνx}`` has zero energy.
+
+    >>> import numpy as np
+    >>> from dhlb import SimplicialComplex, HermitianLineBundle
+    >>> from dhlb.geometry import EuclideanComplex
+    >>> X = SimplicialComplex([(0, 1, 2), (1, 2, 3)])
+    >>> P = np.array([[0, 0], [1, 0], [0, 1], [1, 1]], float)
+    >>> E = X.simplices(1)
+    >>> dx = P[E[:, 1], 0] - P[E[:, 0], 0]
+    >>> L = HermitianLineBundle(X, np.exp(0.7j * dx), np.zeros(2))
+    >>> A = connection_laplacian(L, EuclideanComplex(X, points=P))
+    >>> psi = np.exp(0.7j * P[:, 0])
+    >>> abs(complex(psi.conj() @ A @ psi)) < 1e-14
+    True
+    """
+    T, orthogonal = _transports(bundle)
+    X = bundle.X
+    _check_geometry(X, geometry)
+    sw = _simplex_weights(simplex_weights, X)
+    k = T.shape[1]
+    N = X.n_vertices
+    n = X.dim
+    if n == 0 or X.n_simplices(1) == 0:
+        return sp.csr_matrix((N * k, N * k), dtype=T.dtype)
+    S = X.simplices(n)
+    m = S.shape[0]
+    c = np.asarray(geometry.cotan_weights, dtype=np.float64) * sw[:, None, None]  # c_ab = −w contribution
+    L = np.zeros((m, n + 1, n + 1, k, k), dtype=T.dtype)
+    eye = np.eye(k)
+    pairs = _keys.combination_columns(n + 1, 2)
+    edges = subfaces(X, n, 1)
+    for p, (a, b) in enumerate(pairs.tolist()):
+        eta = T[edges[:, p]]
+        cab = c[:, a, b, None, None]
+        L[:, a, b] = cab * np.swapaxes(eta, 1, 2).conj()  # A[i, j] = −w ηᴴ   (i = v_a < j = v_b)
+        L[:, b, a] = cab * eta  # A[j, i] = −w η
+        if not orthogonal:
+            L[:, a, a] -= cab * np.einsum("sba,sbc->sac", eta.conj(), eta)
+            L[:, b, b] -= cab * eye
+    if orthogonal:
+        for a in range(n + 1):
+            L[:, a, a] = c[:, a, a, None, None] * eye
+    off = np.arange(k)
+    rows = np.broadcast_to(S[:, :, None, None, None] * k + off[:, None], L.shape)
+    cols = np.broadcast_to(S[:, None, :, None, None] * k + off[None, :], L.shape)
+    if orthogonal and k > 1:  # the diagonal blocks are multiples of I: store no explicit zeros
+        keep = np.broadcast_to(~(np.eye(n + 1, dtype=bool)[:, :, None, None] & ~np.eye(k, dtype=bool)), L.shape[1:])
+        keep = np.broadcast_to(keep, L.shape)
+        return sp.coo_matrix((L[keep], (rows[keep], cols[keep])), shape=(N * k, N * k)).tocsr()
+    return sp.coo_matrix((L.ravel(), (rows.ravel(), cols.ravel())), shape=(N * k, N * k)).tocsr()
+
+
+def connection_mass(geometry, rank: int = 1, *, lumped: bool = True) -> sp.csr_matrix:
+    """The mass matrix of rank-k sections, ``M ⊗ I_k`` (lumped: ``Σ_{σ ∋ i} vol(σ)/(n+1)`` on the diagonal).
+
+    Parameters
+    ----------
+    geometry : EuclideanComplex
+    rank : int >= 1
+    lumped : bool
+        Diagonal lumped mass (default) or the consistent P1 mass of each component.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> from dhlb.geometry import EuclideanComplex
+    >>> geo = EuclideanComplex(SimplicialComplex([(0, 1, 2)]), points=[[0, 0], [3, 0], [0, 2]])
+    >>> connection_mass(geo, 2).diagonal().tolist()
+    [1.0, 1.0, 1.0, 1.0, 1.0, 1.0]
+    """
+    if isinstance(rank, (bool, np.bool_)) or not isinstance(rank, (int, np.integer)) or rank < 1:
+        raise InvalidParameterError(f"rank must be an integer >= 1, got {rank!r}")
+    M = geometry.mass_matrix(lumped=bool(lumped))
+    if rank == 1:
+        return sp.csr_matrix(M)
+    if lumped:
+        return sp.csr_matrix(sp.diags(np.repeat(M.diagonal(), rank), format="csr"))
+    return sp.csr_matrix(sp.kron(M, sp.identity(rank), format="csr"))

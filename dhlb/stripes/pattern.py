@@ -1,0 +1,318 @@
+"""Stripe patterns end to end (seed part 2, Alg. 4): directions + frequency → ψ → texture coordinates.
+
+:func:`stripe_pattern` validates the mesh, builds the stripe form ω̂ and the double-cover bundle
+(:func:`~dhlb.stripes.stripe_form`), the energy (:func:`~dhlb.stripes.energy.stripe_matrices`:
+the cotangent connection Laplacian of the O(2) bundle without branch triangles and the lumped
+mass, or the curvature-corrected FEM matrices), solves for the smallest eigenpair with
+:func:`dhlb.fem.smallest_eigenpairs` (to a backward error ``tol``, not a fixed number of
+iterations) and computes the texture coordinates (:func:`~dhlb.stripes.texture_coordinates`).
+
+**Units.** ``frequency`` is in stripes per unit length (period ``1/frequency``, ``ν = 2π·frequency``);
+``spacing`` is the period in mean edge lengths (scale independent).
+
+**Numbering.** Inside the result everything is in the compact numbering of ``result.mesh``
+(vertex v = input row ``mesh.vertex_labels[v]`` of V, face f = input row ``mesh.face_rows[f]`` of
+F); :meth:`StripePattern.to_json` reports faces as input rows of F.
+
+Examples
+--------
+>>> import numpy as np
+>>> from dhlb.stripes import stripe_pattern
+>>> x, y = np.meshgrid(np.arange(5.0), np.arange(4.0), indexing="ij")
+>>> V = np.stack([x.ravel(), y.ravel(), 0 * x.ravel()], 1)
+>>> a = (np.arange(4)[:, None] * 4 + np.arange(3)).ravel()
+>>> F = np.concatenate([np.stack([a, a + 4, a + 5], 1), np.stack([a, a + 5, a + 1], 1)])
+>>> res = stripe_pattern(V, F, np.tile([1.0, 0.0, 0.0], (len(V), 1)), frequency=0.25)
+>>> res.zero_faces.size, res.branch_faces.size, abs(res.eigenvalue) < 1e-9
+(0, 0, True)
+>>> alpha = res.texture.evaluate([0, 0], [[1, 0, 0], [0, 1, 0]])   # from x = 0 to x = 1: Δα = 2π/4
+>>> round(float(alpha[1] - alpha[0]) / np.pi, 10)
+0.5
+>>> sorted(res.to_json())[:4]
+['branch_faces', 'eigenvalue', 'energy', 'frequency']
+"""
+
+from __future__ import annotations
+
+import numbers
+import time
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from dhlb.errors import DhlbWarning, InvalidOperatorError, InvalidParameterError
+from dhlb.fem.solvers import smallest_eigenpairs
+from dhlb.stripes.energy import ENERGIES, stripe_matrices
+from dhlb.stripes.oneform import StripeForm, stripe_form
+from dhlb.stripes.texture import StripeTexture, texture_coordinates
+from dhlb.surface.mesh import SurfaceMesh, validate_surface
+from dhlb.surface.tangent import TangentBundle
+
+__all__ = ["StripePattern", "stripe_pattern"]
+
+
+@dataclass
+class StripePattern:
+    """Result of :func:`stripe_pattern`.
+
+    Attributes
+    ----------
+    form : StripeForm
+        Directions, frequencies, ω̂, the signs ``s_ij``, branch triangles, the bundles.
+    psi : (N,) complex128
+        The section (compact vertices; for line fields the value on the sheet of ``X_i``), ``M``-normalized.
+    texture : StripeTexture
+        Per-corner α, zero indices, branch data; ``texture.evaluate(faces, bary)`` anywhere.
+    eigenvalue : float
+        The smallest eigenvalue ``λ = E(ψ)/‖ψ‖²`` (0 for an exactly integrable field).
+    energy : str
+        ``"cotan"`` or ``"fem"``.
+    solver : dict
+        ``backend``, ``iterations``, ``residual`` (backward error), ``converged``, ``shift``,
+        ``block_size``, ``unknowns``, ``complex`` (solved as the complex N × N problem).
+    timings : dict
+        Seconds: ``setup`` (mesh, form, matrices), ``solve``, ``texture``, ``total``.
+    orthogonal : StripePattern or None
+        The pattern of the directions turned by 90° (``orthogonal=True``).
+    """
+
+    form: StripeForm
+    psi: np.ndarray
+    texture: StripeTexture
+    eigenvalue: float
+    energy: str
+    solver: dict
+    timings: dict
+    orthogonal: "StripePattern | None" = field(default=None, repr=False)
+
+    @property
+    def mesh(self) -> SurfaceMesh:
+        return self.form.mesh
+
+    @property
+    def n(self) -> int:
+        return self.form.n
+
+    @property
+    def corner_alpha(self) -> np.ndarray:
+        """``(m, 3)`` α per face corner (linear part; see :class:`StripeTexture`)."""
+        return self.texture.corner_alpha
+
+    @property
+    def zero_faces(self) -> np.ndarray:
+        """Faces (rows of ``mesh.faces``) containing a zero of ψ."""
+        return self.texture.zero_faces
+
+    @property
+    def zero_index(self) -> np.ndarray:
+        """``(m,)`` index of every face (mesh orientation; 0 on branch faces)."""
+        return self.texture.zero_index
+
+    @property
+    def branch_faces(self) -> np.ndarray:
+        """Branch triangles (rows of ``mesh.faces``)."""
+        return self.texture.branch_faces
+
+    def evaluate(self, faces, bary) -> np.ndarray:
+        """α at barycentric points of faces (see :meth:`StripeTexture.evaluate`)."""
+        return self.texture.evaluate(faces, bary)
+
+    def to_json(self) -> dict:
+        """A JSON-ready summary: singular faces as input rows of F, eigenvalue, solver, timings."""
+        mesh = self.mesh
+        zf = self.zero_faces
+        f = self.form.frequency
+        out = {
+            "n": int(self.n),
+            "energy": self.energy,
+            "n_vertices": int(mesh.n_vertices),
+            "n_faces": int(mesh.n_faces),
+            "frequency": {"min": float(f.min()), "max": float(f.max()), "mean": float(f.mean())},
+            "eigenvalue": float(self.eigenvalue),
+            "zero_faces": [{"face": int(r), "index": int(i), "position": p}
+                           for r, i, p in zip(mesh.face_rows[zf], self.zero_index[zf], self.texture.zero_points.tolist())],
+            "branch_faces": [int(r) for r in mesh.face_rows[self.branch_faces]],
+            "index_sum": int(self.zero_index.sum()),
+            "solver": dict(self.solver),
+            "timings": {k: float(v) for k, v in self.timings.items()},
+        }
+        if self.orthogonal is not None:
+            out["orthogonal"] = self.orthogonal.to_json()
+        return out
+
+    def __repr__(self) -> str:
+        return (f"StripePattern(n={self.n}, energy={self.energy!r}, zeros={self.zero_faces.size}, "
+                f"branch_faces={self.branch_faces.size}, eigenvalue={self.eigenvalue:.6g}, {self.mesh!r})")
+
+
+def _is_field(obj) -> bool:
+    return all(hasattr(obj, a) for a in ("mesh", "n", "directions")) and isinstance(getattr(obj, "mesh"), SurfaceMesh)
+
+
+def _surface(V, F, reorient, components):
+    if isinstance(V, TangentBundle):
+        V = V.mesh
+    if isinstance(V, SurfaceMesh):
+        if F is not None:
+            raise InvalidParameterError("pass either a SurfaceMesh (or TangentBundle) as V with F=None, or arrays V, F")
+        return V
+    if F is None:
+        raise InvalidParameterError("stripe_pattern needs the face array F (or a SurfaceMesh / direction field as V)")
+    return validate_surface(V, F, reorient=reorient, components=components)
+
+
+def _field_directions(fld, mesh, n):
+    """The first direction per vertex of a direction-field result, and the n to use."""
+    fn = int(fld.n)
+    if fn not in (1, 2):
+        raise InvalidParameterError(f"stripes need a vector field (n = 1) or a line field (n = 2); the direction "
+                                    f"field has n = {fn}")
+    if n is None:
+        n = fn
+    elif n < fn:
+        raise InvalidParameterError("the direction field is a line field (n = 2): its directions have no consistent "
+                                    "orientation, so it cannot drive an oriented (n = 1) pattern; use n=2")
+    if mesh is fld.mesh:
+        return np.asarray(fld.directions)[:, 0, :], n
+    if hasattr(fld, "input_directions"):
+        return np.asarray(fld.input_directions())[:, 0, :], n
+    return np.asarray(fld.directions)[:, 0, :], n
+
+
+def _indefinite(A, M, tol, backend, block_size):
+    """Smallest eigenpair of an indefinite A (negative cotan weights): shift below a Gershgorin bound."""
+    d = np.asarray(M.diagonal()).real
+    absA = abs(A)
+    radius = np.asarray(absA.sum(axis=1)).ravel() - np.abs(A.diagonal())
+    low = float(np.min((A.diagonal().real - radius) / d))
+    sigma = low - 1e-3 * abs(low)
+    warnings.warn("the cotan stripe energy is indefinite on this mesh (negative cotangent weights of obtuse "
+                  f"triangles; the smallest eigenvalue is below 0): searching below the Gershgorin bound {low:.3g}. "
+                  "The curvature-corrected energy='fem' is always positive semidefinite", DhlbWarning, stacklevel=4)
+    return smallest_eigenpairs(A, M, 1, tol=tol, backend=backend, block_size=block_size, sigma=sigma,
+                               maxiter=2000)
+
+
+def _solve(form, energy, lumped, branch_weight, backend, tol, block_size):
+    t0 = time.perf_counter()
+    A, M, cplx = stripe_matrices(form, energy, lumped=lumped, branch_weight=branch_weight)
+    t1 = time.perf_counter()
+    try:
+        res = smallest_eigenpairs(A, M, 1, tol=tol, backend=backend, block_size=block_size)
+        indefinite = False
+    except InvalidOperatorError as err:
+        if "not positive semidefinite" not in str(err):
+            raise
+        res, indefinite = _indefinite(A, M, tol, backend, block_size), True
+    t2 = time.perf_counter()
+    x = res.eigenvectors[:, 0]
+    psi = x if cplx else x[0::2] + 1j * x[1::2]
+    solver = {"backend": res.backend, "iterations": int(res.iterations), "residual": float(res.residuals[0]),
+              "converged": bool(res.converged), "shift": float(res.shift), "block_size": int(res.block_size),
+              "unknowns": int(A.shape[0]), "complex": cplx, "indefinite": indefinite}
+    return np.ascontiguousarray(psi, np.complex128), float(res.eigenvalues[0]), solver, t1 - t0, t2 - t1
+
+
+def _one(tb, X, n, frequency, spacing, method, energy, lumped, branch_weight, backend, tol, block_size,
+         warn_aliasing, t_mesh):
+    t0 = time.perf_counter()
+    form = stripe_form(tb, X, n, frequency=frequency, spacing=spacing, method=method, warn_aliasing=warn_aliasing)
+    t1 = time.perf_counter()
+    psi, lam, solver, t_mat, t_solve = _solve(form, energy, lumped, branch_weight, backend, tol, block_size)
+    t2 = time.perf_counter()
+    tex = texture_coordinates(form, psi)
+    t3 = time.perf_counter()
+    setup = t_mesh + (t1 - t0) + t_mat
+    timings = {"setup": setup, "solve": t_solve, "texture": t3 - t2, "total": setup + t_solve + (t3 - t2)}
+    return StripePattern(form, psi, tex, lam, energy, solver, timings)
+
+
+def stripe_pattern(V, F=None, directions=None, frequency=None, *, spacing=None, n: int | None = None,
+                   energy: str = "cotan", backend=None, orthogonal: bool = False, method: str = "intrinsic",
+                   lumped: bool | None = None, branch_weight: float = 0.0, tol: float = 1e-10,
+                   block_size: int | None = None, reorient: bool = False, components: str = "all",
+                   warn_aliasing: bool = True) -> StripePattern:
+    """A stripe pattern following ``directions`` with the given frequency (seed part 2).
+
+    Parameters
+    ----------
+    V : (k, 3) array, or a SurfaceMesh / TangentBundle (then F = None), or a direction-field result
+        (:func:`dhlb.surface.direction_field`; then F = None and ``directions`` = None).
+    F : (m, 3) int array
+    directions : (k, 3) or (N, 3) array, (…, j, 3) array (first direction used), or a direction-field
+        result with ``n`` = 1 or 2 (its first direction per vertex)
+        One tangent direction per vertex (rows of V or compact vertices); its tangential part is used.
+    frequency : float or per-vertex array, > 0
+        Stripes per unit length.
+    spacing : float or per-vertex array, > 0
+        Alternatively, the period in mean edge lengths.
+    n : {1, 2}, optional
+        1: oriented directions, 2: line field; default the field's n, else 1.
+    energy : {"cotan", "fem"}
+        The seed's cotangent energy (default) or the curvature-corrected FEM energy (see
+        :mod:`dhlb.stripes.energy`).
+    backend : str or backend object, optional
+        Factorization backend of :func:`dhlb.fem.smallest_eigenpairs`.
+    orthogonal : bool
+        Also compute the pattern of the directions turned by 90° (``N × X``), as ``result.orthogonal``.
+    method : {"intrinsic", "extrinsic"}
+        How ω̂ is computed (:func:`dhlb.stripes.stripe_form`).
+    lumped, branch_weight :
+        See :func:`dhlb.stripes.energy.stripe_matrices`.
+    tol : float
+        Backward-error tolerance of the eigenpair.
+    block_size : int, optional
+        Subspace size of the eigensolver.
+    reorient, components :
+        Passed to :func:`dhlb.surface.validate_surface`.
+    warn_aliasing : bool
+        Warn when stripes are narrower than two edges (the result stays correct, §4.3).
+
+    Returns
+    -------
+    StripePattern
+
+    Raises
+    ------
+    ShapeError, NonFiniteError, SectionZeroError, InvalidParameterError
+        Bad directions (NaN, zero or normal to the surface: the vertex is named), non-positive or
+        missing frequency, bad n / energy / method; the mesh errors of
+        :func:`dhlb.surface.validate_surface` (naming the face or vertex).
+    ConvergenceError
+        The eigensolver did not reach ``tol``.
+
+    Warns
+    -----
+    DhlbWarning
+        Stripes narrower than the mesh resolves (the frequency adjustment keeps α correct).
+    """
+    t0 = time.perf_counter()
+    if energy not in ENERGIES:
+        raise InvalidParameterError(f"energy must be one of {ENERGIES}, got {energy!r}")
+    fld = None
+    if _is_field(V) and F is None and directions is None:
+        fld, V = V, V.mesh
+    elif _is_field(directions):
+        fld = directions
+    if directions is None and fld is None:
+        raise InvalidParameterError("stripe_pattern needs directions (per-vertex vectors or a direction field)")
+    if n is not None and (isinstance(n, (bool, np.bool_)) or not isinstance(n, numbers.Integral) or n not in (1, 2)):
+        raise InvalidParameterError(f"n must be 1 (vector field) or 2 (line field), got {n!r}")
+    if fld is not None and F is None and not isinstance(V, (SurfaceMesh, TangentBundle)):
+        V = fld.mesh
+    mesh = _surface(V, F, reorient, components)
+    if fld is not None:
+        X, n = _field_directions(fld, mesh, n)
+    else:
+        X, n = directions, 1 if n is None else int(n)
+    tb = V if isinstance(V, TangentBundle) and V.n == 1 else TangentBundle(mesh, 1)
+    t_mesh = time.perf_counter() - t0
+    args = (frequency, spacing, method, energy, lumped, branch_weight, backend, tol, block_size, warn_aliasing)
+    res = _one(tb, X, n, *args, t_mesh)
+    if orthogonal:
+        t1 = time.perf_counter()
+        Y = np.cross(tb.normals, res.form.directions)
+        res.orthogonal = _one(tb, Y, n, *args, time.perf_counter() - t1)
+    return res
+

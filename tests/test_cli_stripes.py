@@ -1,0 +1,108 @@
+"""``dhlb stripes``: files written, the --json object, errors and exit codes."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+import numpy as np
+import pytest
+
+from dhlb.commands import stripes
+from dhlb.commands._common import run_command
+from dhlb.io import example_path, read_surface
+from dhlb.stripes import stripe_pattern
+from dhlb.surface import direction_field
+
+TORUS = example_path("torus.obj")
+
+
+def run(argv):
+    parser = argparse.ArgumentParser(prog="dhlb")
+    sub = parser.add_subparsers(dest="command")
+    stripes.register(sub)
+    return run_command(parser.parse_args(["stripes", *argv]))
+
+
+def parse_obj(path):
+    v, vt, f, lines = [], [], [], []
+    for line in open(path):
+        k, *rest = line.split()
+        if k == "v":
+            v.append([float(x) for x in rest])
+        elif k == "vt":
+            vt.append(float(rest[0]))
+        elif k == "f":
+            f.append([[int(x) for x in c.split("/")] for c in rest])
+        elif k == "l":
+            lines.append([int(x) for x in rest])
+    return np.array(v), np.array(vt), np.array(f), lines
+
+
+def test_json_summary_and_files(tmp_path, capsys):
+    out = tmp_path / "torus-stripes"
+    assert run([TORUS, "--spacing", "4", "--n", "2", "-o", str(out), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert {"zero_faces", "branch_faces", "timings", "eigenvalue", "files"} <= set(data)
+    assert all(set(z) >= {"face", "index"} and z["index"] != 0 for z in data["zero_faces"])
+    assert set(data["timings"]) >= {"setup", "solve", "texture"}
+    # the same pattern through the API: same singular faces, UVs u = α/2π per face corner
+    V, F = read_surface(TORUS)
+    res = stripe_pattern(V, F, direction_field(V, F, n=2), spacing=4.0)
+    assert data["branch_faces"] == res.to_json()["branch_faces"]
+    assert [(z["face"], z["index"]) for z in data["zero_faces"]] == \
+        [(z["face"], z["index"]) for z in res.to_json()["zero_faces"]]
+    P, vt, f, _ = parse_obj(data["files"]["obj"])
+    assert np.array_equal(f[:, :, 0] - 1, res.mesh.faces) and vt.size == 3 * len(f)
+    # (the smoothest line field of this torus is degenerate: compare the pattern, not the phase)
+    c = np.cos(2 * np.pi * vt)  # per corner; no zero or branch face here, so equal at every vertex
+    assert not data["zero_faces"] and not data["branch_faces"]
+    vert = f[:, :, 0].ravel() - 1
+    lo = np.full(vert.max() + 1, np.inf)
+    hi = np.full(vert.max() + 1, -np.inf)
+    np.minimum.at(lo, vert, c)
+    np.maximum.at(hi, vert, c)
+    assert np.allclose(lo, hi, atol=1e-9)
+    side = json.load(open(data["files"]["sidecar"]))
+    assert side["branch"]["faces"] == res.branch_faces.tolist() and side["n"] == 2
+    Q, _, _, lines = parse_obj(data["files"]["isolines"])
+    assert data["files"]["n_isolines"] == len(lines) > 0 and all(len(p) >= 2 for p in lines)
+    assert (tmp_path / "torus-stripes.png").stat().st_size > 1000
+
+
+def test_field_file_orthogonal_and_text_report(tmp_path, capsys):
+    V, F = read_surface(TORUS)
+    X = np.stack([-V[:, 1], V[:, 0], 0 * V[:, 0]], 1)  # around the axis
+    np.savetxt(tmp_path / "dirs.txt", X)
+    out = tmp_path / "t.obj"
+    assert run([TORUS, "--frequency", "0.6", "--field", str(tmp_path / "dirs.txt"), "-o", str(out),
+                "--orthogonal", "--no-png"]) == 0
+    text = capsys.readouterr().out
+    assert "zeros:" in text and "t-orthogonal.obj" in text
+    assert not (tmp_path / "t.png").exists() and (tmp_path / "t-orthogonal.json").exists()
+    res = stripe_pattern(V, F, X, 0.6)
+    _, vt, _, _ = parse_obj(out)
+    assert np.allclose(vt, res.corner_alpha.ravel() / (2 * np.pi), atol=1e-9)
+
+
+@pytest.mark.parametrize("argv,code,msg", [
+    (["--frequency", "-1"], 2, "positive"),
+    (["--spacing", "0"], 2, "positive"),
+    (["--spacing", "3", "--field", "nosuchfile.txt"], 2, "nosuchfile"),
+    (["--spacing", "3", "--field", "curvature", "--n", "1"], 2, "--n 2"),
+])
+def test_errors(tmp_path, capsys, argv, code, msg):
+    assert run([TORUS, *argv, "-o", str(tmp_path / "x")]) == code
+    assert msg in capsys.readouterr().err
+
+
+def test_bad_inputs_exit_codes(tmp_path, capsys):
+    assert run([str(tmp_path / "missing.obj"), "--spacing", "3"]) == 2
+    bad = tmp_path / "dirs.txt"
+    V, _ = read_surface(TORUS)
+    X = np.tile([0.0, 0.0, 0.0], (len(V), 1))
+    np.savetxt(bad, X)
+    assert run([TORUS, "--spacing", "3", "--field", str(bad), "-o", str(tmp_path / "y")]) == 1
+    assert "zero" in capsys.readouterr().err  # a typed SectionZeroError, one line, naming the vertex
+    with pytest.raises(SystemExit):
+        run([TORUS, "--spacing", "3", "--frequency", "2"])  # mutually exclusive
