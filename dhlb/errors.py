@@ -192,3 +192,11 @@ class CurveIntersectionError(DhlbError, ValueError):
 
 
 __all__.append("CurveIntersectionError")
+
+
+class UnresolvedFluxWarning(DhlbWarning):
+    """The curvature (flux) through some triangle exceeds π in modulus: the mesh does not resolve the
+    feature there (e.g. a vortex core), so zeros of sections may be misplaced or lost."""
+
+
+__all__.append("UnresolvedFluxWarning")

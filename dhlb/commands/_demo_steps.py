@@ -91,12 +91,12 @@ def stripes(out, progress, *, backend=None) -> list[dict]:
     from dhlb.surface import direction_field
 
     V, F = _spot()
-    caption = "stripe pattern along the smoothest line field (spacing 4 mean edge lengths)"
+    caption = "stripe pattern along the smoothest line field (spacing 6 mean edge lengths)"
 
     def work():
         t0 = time.perf_counter()
         field = direction_field(V, F, n=2, backend=backend)
-        res = stripe_pattern(V, F, field, spacing=4.0, backend=backend)
+        res = stripe_pattern(V, F, field, spacing=6.0, backend=backend)
         png = render_stripes_png(os.path.join(out, "stripes.png"), res.texture, title=caption, **_SPOT_VIEW)
         write_stripes_obj(os.path.join(out, "stripes.obj"), res.texture)
         return res, png, time.perf_counter() - t0

@@ -7,6 +7,7 @@
   :func:`superpose`, :func:`vortex_ring`, :func:`hopf_link`, :func:`torus_knot`, :func:`trefoil`
 * filaments of a section: :func:`extract_filaments` → :class:`FilamentSet` of :class:`Filament`
 * curve topology: :func:`linking_number`, :func:`linking_matrix`, :func:`hausdorff_distance`
+* the whole pipeline: :func:`vortex_filaments` → :class:`VortexResult`
 
 Examples
 --------
@@ -24,6 +25,7 @@ from dhlb.volume.linking import (gauss_linking_integral, hausdorff_distance, lin
                                  polyline_distance)
 from dhlb.volume.meshes import TetMesh, ball_tet_mesh, box_tet_mesh, check_tet_mesh, signed_volumes
 from dhlb.volume.velocity import edge_circulation, gauss_legendre, velocity_bundle
+from dhlb.volume.vortex import VortexResult, filament_linking_numbers, vortex_filaments
 
 __all__ = [
     "TetMesh", "ball_tet_mesh", "box_tet_mesh", "check_tet_mesh", "signed_volumes",
@@ -32,4 +34,5 @@ __all__ = [
     "hopf_link", "torus_knot", "trefoil", "vortex_ring",
     "Filament", "FilamentSet", "extract_filaments", "face_zeros",
     "gauss_linking_integral", "hausdorff_distance", "linking_matrix", "linking_number", "polyline_distance",
+    "VortexResult", "filament_linking_numbers", "vortex_filaments",
 ]

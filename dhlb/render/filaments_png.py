@@ -1,0 +1,168 @@
+"""PNG pictures of vortex filaments inside the outline of their domain (matplotlib, Agg).
+
+Orthographic camera as in :func:`dhlb.render.render_field_png`. The domain is drawn as its
+silhouette (the boundary triangles filled in one flat light colour) with its outline: the
+*contour* edges of the boundary surface (one adjacent triangle faces the camera, the other
+does not) and its *feature* edges (dihedral angle above 30°, e.g. the edges of a box), front
+ones solid and back ones dashed. The filaments are drawn on top as polylines, one colour per
+filament, segment by segment from back to front with a thin white halo, so crossings in depth
+are readable; an arrowhead in the middle of each filament shows its direction.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from dhlb.errors import InvalidSimplexError, NonFiniteError, ShapeError
+from dhlb.render.png import _camera, _matplotlib, _unit, finish_figure
+
+__all__ = ["render_filaments_png"]
+
+_COLORS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2", "#7f7f7f",
+           "#bcbd22")
+
+
+def _curves(filaments):
+    out = []
+    for i, f in enumerate(filaments):
+        pts, closed = (f.points, f.closed) if hasattr(f, "points") else (f, True)
+        P = np.asarray(pts, dtype=float)
+        if P.ndim != 2 or P.shape[1] != 3:
+            raise ShapeError(f"filament #{i} must be an (m, 3) array of points, got shape {P.shape}")
+        if not np.all(np.isfinite(P)):
+            raise NonFiniteError(f"filament #{i} has a non-finite point (row {int(np.argmax(~np.isfinite(P).all(1)))})")
+        out.append((P, bool(closed)))
+    return out
+
+
+def _outline_edges(V, F, w):
+    """Contour and feature edges of the triangle surface (V, F) seen along ``w``: (edges (e, 2), front (e,) bool)."""
+    fn = _unit(np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]))
+    E = np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]])
+    face = np.tile(np.arange(F.shape[0]), 3)
+    key = np.sort(E, axis=1)
+    order = np.lexsort((key[:, 1], key[:, 0]))
+    key, face = key[order], face[order]
+    same = np.all(key[1:] == key[:-1], axis=1)
+    i = np.nonzero(same)[0]  # pairs (i, i+1) of the two faces at an edge
+    a, b = face[i], face[i + 1]
+    contour = np.sign(fn[a] @ w) != np.sign(fn[b] @ w)
+    feature = np.einsum("ij,ij->i", fn[a], fn[b]) < np.cos(np.radians(30))
+    keep = contour | feature
+    front = contour[keep] | ((fn[a[keep]] @ w > 0) | (fn[b[keep]] @ w > 0))
+    single = np.ones(key.shape[0], bool)  # open surfaces: their border is outline too
+    single[i] = single[i + 1] = False
+    edges = np.concatenate([key[i][keep], key[single]])
+    return edges, np.concatenate([front, np.ones(int(single.sum()), bool)])
+
+
+def render_filaments_png(path, filaments, V=None, F=None, *, view=(1.0, -1.6, 0.9), up=(0.0, 0.0, 1.0),
+                         size=(800, 800), dpi: int = 100, line_width: float = 2.2, fill=(0.90, 0.92, 0.95),
+                         outline_color="#5a6270", background="white", title: str | None = None) -> str:
+    """Render filaments (and optionally the boundary of their domain) to a PNG file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        Output file (PNG).
+    filaments : sequence of Filament or (m, 3) arrays
+        Polylines; objects with ``.points`` and ``.closed`` (a :class:`dhlb.volume.Filament`) or
+        plain arrays (taken as closed).
+    V, F : (N, 3) float and (b, 3) int, optional
+        The boundary surface of the domain (e.g. ``mesh.points`` and ``mesh.boundary_faces`` of a
+        :class:`dhlb.volume.TetMesh`), drawn as silhouette and outline.
+    view, up : 3-vectors
+        Camera direction (from the scene toward the camera) and the world direction shown upward.
+    size : (width, height) in pixels; dpi : int
+    line_width : float
+        Width of the filament lines in points.
+    title : str, optional
+
+    Returns
+    -------
+    str
+        The path written.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from dhlb.volume import box_tet_mesh, hopf_link
+    >>> mesh = box_tet_mesh(2, lower=-1.5, upper=2.5)
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = render_filaments_png(os.path.join(d, "f.png"), hopf_link(n=40), mesh.points, mesh.boundary_faces,
+    ...                              size=(200, 200))
+    ...     open(p, "rb").read(8) == b"\\x89PNG\\r\\n\\x1a\\n"
+    True
+    """
+    Figure, FigureCanvasAgg, PolyCollection = _matplotlib()
+    from matplotlib.collections import LineCollection
+    from matplotlib.colors import to_rgba
+
+    curves = _curves(filaments)
+    right, upv, w = _camera(view, up)
+    pts = [P for P, _ in curves]
+    P = Ft = None
+    if V is not None or F is not None:
+        if V is None or F is None:
+            raise ShapeError("give both V and F for the domain outline (or neither)")
+        P = np.asarray(V, dtype=float)
+        Ft = np.asarray(F)
+        if P.ndim != 2 or P.shape[1] != 3:
+            raise ShapeError(f"V must have shape (n, 3), got {P.shape}")
+        if not np.all(np.isfinite(P)):
+            raise NonFiniteError(f"vertex {int(np.argmax(~np.isfinite(P).all(1)))} has a NaN or infinite coordinate")
+        if Ft.ndim != 2 or Ft.shape[1] != 3 or not np.issubdtype(Ft.dtype, np.integer) or Ft.shape[0] == 0:
+            raise InvalidSimplexError(f"F must be a non-empty integer array of shape (b, 3), got {Ft.shape} {Ft.dtype}")
+        if Ft.min() < 0 or Ft.max() >= P.shape[0]:
+            raise InvalidSimplexError(f"F refers to vertices outside V (rows 0 .. {P.shape[0] - 1})")
+        Ft = Ft.astype(np.int64)
+        pts = pts + [P[np.unique(Ft)]]
+    allp = np.concatenate(pts) if pts else np.zeros((1, 3))
+    c = 0.5 * (allp.min(axis=0) + allp.max(axis=0))
+
+    def proj(X):
+        Q = X - c
+        return np.stack([Q @ right, Q @ upv], axis=1), Q @ w
+
+    W, H = size
+    fig = Figure(figsize=(W / dpi, H / dpi), dpi=dpi, facecolor=background)
+    FigureCanvasAgg(fig)
+    ax = fig.add_axes((0, 0, 1, 1))
+    ax.set_axis_off()
+    xy_all = [proj(allp)[0]]
+    if P is not None:
+        xy, _ = proj(P)
+        ax.add_collection(PolyCollection(xy[Ft], facecolors=[fill], edgecolors=[fill], linewidths=0.3,
+                                         zorder=0), autolim=False)
+        edges, front = _outline_edges(P, Ft, w)
+        for sel, style in ((~front, (0, (3, 3))), (front, "solid")):
+            if np.any(sel):
+                ax.add_collection(LineCollection(xy[edges[sel]], colors=outline_color, linewidths=0.8,
+                                                 linestyles=style, zorder=1), autolim=False)
+    segs, depth, cols = [], [], []
+    for k, (X, closed) in enumerate(curves):
+        if X.shape[0] < 2:
+            continue
+        Y = np.concatenate([X, X[:1]]) if closed else X
+        xy, d = proj(Y)
+        segs.append(np.stack([xy[:-1], xy[1:]], axis=1))
+        depth.append(0.5 * (d[:-1] + d[1:]))
+        cols.append(np.tile(to_rgba(_COLORS[k % len(_COLORS)]), (xy.shape[0] - 1, 1)))
+        mid = (Y.shape[0] - 1) // 2
+        ax.annotate("", xy=xy[mid + 1], xytext=xy[mid], zorder=4,
+                    arrowprops={"arrowstyle": "-|>", "color": _COLORS[k % len(_COLORS)], "lw": 0,
+                                "mutation_scale": 14})
+    if segs:
+        S, D, C = np.concatenate(segs), np.concatenate(depth), np.concatenate(cols)
+        order = np.argsort(D, kind="stable")
+        S, C = S[order], C[order]
+        halo = np.tile(to_rgba(background), (S.shape[0], 1))
+        inter = np.empty((2 * S.shape[0], 2, 2))
+        inter[0::2], inter[1::2] = S, S
+        icol = np.empty((2 * S.shape[0], 4))
+        icol[0::2], icol[1::2] = halo, C
+        widths = np.empty(2 * S.shape[0])
+        widths[0::2], widths[1::2] = line_width + 2.0, line_width
+        ax.add_collection(LineCollection(inter, colors=icol, linewidths=widths, capstyle="butt", joinstyle="round",
+                                         zorder=3), autolim=False)
+    return finish_figure(fig, ax, path, np.concatenate(xy_all), W / H, title, dpi, background)
