@@ -20,3 +20,65 @@ autodoc_typehints = "description"
 exclude_patterns = ["_build"]
 html_theme = "alabaster"
 suppress_warnings = ["myst.xref_missing"]
+
+
+# --- `dhlb --help` in the docs (docs/api/cli.md), generated from the parser at build time ---------
+def _dhlb_parsers():
+    """``[("dhlb", parser), ("dhlb info", subparser), ...]`` in the order of ``dhlb --help``."""
+    import argparse
+
+    from dhlb.cli import build_parser
+
+    parser = build_parser()
+    out = [("dhlb", parser)]
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            out += [(f"dhlb {name}", sub) for name, sub in action.choices.items()]
+    return out
+
+
+def _help_text(parser) -> str:
+    import os
+
+    old = os.environ.get("COLUMNS")
+    os.environ["COLUMNS"] = "100"  # argparse wraps to the terminal width; fix it for reproducible docs
+    try:
+        return parser.format_help()
+    finally:
+        if old is None:
+            del os.environ["COLUMNS"]
+        else:
+            os.environ["COLUMNS"] = old
+
+
+def setup(app):
+    from docutils import nodes
+    from docutils.parsers.rst import Directive
+
+    class DhlbHelp(Directive):
+        """``dhlb-help``: the ``--help`` text of ``dhlb`` (no argument), of one command (its name),
+        or of every command (``*``), each under a rubric."""
+
+        optional_arguments = 1
+
+        def run(self):
+            which = self.arguments[0] if self.arguments else None
+            parsers = _dhlb_parsers()
+            if which is None:
+                parsers = parsers[:1]
+            elif which != "*":
+                parsers = [p for p in parsers if p[0] == f"dhlb {which}"]
+                if not parsers:
+                    raise self.error(f"dhlb has no command {which!r}")
+            else:
+                parsers = parsers[1:]
+            result = []
+            for name, parser in parsers:
+                text = _help_text(parser)
+                if which == "*":
+                    result.append(nodes.rubric(text=name))
+                result.append(nodes.literal_block(text, text))
+            return result
+
+    app.add_directive("dhlb-help", DhlbHelp)
+    return {"parallel_read_safe": True}

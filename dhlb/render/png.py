@@ -98,8 +98,9 @@ def render_field_png(path, V, F, directions=None, singularities=None, *, view=(1
     directions : (N, k, 3) or (N, 3) float, optional
         Unit directions per vertex (:func:`dhlb.surface.direction_vectors`); rows of zeros
         draw nothing.
-    singularities : Singularities or (points (s, 3), index (s,)), optional
-        Drawn as red (index > 0) and blue (index < 0) dots.
+    singularities : Singularities or tuple, optional
+        A :class:`dhlb.surface.Singularities` or a tuple ``(points, index)`` of shapes ``(s, 3)``
+        and ``(s,)``; drawn as red (index > 0) and blue (index < 0) dots.
     view, up : 3-vectors
         Camera direction (from the mesh toward the camera) and the world direction shown upward.
     size : (width, height) in pixels; dpi : int

@@ -8,7 +8,7 @@ complex function) and a :class:`~dhlb.stripes.StripeForm`:
   and ``σ̂ = ω̂ − δ̂`` (the seed's §4.3 prints ``σ̂ := ω̂ + δ̂``; its own ``σ̃ := ω̃ − δ`` and Alg. 10
   line 23 have the minus sign). The tie ``δ = π`` is broken as in ``docs/conventions.md``
   (the rotation form ``ξ = −δ`` lies in ``(−π, π]``), once per edge, so both faces of an edge agree.
-  ``e^{iσ̃}φ_p = φ_q`` on every lifted edge (φ = ψ̃/|ψ̃|): σ follows ω wherever ψ does, however
+  ``e^{iσ̃}φ_p = φ_q`` on every lifted edge (``φ = ψ̃/|ψ̃|``): σ follows ω wherever ψ does, however
   large ω is (**frequency adjustment**).
 * **Walk** each face ``(i, j, k)`` of ``mesh.faces`` from sheet 1 at its first corner:
   ``α_i = arg ψ_i``, ``α_j = α_i + σ̃_{ij}``, ``α_k = α_j + σ̃_{jk}``, ``α_l = α_k + σ̃_{ki}``.

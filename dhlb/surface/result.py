@@ -51,6 +51,7 @@ class DirectionField:
 
     @property
     def mesh(self) -> SurfaceMesh:
+        """The validated mesh (compact vertex numbering)."""
         return self.tangent.mesh
 
     @property
@@ -60,6 +61,7 @@ class DirectionField:
 
     @property
     def singularities(self) -> Singularities:
+        """Faces with nonzero index: faces, input_faces, index, barycentric, points."""
         return self.indices.singularities
 
     @property
@@ -69,6 +71,7 @@ class DirectionField:
 
     @property
     def index_sum(self) -> int:
+        """Σ of the face indices (``n χ`` on a closed mesh)."""
         return int(self.indices.total)
 
     @property
@@ -78,6 +81,7 @@ class DirectionField:
 
     @property
     def euler_characteristic(self) -> int:
+        """χ of the mesh."""
         return int(self.mesh.euler_characteristic)
 
     def input_directions(self) -> np.ndarray:

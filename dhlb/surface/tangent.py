@@ -69,7 +69,9 @@ class TangentBundle:
     n : int >= 1
         The power: 1 vector fields, 2 line fields, 4 cross fields, ...
 
-    Attributes (all per compact vertex / per face of ``mesh`` / per canonical simplex of
+    Notes
+    -----
+    The attributes (per compact vertex, per face of ``mesh`` or per canonical simplex of
     ``mesh.complex``) are documented at each property. ``bundle`` is the
     :class:`~dhlb.bundles.HermitianLineBundle` and ``geometry`` the
     :class:`~dhlb.geometry.EuclideanComplex` the finite-element engine takes.

@@ -59,7 +59,7 @@ def segment_velocity(x, q1, q2, circulation=1.0, core_radius: float = 0.0, *, ch
 
     Parameters
     ----------
-    x : (m, 3) points
+    x : (m, 3) float
     q1, q2 : (s, 3) segment start and end points
     circulation : float or (s,) floats
     core_radius : float >= 0

@@ -1,0 +1,79 @@
+"""Generate the direction-field pictures of the documentation gallery (``docs/gallery.md``).
+
+Run from the repository root (about half a minute)::
+
+    MPLBACKEND=Agg OPENBLAS_NUM_THREADS=1 python docs/_gallery.py
+
+It writes ``docs/_static/gallery/*.png`` (500 × 500 pixels, re-saved with a 256-colour palette so
+that each stays well under 150 KB) and prints
+one line per picture: file, size, singularity count and the Poincaré–Hopf check. The pictures
+are committed; the docs build does not run this script. Everything comes from the bundled
+meshes (:func:`dhlb.io.example_path`), so the result is reproducible on any machine.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+
+import numpy as np
+
+from dhlb.io import example_path, read_surface
+from dhlb.render import render_field_png
+from dhlb.surface import direction_field
+
+OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "_static", "gallery")
+SIZE = (500, 500)
+MAX_BYTES = 150_000
+SPOT_VIEW = {"view": (1.0, 0.6, 0.4), "up": (0.0, 1.0, 0.0)}
+SADDLE_VIEW = {"view": (0.3, -1.0, 1.2), "up": (0.0, 0.0, 1.0)}
+
+
+def shrink(path: str) -> None:
+    """Re-save the PNG with a 256-colour palette (median cut, no dithering): about a third of the size."""
+    from PIL import Image  # a dependency of matplotlib, which the renderer needs anyway
+
+    with Image.open(path) as im:
+        q = im.convert("RGB").quantize(colors=256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+    q.save(path, optimize=True)
+
+
+def picture(name: str, mesh: str, view: dict, **kw) -> dict:
+    """Compute ``direction_field(mesh, **kw)``, render it to ``OUT/name.png`` and check it."""
+    t0 = time.perf_counter()
+    res = direction_field(*read_surface(example_path(mesh)), **kw)
+    m = res.mesh
+    path = render_field_png(os.path.join(OUT, f"{name}.png"), m.points, m.faces, res.directions,
+                            res.singularities, size=SIZE, **view)
+    shrink(path)
+    nbytes = os.path.getsize(path)
+    if nbytes > MAX_BYTES:
+        raise SystemExit(f"{path}: {nbytes} bytes > {MAX_BYTES}")
+    if res.index_sum != round(res.poincare_hopf):
+        raise SystemExit(f"{path}: index sum {res.index_sum} != Poincaré–Hopf {res.poincare_hopf}")
+    if m.is_closed and res.index_sum != res.n * res.euler_characteristic:
+        raise SystemExit(f"{path}: index sum {res.index_sum} != nχ = {res.n * res.euler_characteristic}")
+    rec = {"file": os.path.basename(path), "bytes": nbytes, "n": res.n, "s": res.s,
+           "singularities": len(res.singularities.faces), "index_sum": res.index_sum,
+           "positive": int(np.sum(res.singularities.index > 0)),
+           "negative": int(np.sum(res.singularities.index < 0)),
+           "seconds": time.perf_counter() - t0}
+    print("{file:28s} {bytes:7d} B  n={n} s={s:+.0f}  {singularities:3d} singularities "
+          "(+{positive}/-{negative}), index sum {index_sum:+d}  {seconds:5.1f} s".format(**rec))
+    return rec
+
+
+def main() -> int:
+    os.makedirs(OUT, exist_ok=True)
+    for n in (1, 2, 4):
+        for s in (-1.0, 0.0, 1.0):
+            picture(f"spot-n{n}-s{s:+.0f}", "spot.obj", SPOT_VIEW, n=n, s=s)
+    picture("spot-n4-curvature", "spot.obj", SPOT_VIEW, n=4, align="curvature")
+    picture("saddle-n4-boundary", "saddle.obj", SADDLE_VIEW, n=4, align="boundary", lam=-10.0)
+    picture("torus-n4-s+1", "torus.obj", {"view": (0.4, -1.0, 1.4), "up": (0.0, 0.0, 1.0)}, n=4, s=1.0)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
