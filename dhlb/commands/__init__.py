@@ -18,7 +18,7 @@ import importlib
 __all__ = ["COMMAND_MODULES", "iter_commands"]
 
 #: module names under dhlb.commands, in the order ``dhlb --help`` lists them
-COMMAND_MODULES = ("info", "stripes", "vortex", "demo")
+COMMAND_MODULES = ("info", "field", "stripes", "vortex", "demo")
 
 
 def iter_commands():

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from dhlb.errors import MeshParseError
+from dhlb.errors import MeshParseError, ShapeError
 from dhlb.io._text import (
     check_cells,
     check_finite,
@@ -365,11 +365,13 @@ def read_ply(path) -> tuple[np.ndarray, np.ndarray]:
     return V, F
 
 
-def write_ply(path, V, F, binary: bool = False, byteorder: str = "<") -> None:
+def write_ply(path, V, F, binary: bool = False, byteorder: str = "<", vertex_properties=None) -> None:
     """Write a mesh as PLY: ``double x y z`` per vertex, ``list uchar int vertex_indices`` per face.
 
     Parameters
     ----------
+    vertex_properties : dict of name -> (n,) float array, optional
+        Extra ``double`` vertex properties (e.g. direction components), written after ``x y z``.
     binary : bool
         Binary body instead of ASCII.
     byteorder : {'<', '>'}
@@ -391,10 +393,16 @@ def write_ply(path, V, F, binary: bool = False, byteorder: str = "<") -> None:
     if byteorder not in ("<", ">"):
         raise ValueError(f"byteorder must be '<' or '>', got {byteorder!r}")
     fmt = "ascii" if not binary else ("binary_little_endian" if byteorder == "<" else "binary_big_endian")
+    extra = {str(k): np.asarray(a, dtype=np.float64) for k, a in (vertex_properties or {}).items()}
+    for k, a in extra.items():
+        if a.shape != (len(V),) or not k.isidentifier() or k in ("x", "y", "z"):
+            raise ShapeError(f"vertex property {k!r} must be a new identifier with shape ({len(V)},), got {a.shape}")
+    V = np.column_stack([V] + list(extra.values()))
     header = (
         f"ply\nformat {fmt} 1.0\ncomment written by dhlb\nelement vertex {len(V)}\n"
         "property double x\nproperty double y\nproperty double z\n"
-        f"element face {len(F)}\nproperty list uchar int vertex_indices\nend_header\n"
+        + "".join(f"property double {k}\n" for k in extra)
+        + f"element face {len(F)}\nproperty list uchar int vertex_indices\nend_header\n"
     )
     with open(os.fspath(path), "wb") as fh:
         fh.write(header.encode("ascii"))

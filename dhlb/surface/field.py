@@ -92,19 +92,26 @@ def _sub(S, idx):
     return S[idx][:, idx]
 
 
-def direction_field(V, F=None, n: int = 1, s: float = 0.0, align=None, lam: float = 0.0, *, reorient: bool = False,
-                    components: str = "all", backend=None, tol: float = 1e-10) -> DirectionField:
+def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None, lam: float = 0.0, *,
+                    lumped: bool = False, reorient: bool = False, components: str = "all", backend=None,
+                    tol: float = 1e-10) -> DirectionField:
     """The smoothest (or guidance-aligned) n-direction field of a triangle mesh.
 
     Parameters
     ----------
     V, F : mesh arrays (``(k, 3)`` float, ``(m, 3)`` int), or a SurfaceMesh / TangentBundle as V
-    n : int >= 1, symmetry: 1 vector field, 2 line field, 4 cross field
+    n : int >= 1, symmetry: 1 vector field, 2 line field, 4 cross field (default: that of a
+        TangentBundle ``V``, else 1)
     s : float in [−1, 1], energy ``E_s = E_D − s(E_A − E_H)``; +1 holomorphic, −1 anti-holomorphic
     align : None or str or array or Guidance
         None: smoothest field. ``"curvature"`` / ``"min-curvature"`` (even n), ``"boundary"`` /
         ``"boundary-normal"``, real ``(k, 3)`` vectors or complex ``(k,)`` values per vertex.
     lam : float, λ_t of the aligned problem (must stay below the smallest eigenvalue)
+    lumped : bool
+        Use the lumped (diagonal) mass matrix instead of the consistent one of Theorem 15 (the
+        seed's choice). For strongly aligned fields (λ_t ≪ 0) the consistent mass makes
+        ``(A − λ_t M)⁻¹ M`` oscillate (M is not an M-matrix): spurious ±1 pairs appear near
+        the guidance; the lumped mass avoids them.
     reorient, components : passed to :func:`dhlb.surface.validate_surface`
     backend : solver backend (see :mod:`dhlb.fem.solvers`)
     tol : float, backward-error tolerance of the eigen solve
@@ -138,6 +145,8 @@ def direction_field(V, F=None, n: int = 1, s: float = 0.0, align=None, lam: floa
     t0 = time.perf_counter()
     s = check_s(s)
     lam = _check_lam(lam)
+    if n is None:
+        n = V.n if isinstance(V, TangentBundle) else 1
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 1:
         raise InvalidParameterError(f"n must be an integer >= 1, got {n!r}")
     tb = _tangent(V, F, int(n), reorient, components)
@@ -148,7 +157,7 @@ def direction_field(V, F=None, n: int = 1, s: float = 0.0, align=None, lam: floa
             warnings.warn(f"no alignment: {guide.reason}; computing the smoothest field instead", DhlbWarning,
                           stacklevel=2)
             guide = None
-    A, M = energy_matrices(tb, s=s)
+    A, M = energy_matrices(tb, s=s, lumped=lumped)
     t1 = time.perf_counter()
 
     N = tb.mesh.n_vertices

@@ -151,10 +151,13 @@ def boundary_guidance(tb: TangentBundle, *, normal: bool = False) -> Guidance:
     """Alignment with the boundary: the boundary tangent at boundary vertices, 0 inside.
 
     At a boundary vertex the fan spans the rescaled angles ``[0, Θ_i]`` from the outgoing to the
-    incoming boundary edge (surface on the left), so the tangent of the positively oriented
-    boundary bisects the outgoing direction (angle 0) and the incoming direction of motion
-    (angle ``Θ_i − π``): ``φ_i = (Θ_i − π)/2``. With ``normal=True`` the inward normal
-    ``φ_i + π/2`` is used. The value is ``e^{i n φ_i}``.
+    incoming boundary edge (surface on the left), so the positively oriented boundary leaves along
+    the angle 0 and arrives along ``Θ_i − π``. The guidance is the normalized mean of the two edge
+    directions in the power representation, ``(1 + e^{in(Θ_i − π)}) / |1 + e^{in(Θ_i − π)}|``
+    (0 where they cancel): for n = 1 the bisector ``e^{i(Θ_i − π)/2}``; for a cross field at a
+    right-angle corner it is 1, the cross aligned with *both* edges (the bisector would point
+    diagonally and force spurious singularities). With ``normal=True`` every direction is turned
+    by ``+π/2`` (the inward normal): the value is multiplied by ``e^{inπ/2}``.
 
     Examples
     --------
@@ -165,9 +168,16 @@ def boundary_guidance(tb: TangentBundle, *, normal: bool = False) -> Guidance:
     >>> g = boundary_guidance(tb)
     >>> tb.angles_to_vectors(np.arange(4), np.angle(g.values)).round(6).tolist()[0]
     [0.707107, -0.707107, 0.0]
+    >>> tb4 = tangent_bundle(tb.mesh, n=4)
+    >>> boundary_guidance(tb4).values.round(12).tolist()[0]     # right-angle corner: aligned with both edges
+    (1+0j)
     """
-    phi = 0.5 * (tb.angle_sums - np.pi) + (0.5 * np.pi if normal else 0.0)
-    vals = np.where(tb.is_boundary_vertex, np.exp(1j * tb.n * phi), 0.0)
+    n = tb.n
+    mean = 1.0 + np.exp(1j * n * (tb.angle_sums - np.pi))
+    mod = np.abs(mean)
+    vals = np.where(tb.is_boundary_vertex & (mod > 1e-12), mean / np.where(mod > 0, mod, 1.0), 0.0)
+    if normal:
+        vals = vals * np.exp(0.5j * n * np.pi)
     return _guidance(vals, "boundary-normal" if normal else "boundary", "the mesh has no boundary")
 
 

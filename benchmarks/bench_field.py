@@ -1,0 +1,146 @@
+"""Benchmark of dhlb.surface.direction_field (issue 5) against one plain cotangent-Laplacian solve.
+
+For spot, kitten, the 69k-face Stanford bunny and a ≥ 300k-face mesh (kitten, midpoint-subdivided
+twice) from /work/shared/meshes, the smoothest cross field (n = 4, s = 0) is timed per phase
+(setup, solve, indices) and end to end (reading the file included), and compared with one
+factorization + solve of the real cotangent Laplacian plus a small mass shift, ``L + εM``, with the
+same backend (SuperLU, ``scipy.sparse.linalg.splu``), measured in the same run. The last columns
+say where the solve time goes: the eigensolver's iterations × block size (right-hand sides) and one
+factorization of the complex ``A − σM``.
+
+Run:  python benchmarks/bench_field.py [--quick] [--backend superlu]
+"""
+
+import os
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import argparse
+import time
+import warnings
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from dhlb.fem.solvers import default_shift, smallest_eigenpairs
+from dhlb.io import read_surface
+from dhlb.io.compact import compact_mesh
+from dhlb.surface import direction_field, energy_matrices
+
+MESHES = "/work/shared/meshes"
+
+
+def midpoint_subdivide(V, F, levels=1):
+    """Split every triangle into four at its edge midpoints (same surface, 4× the faces)."""
+    for _ in range(levels):
+        E = np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
+        E, inv = np.unique(E, axis=0, return_inverse=True)
+        m = len(F)
+        a, b, c = (inv.ravel()[k * m:(k + 1) * m] + len(V) for k in range(3))
+        V = np.vstack([V, V[E].mean(axis=1)])
+        F = np.concatenate([np.stack([F[:, 0], a, c], 1), np.stack([a, F[:, 1], b], 1),
+                            np.stack([c, b, F[:, 2]], 1), np.stack([a, b, c], 1)])
+    return V, F
+
+
+def cotan_laplacian(V, F):
+    """Real cotangent Laplacian (PSD) and lumped mass, vectorized."""
+    N = len(V)
+    rows, cols, vals = [], [], []
+    for k in range(3):
+        i, j, o = F[:, (k + 1) % 3], F[:, (k + 2) % 3], F[:, k]
+        u, v = V[i] - V[o], V[j] - V[o]
+        cot = np.sum(u * v, 1) / np.linalg.norm(np.cross(u, v), axis=1)
+        rows += [i, j, i, j]
+        cols += [j, i, i, j]
+        vals += [-0.5 * cot, -0.5 * cot, 0.5 * cot, 0.5 * cot]
+    L = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(N, N))
+    area = 0.5 * np.linalg.norm(np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]), axis=1)
+    mass = np.bincount(F.ravel(), np.repeat(area / 3, 3), N)
+    return L, sp.diags(mass)
+
+
+def _backend(name):
+    """The factorization backend of dhlb.fem (same code path as the field), with a cold ordering cache."""
+    try:
+        from dhlb.fem.backends import clear_cache, get_backend
+    except ImportError:  # older tree: plain SuperLU with the same ordering
+        class _SLU:
+            def factorize(self, K):
+                return spla.splu(sp.csc_matrix(K), permc_spec="MMD_AT_PLUS_A")
+        return _SLU()
+    clear_cache()
+    return get_backend(name)
+
+
+def laplace_baseline(V, F, backend):
+    """Seconds for one factorization + solve of ``L + εM`` (ε small relative to the spectrum)."""
+    L, M = cotan_laplacian(V, F)
+    eps = 1e-6 * L.diagonal().mean() / M.diagonal().mean()
+    b = M @ np.ones(len(V))
+    t0 = time.perf_counter()
+    K = (L + eps * M).tocsc()
+    x = _backend(backend).factorize(K).solve(b)
+    t1 = time.perf_counter()
+    assert np.all(np.isfinite(x))
+    return t1 - t0
+
+
+def complex_factorization(A, M, backend):
+    """Seconds for one factorization of the complex ``A − σM`` of the field (what each eigensolve uses)."""
+    K = (A - default_shift(A, M) * M).tocsc()
+    fac = _backend(backend)
+    t0 = time.perf_counter()
+    fac.factorize(K)
+    return time.perf_counter() - t0
+
+
+def load(name):
+    if name == "kitten-x16":
+        V, F = read_surface(os.path.join(MESHES, "kitten.obj"))
+        return midpoint_subdivide(V, F, 2)
+    V, F = read_surface(os.path.join(MESHES, name))
+    with warnings.catch_warnings():  # the bunny has 1113 unreferenced vertices
+        warnings.simplefilter("ignore")
+        return compact_mesh(V, F)[:2]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="skip the ≥ 300k-face mesh")
+    ap.add_argument("--backend", default="superlu")
+    ap.add_argument("--n", type=int, default=4)
+    ap.add_argument("--mesh", action="append", help="only these meshes (spot.obj, kitten.obj, stanford-bunny.obj, "
+                    "kitten-x16)")
+    args = ap.parse_args()
+    names = ["spot.obj", "kitten.obj", "stanford-bunny.obj"] + ([] if args.quick else ["kitten-x16"])
+    names = args.mesh or names
+    head = (f"{'mesh':<20}{'faces':>8}{'setup':>8}{'solve':>8}{'indices':>8}{'e2e':>8}{'laplace':>9}"
+            f"{'ratio':>7}{'iters×blk':>11}{'cfact':>8}")
+    print(f"direction_field n={args.n}, s=0, backend={args.backend}; times in seconds, "
+          f"OPENBLAS_NUM_THREADS={os.environ['OPENBLAS_NUM_THREADS']}")
+    print(head)
+    print("-" * len(head))
+    for name in names:
+        t0 = time.perf_counter()
+        V, F = load(name)
+        t_io = time.perf_counter() - t0
+        _backend(args.backend)  # cold ordering cache for the field, too
+        res = direction_field(V, F, n=args.n, s=0.0, backend=args.backend)
+        e2e = t_io + res.timings["total"]
+        base = laplace_baseline(res.mesh.points, res.mesh.faces, args.backend)
+        A, M = energy_matrices(res.tangent, s=0.0)
+        _backend(args.backend)
+        eig = smallest_eigenpairs(A, M, 1, tol=1e-10, backend=args.backend)  # same solve, for its statistics
+        cf = complex_factorization(A, M, args.backend)
+        T = res.timings
+        print(f"{name:<20}{len(F):>8}{T['setup']:>8.2f}{T['solve']:>8.2f}{T['indices']:>8.2f}{e2e:>8.2f}"
+              f"{base:>9.2f}{res.timings['total'] / base:>7.1f}{f'{eig.iterations}×{eig.block_size}':>11}{cf:>8.2f}")
+    print("ratio = field total (setup + solve + indices) / (one factorization + solve of L + εM);"
+          " e2e includes reading the file; cfact = one factorization of the complex A − σM")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,110 @@
+"""``dhlb field``: outputs (PLY with directions, npz, JSON, PNG), --json, alignment files, errors."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+
+import numpy as np
+import pytest
+
+import dhlb.commands.field as field_cmd
+from dhlb.commands._common import run_command
+from dhlb.io import read_ply, write_obj
+from dhlb.surface import direction_field
+from tests.surface_meshes import ellipsoid, grid
+
+DATA = os.path.join(os.path.dirname(__file__), "data")
+
+
+def cli(argv, capsys):
+    parser = argparse.ArgumentParser(prog="dhlb")
+    sub = parser.add_subparsers(dest="command")
+    field_cmd.register(sub)
+    args = parser.parse_args([field_cmd.NAME] + [str(a) for a in argv])
+    code = run_command(args)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_cross_field_on_the_rounded_cube_writes_everything(tmp_path, capsys):
+    out = tmp_path / "cube"
+    code, text, err = cli([os.path.join(DATA, "rounded_cube.obj"), "--n", 4, "-o", out, "--json"], capsys)
+    assert code == 0, err
+    summary = json.loads(text)
+    assert summary["index_sum"] == 8 == summary["euler_characteristic"] * 4 and summary["poincare_hopf"] == 8
+    assert [s["index"] for s in summary["singularities"]] == [1] * 8
+    assert {"setup", "solve", "indices", "io", "output", "end_to_end"} <= set(summary["timings"])
+    assert summary["eigenvalue"] > 0
+    assert json.loads((tmp_path / "cube.json").read_text())["index_sum"] == 8
+    # the npz and the PLY carry the same directions, in the input numbering
+    z = np.load(tmp_path / "cube.npz")
+    assert z["directions"].shape[1:] == (4, 3) and z["face_index"].sum() == 8
+    assert z["singular_faces"].tolist() == [s["face"] for s in summary["singularities"]]
+    data = (tmp_path / "cube.ply").read_bytes()
+    header = data[: data.index(b"end_header")].decode()
+    assert "property double d3z" in header and "binary_little_endian" in header
+    V, _ = read_ply(tmp_path / "cube.ply")
+    nv = len(V)
+    body = np.frombuffer(data[data.index(b"end_header") + 11:][: nv * 15 * 8], dtype="<f8").reshape(nv, 15)
+    assert np.allclose(body[:, 3:].reshape(nv, 4, 3), z["directions"])
+    assert (tmp_path / "cube.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_singularity_faces_are_input_rows_and_unreferenced_vertices_are_dropped(tmp_path, capsys):
+    V, F = ellipsoid(2)  # distinct axes: a simple smallest eigenvalue, so the field is unique
+    W = np.vstack([[[5.0, 5, 5]], V])
+    path = tmp_path / "s.obj"
+    write_obj(path, W, F + 1)
+    code, text, err = cli([path, "--n", 1, "-o", tmp_path / "s", "--json", "--no-png"], capsys)
+    assert code == 0 and "used by no face" in err
+    summary = json.loads(text)
+    ref = direction_field(V, F, n=1).singularities
+    assert [s["face"] for s in summary["singularities"]] == ref.input_faces.tolist()
+    assert np.allclose([s["position"] for s in summary["singularities"]], ref.points)
+    z = np.load(tmp_path / "s.npz")
+    assert np.isnan(z["directions"][0]).all() and np.isfinite(z["directions"][1:]).all()
+    assert not (tmp_path / "s.png").exists()
+
+
+def test_alignment_from_files(tmp_path, capsys):
+    V, F = grid(5, 4)
+    path = tmp_path / "g.obj"
+    write_obj(path, V, F)
+    vec = tmp_path / "v.npy"
+    np.save(vec, np.tile([0.0, 1.0, 0.0], (len(V), 1)))
+    code, text, err = cli([path, "--align", vec, "--lambda", -1, "-o", tmp_path / "g", "--json"], capsys)
+    assert code == 0, err
+    z = np.load(tmp_path / "g.npz")
+    assert np.allclose(z["directions"][:, 0], [0, 1, 0], atol=1e-12)
+    assert json.loads(text)["alignment"] == "user"
+    np.save(vec, np.ones(len(V), complex))  # complex values in the frames
+    assert cli([path, "--n", 2, "--align", vec, "--lambda", -1, "-o", tmp_path / "g", "--json"], capsys)[0] == 0
+    code, text, err = cli([path, "--n", 2, "--align", "curvature", "-o", tmp_path / "h", "--quiet"], capsys)
+    assert code == 0 and err == "" and text == ""
+    code, text, err = cli([path, "--n", 2, "--align", "curvature", "-o", tmp_path / "h"], capsys)
+    assert code == 0 and "flat" in err and "index sum" in text
+
+
+@pytest.mark.parametrize("argv, code, message", [
+    (["moebius-160-10.ply", "--n", 2], 1, "not orientable"),
+    (["rounded_cube.obj", "--s", 2], 1, "s must be a real number in \\[-1, 1\\]"),
+    (["rounded_cube.obj", "--n", 1, "--align", "curvature"], 1, "even n"),
+    (["rounded_cube.obj", "--align", "sideways"], 2, "--align must be one of"),
+    (["rounded_cube.obj", "--align", "missing.npy"], 2, "no such file"),
+    (["nothere.obj"], 2, "no such file"),
+    (["octopus-low-tet.mesh"], 2, "triangle surface"),
+])
+def test_errors(tmp_path, capsys, argv, code, message):
+    argv = [os.path.join(DATA, argv[0]) if os.path.exists(os.path.join(DATA, argv[0])) else argv[0]] + argv[1:]
+    got, _, err = cli(argv + ["-o", tmp_path / "x"], capsys)
+    assert got == code
+    assert len(err.strip().splitlines()) == 1
+    assert re.search(message, err), err
+
+
+def test_output_is_required(capsys):
+    code, _, err = cli([os.path.join(DATA, "rounded_cube.obj")], capsys)
+    assert code == 2 and "-o OUT" in err
