@@ -127,7 +127,12 @@ def test_boundary_aligned_field_on_a_cylinder_follows_the_boundary(n):
         want = inward * np.ones_like(P) if normal else tangent
         cos = np.einsum("vkd,vd->vk", res.directions[b], want)
         assert np.allclose(cos.max(axis=1), 1.0, atol=1e-12)  # one of the n directions is exactly the guide
-        assert res.index_sum == res.poincare_hopf == 0 and len(res.singularities.faces) == 0
+        assert res.index_sum == res.poincare_hopf == 0
+        if n % 2 == 0:
+            # even n: the two boundary circles ask for the same line/cross field, no singularity is needed.
+            # (For n = 1 their positive tangents point in opposite directions, so the field must
+            # vanish along a whole circle in between: its singular faces are decided by rounding.)
+            assert len(res.singularities.faces) == 0
 
 
 def test_boundary_aligned_cross_field_on_a_square_has_no_singularities():

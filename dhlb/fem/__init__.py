@@ -11,6 +11,7 @@ from dhlb.fem.integrals import (
     theta,
     xi,
 )
+from dhlb.fem.backends import available_backends, select_backend
 from dhlb.fem.solvers import EigenResult, backward_errors, smallest_eigenpairs, solve
 
 __all__ = [
@@ -29,6 +30,8 @@ __all__ = [
     "local_matrices",
     "theta",
     "xi",
+    "available_backends",
+    "select_backend",
     "EigenResult",
     "backward_errors",
     "smallest_eigenpairs",

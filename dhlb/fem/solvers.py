@@ -4,11 +4,14 @@ The eigensolver is shift-and-invert subspace iteration with Rayleigh–Ritz: wit
 it factorizes ``K = A - σ M`` once and iterates ``W = K⁻¹ M U``, orthonormalizes ``W`` and
 solves the projected problem ``(QᴴAQ) c = θ (QᴴMQ) c``.  The Ritz vectors are M-orthonormal.
 
-Linear algebra goes through a tiny backend interface (``name``, ``factorize(K, positive_definite=False)``
-returning an object with ``solve(B)``; ``factorize`` raises :class:`~dhlb.errors.InvalidOperatorError`
-if ``K`` is singular, or not positive definite when that was asserted) so that faster
-factorizations can be plugged in later; the default backend is SuperLU
-(:func:`scipy.sparse.linalg.splu`, real or complex).
+Linear algebra goes through the backends of :mod:`dhlb.fem.backends` (``superlu`` always;
+``cholmod``, ``cholespy``, ``amg-lobpcg`` when their packages are installed).  ``backend=None`` or
+``"auto"`` chooses by problem size, sparsity (2-D vs 3-D-like) and availability
+(:func:`~dhlb.fem.backends.select_backend`); the name of the method used is reported in
+:attr:`EigenResult.backend`.  Iterative backends (``amg-lobpcg``) replace the subspace iteration
+by their own block method (LOBPCG); the final Rayleigh–Ritz step, the backward-error test and
+the result are the same.  Everything runs under :func:`~dhlb.fem.backends.blas_guard` (one BLAS
+thread).
 
 Default shift
     For a PSD ``A`` the smallest eigenvalues are wanted and the kernel of ``A`` is typically
@@ -38,57 +41,24 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
-from dhlb.errors import ConvergenceError, InvalidOperatorError, InvalidParameterError, NonFiniteError, ShapeError
+from dhlb.errors import (
+    ConvergenceError,
+    InvalidOperatorError,
+    InvalidParameterError,
+    NonFiniteError,
+    ShapeError,
+)
+from dhlb.fem.backends import SuperLUBackend, blas_guard, get_backend
 
 __all__ = ["EigenResult", "SuperLUBackend", "backward_errors", "default_shift", "smallest_eigenpairs", "solve"]
 
 _EPS = np.finfo(float).eps
 
 
-# ---------------------------------------------------------------------- backend interface
-class SuperLUBackend:
-    """Sparse LU by SuperLU (real or complex); ``factorize(K).solve(B)`` solves ``K X = B``.
-
-    With ``positive_definite=True`` the Hermitian ``K`` is factorized with a symmetric
-    fill-reducing ordering and no pivoting (``P K Pᵀ = L D Lᴴ`` in LU form); by Sylvester's law
-    of inertia ``K`` is positive definite iff all pivots ``D`` are positive, which is checked.
-    (Should SuperLU nevertheless pivot off the diagonal, the check is skipped.)
-    """
-
-    name = "superlu"
-
-    def factorize(self, K: sp.spmatrix, *, positive_definite: bool = False):
-        """Factorize ``K``; raises :class:`InvalidOperatorError` if it is singular (or not PD when asked)."""
-        K = sp.csc_matrix(K)
-        kw = dict(diag_pivot_thresh=0.0, options=dict(SymmetricMode=True)) if positive_definite else {}
-        try:
-            fac = spla.splu(K, permc_spec="MMD_AT_PLUS_A", **kw)
-        except RuntimeError as err:  # "Factor is exactly singular"
-            raise InvalidOperatorError(f"the matrix to factorize is singular ({err})") from err
-        if positive_definite and np.array_equal(fac.perm_r, fac.perm_c):
-            piv = fac.U.diagonal().real
-            if not np.all(piv > 0):
-                raise InvalidOperatorError(f"the matrix is not positive definite ({int(np.sum(piv <= 0))} "
-                                           "non-positive pivots in its L D Lᴴ factorization)")
-        return fac
-
-
-_BACKENDS = {"superlu": SuperLUBackend}
-
-
 def _get_backend(backend):
-    if backend is None:
-        return SuperLUBackend()
-    if isinstance(backend, str):
-        if backend not in _BACKENDS:
-            raise InvalidParameterError(f"unknown backend {backend!r}; available: {sorted(_BACKENDS)}")
-        return _BACKENDS[backend]()
-    if not (hasattr(backend, "factorize") and hasattr(backend, "name")):
-        raise TypeError("a backend needs a `name` and a `factorize(K, positive_definite=False)` method "
-                        "returning an object with `solve(B)`")
-    return backend
+    """Backward-compatible alias: ``get_backend(backend)`` (``None`` → SuperLU)."""
+    return get_backend(backend)
 
 
 # ---------------------------------------------------------------------- validation
@@ -235,7 +205,8 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
     tol : float, tolerance of the backward-error and eigenvalue-change tests
     maxiter : int, maximal number of subspace iterations
     block_size : int, optional
-        Number of vectors iterated (default ``max(2k, k + 8)``); convergence goes like
+        Number of vectors iterated (default ``max(2k, k + 8)``; for ``amg-lobpcg`` ``k`` if
+        ``k = 1``, else ``k + max(2, k // 2)``); convergence goes like
         ``(λ_k / λ_{p+1})^iterations``, so raise it for clustered spectra (e.g. a Landau level
         of high multiplicity).
     sigma : float, optional
@@ -243,7 +214,10 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
         be PSD then).  Default ``-ε`` (see module docstring): the ``k`` smallest.
     v0 : (n,) or (n, j) array, optional, start vector(s); the rest of the subspace is random
         (seeded, so results are reproducible)
-    backend : str or backend object, optional (default SuperLU)
+    backend : str or backend object, optional
+        ``"superlu"``, ``"cholmod"``, ``"cholespy"``, ``"amg-lobpcg"`` (if installed), a backend
+        object, or ``None``/``"auto"``: chosen by size, sparsity and availability
+        (:func:`dhlb.fem.backends.select_backend`).  ``amg-lobpcg`` needs ``sigma=None``.
 
     Returns
     -------
@@ -276,36 +250,32 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
         raise InvalidParameterError(f"tol must be a positive number, got {tol!r}")
     if not (isinstance(maxiter, (int, np.integer)) and maxiter >= 1):
         raise InvalidParameterError(f"maxiter must be a positive integer, got {maxiter!r}")
-    be = _get_backend(backend)
+    default = sigma is None
+    if not default and not (np.isscalar(sigma) and np.isreal(sigma) and np.isfinite(sigma)):
+        raise InvalidParameterError(f"sigma must be a finite real number, got {sigma!r}")
+    be = get_backend(backend, n=n, nnz=A.nnz, eigen=True, shifted=not default)
+    iterative = hasattr(be, "eigensolve")
+    if iterative and not default:
+        raise InvalidParameterError(f"backend {be.name!r} computes the smallest eigenvalues only; sigma= needs a "
+                                    "direct backend (e.g. backend='superlu' or 'cholmod')")
     complex_ = np.iscomplexobj(A.data) or np.iscomplexobj(M.data)
     dtype = np.complex128 if complex_ else np.float64
-    default = sigma is None
     eps_shift = default_shift(A, M)
-    if default:
-        shift = -eps_shift
-    else:
-        if not (np.isscalar(sigma) and np.isreal(sigma) and np.isfinite(sigma)):
-            raise InvalidParameterError(f"sigma must be a finite real number, got {sigma!r}")
-        shift = float(sigma)
-    if default:
-        try:
-            fac = be.factorize((A + eps_shift * M).tocsc(), positive_definite=True)
-        except InvalidOperatorError as err:
-            raise InvalidOperatorError(f"A + εM (ε = {eps_shift:.3g}) is not positive definite, so A is not "
-                                       f"positive semidefinite ({err}); pass sigma= to search near a chosen "
-                                       "value") from err
-    else:
-        try:
-            fac = be.factorize((A - shift * M).tocsc())
-        except InvalidOperatorError:  # σ is exactly an eigenvalue: step off it
-            shift -= eps_shift
-            fac = be.factorize((A - shift * M).tocsc())
-
-    p = min(n, max(2 * k, k + 8))
+    shift = -eps_shift if default else float(sigma)
+    p = min(n, max(2 * k, k + 8) if not iterative else (k if k == 1 else k + max(2, k // 2)))
     if block_size is not None:
         if not isinstance(block_size, (int, np.integer)) or not k <= block_size:
             raise InvalidParameterError(f"block_size must be an integer >= k = {k}, got {block_size!r}")
         p = min(n, int(block_size))
+    U = _start_block(n, p, complex_, dtype, v0)
+    with blas_guard():
+        if iterative:
+            return _iterate_lobpcg(be, A, M, U, k, eps_shift, tol, maxiter)
+        fac, shift = _factorize_shifted(be, A, M, shift, eps_shift, default)
+        return _subspace_iteration(fac, be, A, M, U, k, shift, default, tol, maxiter)
+
+
+def _start_block(n, p, complex_, dtype, v0):
     rng = np.random.default_rng(0)
     U = rng.standard_normal((n, p))
     if complex_:
@@ -319,52 +289,100 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
         if not np.all(np.isfinite(V)):
             raise NonFiniteError("v0 contains NaN or inf")
         if V.shape[1] > p:
-            p = V.shape[1]
-            U = np.concatenate([U, np.zeros((n, p - U.shape[1]), dtype)], axis=1)
+            U = np.concatenate([U, np.zeros((n, V.shape[1] - p), dtype)], axis=1)
         U[:, : V.shape[1]] = V
+    return U
+
+
+def _factorize_shifted(be, A, M, shift, eps_shift, default):
+    if default:
+        try:
+            return be.factorize((A + eps_shift * M).tocsc(), positive_definite=True), shift
+        except InvalidOperatorError as err:
+            raise InvalidOperatorError(f"A + εM (ε = {eps_shift:.3g}) is not positive definite, so A is not "
+                                       f"positive semidefinite ({err}); pass sigma= to search near a chosen "
+                                       "value") from err
+    try:
+        return be.factorize((A - shift * M).tocsc()), shift
+    except InvalidOperatorError:  # σ is exactly an eigenvalue: step off it
+        return be.factorize((A - (shift - eps_shift) * M).tocsc()), shift - eps_shift
+
+
+def _rayleigh_ritz(A, M, W, k, shift, normA, normM):
+    """Ritz pairs of span ``W`` ordered by distance to ``shift``: ``(U, MU, λ_k, U_k, η_k)``."""
+    W = W / np.linalg.norm(W, axis=0)
+    Q, MQ = _m_orthonormalize(W, M)
+    AQ = A @ Q
+    Qh = Q.conj().T
+    Ap, Mp = Qh @ AQ, Qh @ MQ
+    Ap, Mp = 0.5 * (Ap + Ap.conj().T), 0.5 * (Mp + Mp.conj().T)
+    try:
+        theta, C = sla.eigh(Ap, Mp)
+    except np.linalg.LinAlgError as err:
+        raise InvalidOperatorError(f"M is not positive definite (projected mass not PD: {err})") from err
+    order = np.argsort(np.abs(theta - shift), kind="stable")
+    theta, C = theta[order], C[:, order]
+    U, MU = Q @ C, MQ @ C
+    sel = np.argsort(theta[:k], kind="stable")
+    lam, Uk = theta[:k][sel], U[:, :k][:, sel]
+    R = AQ @ C[:, :k][:, sel] - MU[:, :k][:, sel] * lam[None, :]  # only the k wanted residuals
+    return U, MU, lam, Uk, _eta(R, lam, Uk, normA, normM)
+
+
+def _not_psd(lam0, shift):
+    return InvalidOperatorError(f"A is not positive semidefinite: found the eigenvalue {lam0:.6g} "
+                                f"< -ε = {shift:.3g}; pass sigma= to search near a chosen value")
+
+
+def _not_converged(res, maxiter, tol, p):
+    err = ConvergenceError(f"smallest_eigenpairs: not converged after {maxiter} iterations "
+                           f"(largest backward error {res.residuals.max():.3g} > tol = {tol:.3g}); for a "
+                           f"clustered spectrum raise block_size (now {p}) above the cluster size, else increase "
+                           "maxiter, loosen tol, or pass a better v0")
+    err.result = res
+    return err
+
+
+def _subspace_iteration(fac, be, A, M, U, k, shift, default, tol, maxiter):
+    name, p = getattr(fac, "name", be.name), U.shape[1]
     normA, normM = _norm1(A), _norm1(M)
     MU = M @ U
-    lam_old = None
-    lam = eta = Uk = None
+    lam_old = lam = eta = Uk = None
     for it in range(1, maxiter + 1):
         W = fac.solve(MU)
         if not np.all(np.isfinite(W)):
             raise InvalidOperatorError("the shifted solve produced non-finite values; A - σM is numerically singular")
-        W = W / np.linalg.norm(W, axis=0)
-        Q, MQ = _m_orthonormalize(W, M)
-        AQ = A @ Q
-        Qh = Q.conj().T
-        Ap, Mp = Qh @ AQ, Qh @ MQ
-        Ap, Mp = 0.5 * (Ap + Ap.conj().T), 0.5 * (Mp + Mp.conj().T)
-        try:
-            theta, C = sla.eigh(Ap, Mp)
-        except np.linalg.LinAlgError as err:
-            raise InvalidOperatorError(f"M is not positive definite (projected mass not PD: {err})") from err
-        order = np.argsort(np.abs(theta - shift), kind="stable")
-        theta, C = theta[order], C[:, order]
-        U, MU = Q @ C, MQ @ C
-        sel = np.argsort(theta[:k], kind="stable")
-        lam, Uk = theta[:k][sel], U[:, :k][:, sel]
-        R = AQ @ C[:, :k][:, sel] - MU[:, :k][:, sel] * lam[None, :]  # only the k wanted residuals
-        eta = _eta(R, lam, Uk, normA, normM)
+        U, MU, lam, Uk, eta = _rayleigh_ritz(A, M, W, k, shift, normA, normM)
         ok = eta <= tol
         if lam_old is not None:
             ok &= np.abs(lam - lam_old) * normM <= tol * (normA + np.abs(lam) * normM)
         else:
             ok &= False
         if default and lam[0] < shift:
-            raise InvalidOperatorError(f"A is not positive semidefinite: found the eigenvalue {lam[0]:.6g} "
-                                       f"< -ε = {shift:.3g}; pass sigma= to search near a chosen value")
+            raise _not_psd(lam[0], shift)
         if np.all(ok):
-            return EigenResult(lam, _fix_phase(Uk), it, eta, True, be.name, shift, p)
+            return EigenResult(lam, _fix_phase(Uk), it, eta, True, name, shift, p)
         lam_old = lam
-    res = EigenResult(lam, _fix_phase(Uk), maxiter, eta, False, be.name, shift, p)
-    err = ConvergenceError(f"smallest_eigenpairs: not converged after {maxiter} iterations "
-                           f"(largest backward error {eta.max():.3g} > tol = {tol:.3g}); for a clustered "
-                           f"spectrum raise block_size (now {p}) above the cluster size, else increase maxiter, "
-                           "loosen tol, or pass a better v0")
-    err.result = res
-    raise err
+    raise _not_converged(EigenResult(lam, _fix_phase(Uk), maxiter, eta, False, name, shift, p), maxiter, tol, p)
+
+
+def _iterate_lobpcg(be, A, M, U, k, eps_shift, tol, maxiter):
+    """Iterative backend: its block method in chunks (25, 50, 100, ... iterations), each followed by
+    Rayleigh–Ritz and the backward-error test of the ``k`` wanted pairs (the extra block vectors
+    need not converge), restarting from the current block."""
+    normA, normM = _norm1(A), _norm1(M)
+    p, its, chunk = U.shape[1], 0, 25
+    while its < maxiter:
+        X, used = be.eigensolve(A, M, U, shift=eps_shift, tol=tol, maxiter=min(chunk, maxiter - its))
+        its, chunk = its + used, 2 * chunk
+        if not np.all(np.isfinite(X)):
+            raise InvalidOperatorError(f"{be.name} produced non-finite vectors (A or M numerically singular)")
+        U, _, lam, Uk, eta = _rayleigh_ritz(A, M, X, k, -np.inf, normA, normM)
+        if lam[0] < -eps_shift:
+            raise _not_psd(lam[0], -eps_shift)
+        if np.all(eta <= tol):
+            return EigenResult(lam, _fix_phase(Uk), its, eta, True, be.name, -eps_shift, p)
+    raise _not_converged(EigenResult(lam, _fix_phase(Uk), its, eta, False, be.name, -eps_shift, p), maxiter, tol, p)
 
 
 def _m_orthonormalize(W: np.ndarray, M) -> tuple[np.ndarray, np.ndarray]:
@@ -394,6 +412,9 @@ def _m_orthonormalize(W: np.ndarray, M) -> tuple[np.ndarray, np.ndarray]:
 def solve(A, M, lam, b, *, backend=None) -> np.ndarray:
     """Solve ``(A − λ M) x = b`` by a sparse factorization (``b`` of shape (n,) or (n, r)).
 
+    ``backend`` as in :func:`smallest_eigenpairs` (``auto``: a direct backend; Cholesky backends
+    fall back to SuperLU when ``A − λM`` is indefinite).
+
     Raises
     ------
     ShapeError, NonFiniteError, InvalidOperatorError
@@ -416,11 +437,13 @@ def solve(A, M, lam, b, *, backend=None) -> np.ndarray:
     if not np.all(np.isfinite(B)):
         raise NonFiniteError("b contains NaN or inf")
     K = (A - lam * M).tocsc()
-    fac = _get_backend(backend).factorize(K)
-    if np.iscomplexobj(B) and not np.iscomplexobj(K.data):
-        x = fac.solve(np.ascontiguousarray(B.real, dtype=float)) + 1j * fac.solve(np.ascontiguousarray(B.imag, dtype=float))
-    else:
-        x = fac.solve(B.astype(K.dtype))
+    be = get_backend(backend, n=n, nnz=A.nnz, eigen=False)
+    with blas_guard():
+        fac = be.factorize(K)
+        if np.iscomplexobj(B) and not np.iscomplexobj(K.data):
+            x = fac.solve(np.ascontiguousarray(B.real, dtype=float)) + 1j * fac.solve(np.ascontiguousarray(B.imag, dtype=float))
+        else:
+            x = fac.solve(B.astype(K.dtype))
     if not np.all(np.isfinite(x)):
         raise InvalidOperatorError(f"A - {lam}·M is numerically singular (the solution is not finite)")
     return x

@@ -1,0 +1,223 @@
+"""Tests of dhlb.fem.backends: every installed backend gives the same eigenpairs and solves."""
+
+import warnings
+
+import numpy as np
+import pytest
+import scipy.linalg as sla
+import scipy.sparse as sp
+
+from dhlb.errors import InvalidOperatorError, InvalidParameterError
+from dhlb.fem import backends as B
+from dhlb.fem import bundle_matrices
+from dhlb.fem.solvers import backward_errors, smallest_eigenpairs, solve
+
+ALL = ["superlu", "cholmod", "cholespy", "amg-lobpcg"]
+NEEDS = {"cholmod": "sksparse", "cholespy": "cholespy", "amg-lobpcg": "pyamg"}
+
+
+def _param(name):
+    mod = NEEDS.get(name)
+    missing = mod is not None and not B._importable(mod)
+    return pytest.param(name, marks=pytest.mark.skipif(missing, reason=f"{mod} is not installed"))
+
+
+BACKENDS = [_param(b) for b in ALL]
+DIRECT = [_param(b) for b in ALL if b != "amg-lobpcg"]
+
+
+# ---------------------------------------------------------------------- problems (built once)
+@pytest.fixture(scope="module")
+def torus_problem():
+    """n = 4 tangent bundle of the example torus: complex Hermitian, 2-D pattern."""
+    from dhlb.io import example_path, read_surface
+    from dhlb.surface import tangent_bundle
+
+    tb = tangent_bundle(*read_surface(example_path("torus.obj")), n=4)
+    A, M = bundle_matrices(tb.bundle, tb.geometry)
+    return A.tocsr(), M.tocsr()
+
+
+@pytest.fixture(scope="module")
+def box_problem():
+    """Curved line bundle (velocity of a rigid rotation, curl = 2 e_z) on a 5³ tet box: 3-D pattern."""
+    from dhlb.geometry import EuclideanComplex
+    from dhlb.volume import box_tet_mesh, velocity_bundle
+
+    mesh = box_tet_mesh(5, lower=-1.0, upper=1.0)
+    rot = mesh.points[:, [1, 0, 2]] * np.array([-1.0, 1.0, 0.0])
+    bundle = velocity_bundle(mesh.complex, mesh.points, rot, hbar=0.5)
+    A, M = bundle_matrices(bundle, EuclideanComplex(mesh.complex, points=mesh.points))
+    return A.tocsr(), M.tocsr()
+
+
+def _dense_reference(A, M, k):
+    return sla.eigh(A.toarray(), M.toarray(), subset_by_index=[0, k - 1])
+
+
+@pytest.mark.parametrize("problem", ["torus_problem", "box_problem"])
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_same_eigenpairs_on_every_backend(backend, problem, request):
+    A, M = request.getfixturevalue(problem)
+    assert np.iscomplexobj(A.data) and np.abs(A.data.imag).max() > 1e-3     # a genuinely curved bundle
+    k, tol = 4, 1e-10
+    lam_ref, U_ref = _dense_reference(A, M, k + 1)
+    assert lam_ref[k] - lam_ref[k - 1] > 1e-3 * lam_ref[k]                   # k-th pair well separated
+    res = smallest_eigenpairs(A, M, k=k, tol=tol, backend=backend)
+    assert res.converged and res.backend == backend
+    # eigenvalues to the accuracy implied by the backward error: |δλ| <= η (‖A‖₁ + |λ| ‖M‖₁) κ(M)-ish
+    normA, normM = abs(A).sum(0).max(), abs(M).sum(0).max()
+    np.testing.assert_allclose(res.eigenvalues, lam_ref[:k], rtol=0, atol=1e3 * tol * (normA + lam_ref[k] * normM))
+    np.testing.assert_allclose(res.eigenvectors.conj().T @ (M @ res.eigenvectors), np.eye(k), atol=1e-10)
+    np.testing.assert_allclose(backward_errors(A, M, res.eigenvalues, res.eigenvectors), res.residuals,
+                               rtol=1e-6, atol=1e-15)
+    assert np.all(res.residuals <= tol)
+    # the same invariant subspace as the dense solver (eigenvalues may be multiple: compare spans)
+    cosines = np.linalg.svd(U_ref[:, :k].conj().T @ (M @ res.eigenvectors), compute_uv=False)
+    np.testing.assert_allclose(cosines, 1.0, atol=1e-6)
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_same_solve_on_every_backend(backend, torus_problem):
+    A, M = torus_problem
+    rng = np.random.default_rng(1)
+    b = rng.normal(size=(A.shape[0], 2)) + 1j * rng.normal(size=(A.shape[0], 2))
+    lam = -0.5 * abs(A).sum(0).max() / M.diagonal().real.max() * 1e-3        # below the spectrum: PD
+    x = solve(A, M, lam, b, backend=backend)
+    ref = np.linalg.solve((A - lam * M).toarray(), b)
+    np.testing.assert_allclose(x, ref, rtol=1e-8, atol=1e-8 * np.abs(ref).max())
+    x1 = solve(A, M, lam, b[:, 0].real, backend=backend)                       # real rhs, complex matrix
+    np.testing.assert_allclose(x1, np.linalg.solve((A - lam * M).toarray(), b[:, 0].real),
+                               rtol=1e-8, atol=1e-8 * np.abs(ref).max())
+
+
+@pytest.mark.parametrize("backend", DIRECT)
+def test_indefinite_shift_and_singular_on_direct_backends(backend, torus_problem):
+    A, M = torus_problem
+    lam_ref = _dense_reference(A, M, 6)[0]
+    sigma = 0.5 * (lam_ref[2] + lam_ref[3])                                    # inside the spectrum
+    res = smallest_eigenpairs(A, M, k=2, sigma=sigma, backend=backend)
+    np.testing.assert_allclose(np.sort(res.eigenvalues), np.sort(lam_ref[[2, 3]]), rtol=1e-8)
+    assert res.backend in (backend, "superlu")                                 # Cholesky falls back to LU
+    b = np.ones(A.shape[0])
+    x = solve(A, M, sigma, b, backend=backend)
+    np.testing.assert_allclose((A - sigma * M) @ x, b, atol=1e-8)
+    with pytest.raises(InvalidOperatorError):                                  # A − λM exactly singular
+        solve(sp.diags(np.arange(5.0)), sp.identity(5), 2.0, np.ones(5), backend=backend)
+    with pytest.raises(InvalidOperatorError, match="not positive semidefinite"):
+        smallest_eigenpairs(A - 2 * lam_ref[0] * M, M, k=1, backend=backend)
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_real_matrices_and_warm_start(backend):
+    n = 60                                                  # path graph: λ_j = 2 − 2cos(πj/n)
+    A = sp.diags([-np.ones(n - 1), np.r_[1, 2 * np.ones(n - 2), 1], -np.ones(n - 1)], [-1, 0, 1], format="csr")
+    res = smallest_eigenpairs(A, sp.identity(n), k=3, backend=backend)
+    np.testing.assert_allclose(res.eigenvalues, 2 - 2 * np.cos(np.pi * np.arange(3) / n), atol=1e-10)
+    assert res.eigenvectors.dtype == np.float64 and res.backend == backend
+    warm = smallest_eigenpairs(A, sp.identity(n), k=3, backend=backend, v0=res.eigenvectors)
+    assert warm.iterations <= res.iterations and warm.converged
+
+
+@pytest.mark.skipif(not B._importable("pyamg"), reason="pyamg is not installed")
+def test_amg_lobpcg_rejects_sigma(torus_problem):
+    A, M = torus_problem
+    with pytest.raises(InvalidParameterError, match="sigma"):
+        smallest_eigenpairs(A, M, k=1, sigma=1.0, backend="amg-lobpcg")
+
+
+# ---------------------------------------------------------------------- selection
+def test_auto_selection_rules(torus_problem, monkeypatch):
+    avail = B.available_backends()
+    assert avail[0] == "superlu" and set(avail) <= set(ALL)
+    assert B.select_backend(1000, 7000) == "superlu"                           # small: always SuperLU
+    direct = "cholmod" if "cholmod" in avail else "superlu"
+    assert B.select_backend(50_000, 350_000) == direct                          # 2-D pattern
+    three_d = "amg-lobpcg" if "amg-lobpcg" in avail else direct
+    assert B.select_backend(50_000, 750_000) == three_d                         # 3-D pattern
+    assert B.select_backend(50_000, 750_000, shifted=True) == direct            # σ given: direct
+    assert B.select_backend(50_000, 750_000, eigen=False) == direct             # linear solve: direct
+    assert B.select_backend(3_000_000, 21_000_000) == three_d                   # huge: iterative
+    # availability is honoured: with only SuperLU installed everything goes to SuperLU
+    monkeypatch.setattr(B, "available_backends", lambda: ["superlu"])
+    assert B.select_backend(50_000, 750_000) == B.select_backend(3_000_000, 2e7) == "superlu"
+    monkeypatch.undo()
+    A, M = torus_problem
+    assert smallest_eigenpairs(A, M, k=1).backend == B.select_backend(A.shape[0], A.nnz)
+    assert smallest_eigenpairs(A, M, k=1, backend="auto").backend == "superlu"  # torus: 800 unknowns
+
+
+def test_bad_backend_name_lists_available(monkeypatch):
+    A, M = sp.identity(3, format="csr"), sp.identity(3, format="csr")
+    with pytest.raises(InvalidParameterError, match="unknown backend 'lapack'.*superlu") as info:
+        smallest_eigenpairs(A, M, k=1, backend="lapack")
+    for name in B.available_backends():
+        assert repr(name) in str(info.value)
+    with pytest.raises(InvalidParameterError, match="unknown backend"):
+        solve(A, M, 0.5, np.ones(3), backend="mumps")
+    monkeypatch.setattr(B, "available_backends", lambda: ["superlu"])         # registered, not installed
+    with pytest.raises(InvalidParameterError, match="'cholmod' is not installed.*scikit-sparse"):
+        smallest_eigenpairs(A, M, k=1, backend="cholmod")
+    with pytest.raises(TypeError, match="factorize"):
+        smallest_eigenpairs(A, M, k=1, backend=object())
+
+
+# ---------------------------------------------------------------------- symbolic reuse, thread guard
+@pytest.mark.parametrize("backend", [b for b in DIRECT if b.values[0] in ("superlu", "cholmod")])
+def test_symbolic_analysis_is_reused_across_a_parameter_sweep(backend, torus_problem):
+    A, M = torus_problem
+    B.clear_cache()
+    lams = []
+    for t in (1.0, 2.0, 3.0):                       # same pattern, new values: a sweep over a scale
+        res = smallest_eigenpairs(t * A, M, k=2, backend=backend)
+        lams.append(res.eigenvalues)
+    info = B.cache_info()
+    assert info == {"misses": 1, "hits": 2, "size": 1}      # one analysis, then numeric factorizations only
+    np.testing.assert_allclose(lams[1], 2 * lams[0], rtol=1e-9)
+    np.testing.assert_allclose(lams[2], 3 * lams[0], rtol=1e-9)
+    B.clear_cache()
+    assert B.cache_info() == {"hits": 0, "misses": 0, "size": 0}
+
+
+@pytest.mark.skipif(not B._importable("threadpoolctl"), reason="threadpoolctl is not installed")
+def test_blas_threads_are_limited_inside_factorizations():
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    seen = []
+
+    class Spy(B.SuperLUBackend):
+        name = "spy"
+
+        def factorize(self, K, *, positive_definite=False):
+            seen.append([p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"])
+            return super().factorize(K, positive_definite=positive_definite)
+
+    n = 30
+    A = sp.diags([-np.ones(n - 1), np.r_[1, 2 * np.ones(n - 2), 1], -np.ones(n - 1)], [-1, 0, 1], format="csr")
+    with threadpool_limits(limits=2, user_api="blas"):
+        before = [p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"]
+        assert smallest_eigenpairs(A, sp.identity(n), k=1, backend=Spy()).backend == "superlu"
+        solve(A, sp.identity(n), -1.0, np.ones(n), backend=Spy())
+        after = [p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"]
+    assert len(seen) == 2 and all(t == [B.BLAS_THREADS] * len(t) for t in seen)
+    assert after == before                                   # restored on exit
+
+
+def test_real_embedding_is_symmetric_and_equivalent():
+    pytest.importorskip("cholespy")
+    from dhlb.fem.backends_cholesky import real_embedding
+
+    rng = np.random.default_rng(3)
+    Z = rng.normal(size=(6, 6)) + 1j * rng.normal(size=(6, 6))
+    K = Z @ Z.conj().T + np.eye(6)
+    K = 0.5 * (K + K.conj().T)                              # exactly Hermitian
+    E = real_embedding(sp.csc_matrix(K)).toarray()
+    np.testing.assert_array_equal(E, E.T)
+    np.testing.assert_allclose(np.sort(np.linalg.eigvalsh(E)), np.sort(np.repeat(np.linalg.eigvalsh(K), 2)),
+                               rtol=1e-12)
+    x = rng.normal(size=6) + 1j * rng.normal(size=6)
+    y = E @ np.r_[x.real, x.imag]
+    np.testing.assert_allclose(y[:6] + 1j * y[6:], K @ x, rtol=1e-12)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        np.testing.assert_allclose(B.get_backend("cholespy").factorize(sp.csc_matrix(K)).solve(K @ x), x, rtol=1e-10)
