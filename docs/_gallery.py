@@ -1,4 +1,4 @@
-"""Generate the direction-field pictures of the documentation gallery (``docs/gallery.md``).
+"""Generate the pictures of the documentation gallery (``docs/gallery.md``).
 
 Run from the repository root (about half a minute)::
 
@@ -64,6 +64,39 @@ def picture(name: str, mesh: str, view: dict, **kw) -> dict:
     return rec
 
 
+def stripes(name: str, view: dict, *, n: int, spacing: float, **field_kw) -> None:
+    """A stripe pattern on Spot along a direction field (``orthogonal`` pictures: both directions)."""
+    from dhlb.render import render_stripes_png
+    from dhlb.surface import stripe_pattern
+
+    t0 = time.perf_counter()
+    V, F = read_surface(example_path("spot.obj"))
+    field = direction_field(V, F, n=n, **field_kw)
+    res = stripe_pattern(V, F, field, spacing=spacing)
+    path = render_stripes_png(os.path.join(OUT, f"{name}.png"), res.texture, size=SIZE, **view)
+    shrink(path)
+    info = res.to_json()
+    print(f"{os.path.basename(path):28s} {os.path.getsize(path):7d} B  {len(info['zero_faces'])} zero faces, "
+          f"{len(info['branch_faces'])} branch faces  {time.perf_counter() - t0:5.1f} s")
+
+
+def filaments(name: str, kind: str) -> None:
+    """Vortex filaments of a demo velocity field (``ring``/``linked-rings``/``trefoil``) in a tet cube."""
+    from dhlb.commands.vortex import demo_velocity
+    from dhlb.render import render_filaments_png
+    from dhlb.volume import box_tet_mesh, vortex_filaments
+
+    t0 = time.perf_counter()
+    mesh = box_tet_mesh(14, lower=(-1.0, -1.0, -1.0), upper=(1.0, 1.0, 1.0))
+    field, _ = demo_velocity(kind, mesh.points)
+    res = vortex_filaments(mesh, None, field, 1.0)
+    path = render_filaments_png(os.path.join(OUT, f"{name}.png"), res.filaments, res.mesh.points,
+                                res.mesh.boundary_faces, size=SIZE)
+    shrink(path)
+    print(f"{os.path.basename(path):28s} {os.path.getsize(path):7d} B  {len(res.filaments)} filaments  "
+          f"{time.perf_counter() - t0:5.1f} s")
+
+
 def main() -> int:
     os.makedirs(OUT, exist_ok=True)
     for n in (1, 2, 4):
@@ -72,6 +105,10 @@ def main() -> int:
     picture("spot-n4-curvature", "spot.obj", SPOT_VIEW, n=4, align="curvature")
     picture("saddle-n4-boundary", "saddle.obj", SADDLE_VIEW, n=4, align="boundary", lam=-10.0)
     picture("torus-n4-s+1", "torus.obj", {"view": (0.4, -1.0, 1.4), "up": (0.0, 0.0, 1.0)}, n=4, s=1.0)
+    stripes("stripes-spot-smoothest", SPOT_VIEW, n=2, spacing=6.0)
+    stripes("stripes-spot-curvature", SPOT_VIEW, n=2, spacing=8.0, align="curvature")
+    for kind in ("ring", "linked-rings", "trefoil"):
+        filaments(f"vortex-{kind}", kind)
     return 0
 
 
