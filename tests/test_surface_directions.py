@@ -130,3 +130,15 @@ def test_bad_sections():
         direction_vectors(tb, np.ones((12, 2)))
     with pytest.raises(ShapeError):
         direction_vectors(tb, np.ones(5))
+
+
+def test_singularity_positions_do_not_depend_on_the_corner_order():
+    from dhlb.io import example_path, read_surface
+    from dhlb.surface import direction_field
+
+    V, F = read_surface(example_path("spot.obj"))
+    a = direction_field(V, F, n=1)
+    for k in (1, 2):
+        b = direction_field(V, np.roll(F, k, axis=1), n=1)
+        assert np.array_equal(a.singularities.input_faces, b.singularities.input_faces)
+        assert np.allclose(a.singularities.points, b.singularities.points, atol=1e-12)

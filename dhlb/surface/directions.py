@@ -115,13 +115,8 @@ def _half_edge_transport(tb: TangentBundle, a, b) -> np.ndarray:
     return np.where(a < b, r, np.conj(r))
 
 
-def _zeros_in_faces(tb: TangentBundle, z, faces) -> np.ndarray:
-    """Barycentric zero of the linear interpolation of z in each face (frames transported to the first vertex).
-
-    Solves ``u_a + x (u_b' − u_a) + y (u_c' − u_a) = 0`` with ``u_b' = conj(r_ab) u_b``; the result is
-    clipped into the face (centroid if the system is singular).
-    """
-    Fc = tb.mesh.faces[faces]
+def _zeros_from_base(tb: TangentBundle, z, Fc) -> np.ndarray:
+    """Barycentric zero of the linear interpolation of z with the frames transported to ``Fc[:, 0]``."""
     a, b, c = Fc[:, 0], Fc[:, 1], Fc[:, 2]
     ua = z[a]
     ub = np.conj(_half_edge_transport(tb, a, b)) * z[b]
@@ -132,11 +127,24 @@ def _zeros_in_faces(tb: TangentBundle, z, faces) -> np.ndarray:
     sd = np.where(ok, det, 1.0)
     x = (-ua.real * q.imag + ua.imag * q.real) / sd
     y = (-p.real * ua.imag + p.imag * ua.real) / sd
-    bary = np.stack([1 - x - y, x, y], axis=1)
-    bary = np.clip(bary, 0.0, None)
+    bary = np.clip(np.stack([1 - x - y, x, y], axis=1), 0.0, None)
     s = bary.sum(axis=1, keepdims=True)
-    bary = np.where(ok[:, None] & (s > 0), bary / np.where(s > 0, s, 1.0), 1.0 / 3.0)
-    return bary
+    return np.where(ok[:, None] & (s > 0), bary / np.where(s > 0, s, 1.0), 1.0 / 3.0)
+
+
+def _zeros_in_faces(tb: TangentBundle, z, faces) -> np.ndarray:
+    """Barycentric position of the zero of a section in each face, independent of the corner order.
+
+    With the frames transported to one corner, the zero of the linear interpolation
+    ``u_a + x (u_b' − u_a) + y (u_c' − u_a) = 0`` (``u_b' = conj(r_ab) u_b``) depends on the corner,
+    because transport around the face has holonomy; we average the three choices (each clipped
+    into the face, the centroid where the system is singular).
+    """
+    Fc = tb.mesh.faces[faces]
+    out = np.zeros((len(Fc), 3))
+    for k in range(3):
+        out += np.roll(_zeros_from_base(tb, z, np.roll(Fc, -k, axis=1)), k, axis=1)
+    return out / 3.0
 
 
 def field_indices(tb: TangentBundle, u) -> FieldIndices:
