@@ -25,7 +25,7 @@ def main(m: int = 55) -> None:
     print(f"  all boundary matrices:                     {t2 - t1:6.2f} s")
     print(f"  total:                                     {t2 - t0:6.2f} s   (target < 10 s)")
     # 4x smaller for a linearity ratio
-    _, T4 = _tets(int(round(m / 4 ** (1 / 3))))
+    _, T4 = _tets(round(m / 4 ** (1 / 3)))
     s0 = time.perf_counter()
     Y = SimplicialComplex(T4)
     [Y.boundary(k) for k in range(Y.dim + 1)]

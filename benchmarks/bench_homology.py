@@ -34,8 +34,11 @@ def freudenthal_torus(N: int, d: int) -> np.ndarray:
 
 
 def torus_with_crosscap(N: int) -> np.ndarray:
-    """The N×N grid torus with one square replaced by an annulus glued to a 6-vertex RP² minus a
-    triangle: the non-orientable surface T² # RP², with H_1 = Z² ⊕ Z/2."""
+    """The non-orientable surface T² # RP², with H_1 = Z² ⊕ Z/2.
+
+    The N×N grid torus with one square replaced by an annulus glued to a 6-vertex RP² minus a
+    triangle.
+    """
     T = freudenthal_torus(N, 2)
     a, b, c, d = 0, 1, N + 1, N  # the square of grid cell (0, 0)
     quad = {tuple(sorted(t)) for t in ([a, b, c], [a, c, d], [a, b, d])}

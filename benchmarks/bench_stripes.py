@@ -15,19 +15,19 @@ import os
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import sys  # noqa: E402
-import time  # noqa: E402
-import warnings  # noqa: E402
+import sys
+import time
+import warnings
 
-import numpy as np  # noqa: E402
+import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
-from dhlb.fem.solvers import _get_backend, default_shift  # noqa: E402
-from dhlb.io import read_surface  # noqa: E402
-from dhlb.stripes import stripe_pattern  # noqa: E402
-from dhlb.surface import direction_field, validate_surface  # noqa: E402
-from dhlb.surface.tangent import TangentBundle  # noqa: E402
+from dhlb.fem.solvers import _get_backend, default_shift
+from dhlb.io import read_surface
+from dhlb.stripes import stripe_pattern
+from dhlb.surface import direction_field, validate_surface
+from dhlb.surface.tangent import TangentBundle
 
 MESHES = os.path.join(os.path.dirname(__file__), "..", "..", "shared", "meshes")
 FILES = ["spot.obj", "kitten.obj", "stanford-bunny.obj"]

@@ -1,19 +1,18 @@
 """dhlb — discrete hermitian line bundles over simplicial complexes of any dimension."""
-from importlib.metadata import PackageNotFoundError, version as _version
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as _version
 
 try:
     __version__ = _version("dhlb")
 except PackageNotFoundError:  # pragma: no cover - running from a source tree
     __version__ = "0+unknown"
 
-from dhlb import errors  # noqa: E402
+from dhlb import errors
 
 __all__ = ["errors", "__version__"]
 
-from dhlb.topology import SimplicialComplex  # noqa: E402
-from dhlb import examples  # noqa: E402
-from dhlb.forms import Chain, Cochain, SolveResult, integrate_closed_1form, is_exact, solve_d  # noqa: E402
-from dhlb.bundles import (  # noqa: E402
+from dhlb import examples, io
+from dhlb.bundles import (
     HermitianLineBundle,
     VectorBundle,
     bundles_with_curvature,
@@ -24,8 +23,9 @@ from dhlb.bundles import (  # noqa: E402
     is_isomorphic,
     line_bundle_with_curvature,
 )
-from dhlb.geometry import EuclideanComplex  # noqa: E402
-from dhlb import io  # noqa: E402
+from dhlb.forms import Chain, Cochain, SolveResult, integrate_closed_1form, is_exact, solve_d
+from dhlb.geometry import EuclideanComplex
+from dhlb.topology import SimplicialComplex
 
 __all__ += [
     "SimplicialComplex",

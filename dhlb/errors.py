@@ -168,8 +168,10 @@ __all__ += ["ShapeError", "InvalidOperatorError"]
 
 
 class InvalidMatrixError(DhlbError, ValueError):
-    """A matrix or vector argument has the wrong shape, a non-integer entry, or does not fit the operation
-    (e.g. boundary matrices whose product is not zero)."""
+    """A matrix or vector argument has the wrong shape or does not fit the operation.
+
+    Also raised for a non-integer entry, or e.g. boundary matrices whose product is not zero.
+    """
 
 
 __all__.append("InvalidMatrixError")
@@ -183,8 +185,11 @@ __all__.append("InvalidParameterError")
 
 
 class InvalidCochainError(DhlbError, ValueError):
-    """Values of a discrete form or chain do not fit it: wrong length, not integers (group Z),
-    zero (group C*), an unknown coefficient group, or forms on different complexes/degrees combined."""
+    """Values of a discrete form or chain do not fit it.
+
+    Wrong length, not integers (group Z), zero (group C*), an unknown coefficient group, or forms
+    on different complexes/degrees combined.
+    """
 
 
 class CurveIntersectionError(DhlbError, ValueError):
@@ -195,8 +200,11 @@ __all__.append("CurveIntersectionError")
 
 
 class UnresolvedFluxWarning(DhlbWarning):
-    """The curvature (flux) through some triangle exceeds π in modulus: the mesh does not resolve the
-    feature there (e.g. a vortex core), so zeros of sections may be misplaced or lost."""
+    """The curvature (flux) through some triangle exceeds π in modulus.
+
+    The mesh does not resolve the feature there (e.g. a vortex core), so zeros of sections may be
+    misplaced or lost.
+    """
 
 
 __all__.append("UnresolvedFluxWarning")

@@ -56,8 +56,11 @@ def setup(app):
     from docutils.parsers.rst import Directive
 
     class DhlbHelp(Directive):
-        """``dhlb-help``: the ``--help`` text of ``dhlb`` (no argument), of one command (its name),
-        or of every command (``*``), each under a rubric."""
+        """``dhlb-help``: the ``--help`` text of ``dhlb`` or of its commands.
+
+        No argument: ``dhlb`` itself; a command name: that command; ``*``: every command, each
+        under a rubric.
+        """
 
         optional_arguments = 1
 

@@ -25,7 +25,8 @@ if str(ROOT) not in sys.path:  # run from a source tree without installation
 def lemma7_antiderivative(k: int, c, v):
     """Seed Lemma 7: an antiderivative of ``v^k e^{cv}`` is ``k!/c^{k+1} Σ_j (-1)^j (cv)^{k-j}/(k-j)! e^{cv}``.
 
-    Returned without the factor ``e^{cv}`` (a polynomial in ``v`` over ``c``)."""
+    Returned without the factor ``e^{cv}`` (a polynomial in ``v`` over ``c``).
+    """
     return factorial(k) / c ** (k + 1) * sum((-1) ** j * (c * v) ** (k - j) / factorial(k - j) for j in range(k + 1))
 
 

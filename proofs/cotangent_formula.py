@@ -17,7 +17,6 @@ what the formula needs; both are tested.
 """
 
 import sympy as sp
-
 from _common import check
 
 
@@ -77,7 +76,8 @@ def main() -> None:
     true_rel = sp.simplify(6 * vol * sin_a - h0 * h1 * d)
     printed = sp.simplify(6 * vol - h0 * h1 * sin_a * d)
     check(true_rel == 0 and printed != 0,
-          "proof of Thm 16: n(n-1) vol σ sin α = h_i h_j vol(σ∖ij) holds; printed n! vol σ = (n-2)! h_i h_j sin α vol(σ∖ij) does not")
+          "proof of Thm 16: n(n-1) vol σ sin α = h_i h_j vol(σ∖ij) holds; "
+          "printed n! vol σ = (n-2)! h_i h_j sin α vol(σ∖ij) does not")
 
 
 if __name__ == "__main__":

@@ -46,7 +46,6 @@ from itertools import combinations
 import mpmath as mp
 import numpy as np
 import sympy as sp
-
 from _derive_util import barycentric_gradients, integrate_simplex, rel_err, simplex_rule, simplex_volume, summary
 
 from dhlb.fem.integrals import local_dirichlet_matrices, local_mass_matrices
@@ -235,7 +234,7 @@ def numeric_checks():
 
 
 def exact_n2():
-    """n = 2: exact forms, symbolic in the curvature f (F = [[0, f], [-f, 0]])."""
+    """N = 2: exact forms, symbolic in the curvature f (F = [[0, f], [-f, 0]])."""
     f = sp.Symbol("f", real=True)
     P = [[0, 0], [sp.Rational(7, 3), sp.Rational(1, 2)], [sp.Rational(2, 3), sp.Rational(9, 4)]]
     S = Setup(P, [[0, f], [-f, 0]], [sp.Rational(1, 3), sp.Rational(-2, 5)])

@@ -27,7 +27,6 @@ from itertools import combinations
 
 import numpy as np
 import sympy as sp
-
 from _derive_util import barycentric_gradients, summary
 
 from dhlb.geometry.simplex import SimplexStack, metric_from_squared_lengths
@@ -122,7 +121,7 @@ def check_simplex(P, exact=True):
 
 
 def symbolic_triangle():
-    p, q, t = sp.symbols("p q t", positive=True)
+    p, _q, t = sp.symbols("p q t", positive=True)
     s = sp.Symbol("s", real=True)
     P = [[0, 0], [p, 0], [s, t]]
     vol = p * t / 2
@@ -186,7 +185,7 @@ def code_comparison(rng):
     for n in (2, 3):
         for _ in range(3):
             P = random_rational_simplex(rng, n)
-            vol, facet, ridge, cosa, sina = geometry(P)
+            vol, _facet, _ridge, cosa, _sina = geometry(P)
             h, _ = heights_direct(P)
             grad = barycentric_gradients(P)
             C = np.array((vol * grad * grad.T).evalf(30).tolist(), dtype=float)

@@ -31,10 +31,9 @@ from __future__ import annotations
 import sys
 import time
 
+import _common  # noqa: F401  (puts the source tree on sys.path)
 import numpy as np
 import sympy as sp
-
-import _common  # noqa: F401  (puts the source tree on sys.path)
 
 
 def pointwise_identity() -> None:

@@ -29,7 +29,6 @@ import time
 import mpmath as mp
 import numpy as np
 import sympy as sp
-
 from _derive_util import integrate_simplex, lemma7_antiderivative, rel_err, simplex_rule, summary
 
 

@@ -33,7 +33,6 @@ import time
 
 import numpy as np
 import sympy as sp
-
 from _derive_util import summary
 
 

@@ -28,7 +28,6 @@ import time
 
 import numpy as np
 import sympy as sp
-
 from _derive_util import summary
 
 from dhlb.bundles.index import index_sum
@@ -76,7 +75,7 @@ OCTA = [(0, 2, 4), (0, 4, 3), (0, 3, 5), (0, 5, 2), (1, 4, 2), (1, 3, 4), (1, 5,
 
 
 def symbolic_gauss_bonnet(F, n):
-    V, E, T, chi = check_closed_oriented(F)
+    V, _E, T, chi = check_closed_oriented(F)
     verts = sorted({v for f in F for v in f})
     alpha = {(t, v): sp.Symbol(f"a_{t}_{v}", positive=True) for t, f in enumerate(F) for v in f}
     S = {v: sp.Symbol(f"s_{v}", positive=True) for v in verts}
@@ -152,7 +151,7 @@ def indices(F, r, u):
         Om.append(np.angle(hol))
         val = (tot + Om[-1]) / (2 * np.pi)
         assert abs(val - round(val)) < 1e-9
-        out.append(int(round(val)))
+        out.append(int(round(val)))  # noqa: RUF046 (numpy < 2 rounds a float64 to a float64)
     return np.array(out), np.array(Om)
 
 
@@ -194,7 +193,7 @@ def numeric(rng):
     for name, (P, F), ns in (("icosahedron", icosahedron(0), (1, 2, 3, 4)),
                              ("icosphere", icosahedron(1), (1, 2, 4, 6)),
                              ("torus", torus_revolution(12, 8), (1, 2, 4))):
-        V, E, T, chi = check_closed_oriented(F)
+        _V, _E, T, chi = check_closed_oriented(F)
         seen = []
         for n in ns:
             r, sigma = transport(P, F, n)

@@ -32,7 +32,6 @@ import time
 import mpmath as mp
 import numpy as np
 import sympy as sp
-
 from _derive_util import integrate_simplex, summary, to_terms
 
 from dhlb.fem.integrals import local_dirichlet_matrices, local_mass_matrices

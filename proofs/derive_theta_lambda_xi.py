@@ -42,7 +42,6 @@ from itertools import combinations_with_replacement, permutations
 import mpmath as mp
 import numpy as np
 import sympy as sp
-
 from _derive_util import flat_moment, from_terms, integrate_simplex, simplex_rule, summary, to_terms
 
 from dhlb.fem.integrals import lambda_, theta, xi

@@ -22,7 +22,6 @@ Checked symbolically for n = 2 and n = 3 (closed Ω, general metric, all ordered
 from itertools import combinations
 
 import sympy as sp
-
 from _common import check
 
 I = sp.I
@@ -107,7 +106,8 @@ def main() -> None:
         # 4. flat limit and sign convention
         flat = {s: 0 for s in set().union(*[W[a].free_symbols for a in range(nv)])}
         check(all(sp.expand(bracket(a, b).subs(flat) - G[a, b]) == 0 for a in range(nv) for b in range(nv)),
-              f"n = {n}: Ω = 0 gives A[b, a] = r_ab vol G_ab, i.e. -w r_ab with w = -vol G_ab (edge term |z_b - r_ab z_a|²)")
+              f"n = {n}: Ω = 0 gives A[b, a] = r_ab vol G_ab, i.e. -w r_ab with w = -vol G_ab "
+              "(edge term |z_b - r_ab z_a|²)")
 
 
 if __name__ == "__main__":

@@ -21,7 +21,6 @@ from math import factorial
 import mpmath as mp
 import numpy as np
 import sympy as sp
-
 from _common import check, exp_divided_difference, same_exponential_sum, simplex_integral
 
 
@@ -65,7 +64,7 @@ def main() -> None:
     mp.mp.dps = 40
     rng = np.random.default_rng(7)
     worst = 0.0
-    for trial in range(60):
+    for _trial in range(60):
         n = int(rng.integers(1, 4))
         th = rng.choice([-1, 1], n + 1) * 10.0 ** rng.uniform(-6, 3, n + 1)
         th[rng.integers(n + 1)] = 0.0

@@ -21,7 +21,6 @@ r_ij r_jk r_ki = exp(iΩ_ijk)).  Proved for n = 2 and n = 3, all vertex pairs:
 from itertools import combinations, permutations
 
 import sympy as sp
-
 from _common import check
 
 

@@ -10,7 +10,6 @@ integral numerically for complex c (the case used by the finite elements, c = -i
 
 import mpmath as mp
 import sympy as sp
-
 from _common import check, lemma7_antiderivative
 
 

@@ -13,7 +13,6 @@ icosahedron and an icosphere with random n-direction fields built exactly as in 
 
 import numpy as np
 import sympy as sp
-
 from _common import check
 
 
@@ -54,7 +53,7 @@ def index_sum(v, f, n, rng):
             angle[a, b, c] = np.arccos(np.clip(u @ w / np.linalg.norm(u) / np.linalg.norm(w), -1, 1))
             nxt[a, b] = c
     total = np.zeros(nv)
-    for (a, b, c), ang in angle.items():
+    for (a, _b, _c), ang in angle.items():
         total[a] += ang
     s = 2 * np.pi / total                        # Eq. 6.1
     theta = {}                                   # rescaled angle of edge direction p_j - p_i at i

@@ -14,13 +14,18 @@ exact for polynomials of high degree and converges exponentially for exp(i θ·x
 from itertools import product
 
 import numpy as np
-
 from _common import check, closed_curvature, random_simplex, simplex_rule
 
 
 def main() -> None:
     from dhlb.fem.integrals import (
-        curvature_tensor, expi_moment, lambda_, local_edges, local_matrices, theta, xi,
+        curvature_tensor,
+        expi_moment,
+        lambda_,
+        local_edges,
+        local_matrices,
+        theta,
+        xi,
     )
     print("Quadrature cross-check")
     rng = np.random.default_rng(11)
@@ -75,7 +80,8 @@ def main() -> None:
             mass, dirichlet = local_matrices(gram, vol, om, r)
             worst = max(worst, np.abs(mass - mass_q).max() / np.abs(mass_q).max(),
                         np.abs(dirichlet - dir_q).max() / np.abs(dir_q).max())
-    check(worst < 1e-11, f"local mass and Dirichlet matrices, n = 1, 2, 3, single-frame route (max rel. error {worst:.1e})")
+    check(worst < 1e-11,
+          f"local mass and Dirichlet matrices, n = 1, 2, 3, single-frame route (max rel. error {worst:.1e})")
 
 
 if __name__ == "__main__":

@@ -1,5 +1,7 @@
-"""The surface case n = 2: seed part 3 §12 and part 1 (Eq. 6.7, the Dirichlet terms of §6.1.1 with
-f_1, f_2, and Appendix D.2-D.3) as special cases of Theorems 15 and 17.
+"""The surface case n = 2 as a special case of Theorems 15 and 17.
+
+Seed part 3 §12 and part 1 (Eq. 6.7, the Dirichlet terms of §6.1.1 with f_1, f_2, and
+Appendix D.2-D.3).
 
 Every entry is DERIVED here by exact integration (Fubini + Lemma 7) of the integrand of
 proofs/dirichlet_theorem17.py over a triangle σ = {i, j, k} with w = Ω_ijk, and then compared
@@ -19,7 +21,6 @@ Findings (also in proofs/README.md):
 """
 
 import sympy as sp
-
 from _common import as_expr, check, simplex_integral
 
 I = sp.I
@@ -65,7 +66,7 @@ def same(e1, e2) -> bool:
 
 
 def stiffness_g(origin):
-    """c = vol·G for the metric g (coordinates: barycentrics of the two other vertices), area T."""
+    """C = vol·G for the metric g (coordinates: barycentrics of the two other vertices), area T."""
     g11, g12, g22, T = sp.symbols("g11 g12 g22 T", positive=True)
     g = sp.Matrix([[g11, g12], [g12, g22]])
     others = [v for v in range(3) if v != origin]
@@ -99,7 +100,8 @@ def main() -> None:
           "part 1: f_1 -> 0, f_2 -> -1/4, so Δ_jk -> -r̄_jk <p_ij, p_ik>/(4|t|) = -r̄_jk cot(α_i)/2")
     s1, s2 = 3 * g11 + 4 * g12 + 3 * g22, g11 - 2 * g12 + g22
     head = s1 + I * w * (g11 + g12 + g22) - I * w**3 * g12 / 6 + w**4 * s2 / 24 - I * w**5 * s2 / 60
-    tail_printed = (-3 * g11 + 4 * g12 + 3 * g22) + I * w * (2 * g11 + 3 * g12 + 2 * g22) + w**2 * (g11 + 2 * g12 + g22) / 2
+    tail_printed = ((-3 * g11 + 4 * g12 + 3 * g22) + I * w * (2 * g11 + 3 * g12 + 2 * g22)
+                    + w**2 * (g11 + 2 * g12 + g22) / 2)
     tail_true = -s1 + I * w * (2 * g11 + 3 * g12 + 2 * g22) + w**2 * (g11 + 2 * g12 + g22) / 2
     check(not same(d_jk, (head + tail_printed * EP) / (T * w**4)) and same(d_jk, (head + tail_true * EP) / (T * w**4)),
           "part 1, D.3: <∇Ψ_j, ∇Ψ_k> misprinted; the e^{iΩ} group starts with -(3g11 + 4g12 + 3g22)")
@@ -108,20 +110,23 @@ def main() -> None:
     cij, cjk, cki = sp.symbols("c_ij c_jk c_ki", real=True)
     cm = sp.Matrix([[-cij - cki, cij, cki], [cij, -cij - cjk, cjk], [cki, cjk, -cjk - cki]])
     cii, cjj, ckk = cm[0, 0], cm[1, 1], cm[2, 2]
-    check(same(dirichlet(i, i, cm), cii + (cjj - cjk + ckk) * w**2 / 90), "§12: W_ii = c^ii + (c^jj - c^jk + c^kk)Ω²/90")
+    check(same(dirichlet(i, i, cm), cii + (cjj - cjk + ckk) * w**2 / 90),
+          "§12: W_ii = c^ii + (c^jj - c^jk + c^kk)Ω²/90")
     xi = lambda u, v: norm_integral(XS[i] * XS[j] * XS[u] * XS[v], i, j)
     th = lambda u, v: norm_integral(XS[u] * XS[v], i, j)
     quad_sum = sp.expand(sum((W[i].T * cm * W[j])[l, q] * xi(l, q) for l in range(3) for q in range(3)))
     check(same(quad_sum, -(cij * xi(k, k) + ckk * (xi(i, j) + xi(j, k))) * w**2),
           "§12: Σ c^{k'k''} Ω_ik'l' Ω_jk''l'' Ξ_ij(l', l'') = -(c^ij Ξ_ij(k,k) + c^kk(Ξ_ij(i,j) + Ξ_ij(j,k)))Ω²")
-    quad_thus = 2 / w**4 * (6 * ckk - 20 * cij + (12 * cij - 4 * ckk) * I * w + (3 * cij - ckk) * w**2 - cij / 3 * I * w**3
+    quad_thus = 2 / w**4 * (6 * ckk - 20 * cij + (12 * cij - 4 * ckk) * I * w + (3 * cij - ckk) * w**2
+                            - cij / 3 * I * w**3
                             - ckk / 12 * w**4 + ckk / 30 * I * w**5
                             + ((20 * cij - 6 * ckk) + (8 * cij - 2 * ckk) * I * w - cij * w**2) * EM)
     check(same(quad_sum, quad_thus), "§12: the expanded Ξ-sum ('Thus,') as printed")
     lin_sum = sp.expand(I * sum(omega(i, kk, l) * cm[j, kk] * th(i, l) - omega(j, kk, l) * cm[i, kk] * th(j, l)
                                 for kk in range(3) for l in range(3)))
     check(same(lin_sum, (cii * th(j, k) + cjj * th(k, i) + ckk * th(i, j)) * I * w),
-          "§12: i Σ (Ω_ik'l' c^jk' Θ_ij(i,l') - Ω_jk'l' c^ik' Θ_ij(j,l')) = (c^ii Θ(j,k) + c^jj Θ(k,i) + c^kk Θ(i,j)) iΩ")
+          "§12: i Σ (Ω_ik'l' c^jk' Θ_ij(i,l') - Ω_jk'l' c^ik' Θ_ij(j,l')) "
+          "= (c^ii Θ(j,k) + c^jj Θ(k,i) + c^kk Θ(i,j)) iΩ")
     lin_thus = 2 / w**4 * ((3 * (cii + cjj) - ckk) * I * w + (2 * (cii + cjj) - ckk) * w**2
                            + sp.Rational(1, 2) * (ckk - cii - cjj) * I * w**3 + ckk / 6 * w**4
                            + ((ckk - 3 * (cii + cjj)) * I * w + (cii + cjj) * w**2) * EM)
@@ -160,13 +165,14 @@ def main() -> None:
     # ---------------- dhlb against the (correct) part-1 formulas, evaluated with 60 digits
     import mpmath as mp
     import numpy as np
-
     from _common import random_simplex
+
     from dhlb.fem.integrals import local_matrices
     mp.mp.dps = 60
     rng = np.random.default_rng(3)
     f1m = lambda s: (3 + 1j * s + s**4 / 24 - 1j * s**5 / 60 + (-3 + 2j * s + s**2 / 2) * mp.exp(1j * s)) / s**4
-    f2m = lambda s: (4 + 1j * s - 1j * s**3 / 6 - s**4 / 12 + 1j * s**5 / 30 + (-4 + 3j * s + s**2) * mp.exp(1j * s)) / s**4
+    f2m = lambda s: (4 + 1j * s - 1j * s**3 / 6 - s**4 / 12 + 1j * s**5 / 30
+                     + (-4 + 3j * s + s**2) * mp.exp(1j * s)) / s**4
     mjk = lambda s: (6 * mp.exp(1j * s) - 6 - 6j * s + 3 * s**2 + 1j * s**3) / (3 * s**4)
     worst = 0.0
     for wv in (1e-5, 0.01, 0.4, 2.0, 3.1, 7.5, 60.0, -1.3):

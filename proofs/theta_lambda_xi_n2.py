@@ -16,7 +16,6 @@ curvatures from 1e-6 to 1e3, including multiples of 2π.
 
 import numpy as np
 import sympy as sp
-
 from _common import as_expr, check, simplex_integral
 
 w = sp.Symbol("w", positive=True)

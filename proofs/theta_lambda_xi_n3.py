@@ -20,7 +20,6 @@ from itertools import combinations_with_replacement
 
 import numpy as np
 import sympy as sp
-
 from _common import check, exp_divided_difference, same_exponential_sum, simplex_integral
 
 s, t = sp.symbols("s t", real=True, nonzero=True)

@@ -2,7 +2,8 @@
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from dhlb import SimplicialComplex
 from dhlb.bundles import HermitianLineBundle, check_integrality
@@ -17,7 +18,6 @@ from dhlb.errors import (
 )
 from dhlb.topology.homology import cohomology
 from tests.strategies import closed_manifolds, closed_surfaces, rich_complexes, rp2, sphere, torus7
-
 
 TET = SimplicialComplex(sphere(2))  # boundary of the tetrahedron, fundamental cycle [1, -1, 1, -1]
 
@@ -73,7 +73,7 @@ def test_curvature_not_closed_names_tetrahedron():
 @settings(max_examples=20, deadline=None)
 @given(closed_surfaces(max_moves=4), st.integers(0, 2**32 - 1))
 def test_degree_is_sum_of_lifts(surf, seed):
-    tris, chi, orientable = surf
+    tris, _chi, orientable = surf
     X = SimplicialComplex(tris)
     L, n = random_bundle(X, np.random.default_rng(seed))
     if not orientable:

@@ -2,7 +2,8 @@
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from dhlb import SimplicialComplex
 from dhlb.bundles import HermitianLineBundle, index_form, index_sum, line_bundle_with_curvature, rotation_form

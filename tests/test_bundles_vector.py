@@ -2,7 +2,8 @@
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from dhlb import SimplicialComplex
 from dhlb.bundles import VectorBundle, spanning_forest
@@ -262,4 +263,5 @@ def test_rebased_monodromy_is_conjugate_by_transport():
         loop = generator_loop(X, T, g)
         assert loop[0] == 4 and np.allclose(E.monodromy(loop), M4[g])
         P = E.transport(tree_path(E.forest, 4), np.eye(2))  # root 0 -> 4
-        assert np.allclose(E.monodromy(tree_path(E.forest, 4) + loop[1:] + tree_path(E.forest, 4)[::-1][1:]), np.linalg.inv(P) @ M4[g] @ P)
+        based_at_root = tree_path(E.forest, 4) + loop[1:] + tree_path(E.forest, 4)[::-1][1:]
+        assert np.allclose(E.monodromy(based_at_root), np.linalg.inv(P) @ M4[g] @ P)

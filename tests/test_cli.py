@@ -111,7 +111,7 @@ def test_info_mixed_dimensions_and_unreferenced_vertices(capsys, tmp_path):
     assert mixed["counts"] == [5, 4, 1] and mixed["pure"] is False and mixed["homology"] is None
     assert mixed["connected_components"] == 2
     (tmp_path / "u.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\n")
-    code, out, err = run(capsys, "info", str(tmp_path / "u.obj"))
+    code, out, _err = run(capsys, "info", str(tmp_path / "u.obj"))
     assert code == 0 and "1 vertices of the file are in no cell" in out
     assert info_json(capsys, str(tmp_path / "u.obj"))["unreferenced_vertices"] == 1
 
@@ -186,7 +186,7 @@ def test_help_lists_examples_and_exit_codes(capsys):
 
 def test_warnings_are_one_line_and_quiet_silences_them(capsys):
     def noisy(args):
-        warnings.warn("something\nodd", UserWarning)
+        warnings.warn("something\nodd", UserWarning, stacklevel=1)
         return 0
 
     args = argparse.Namespace(command="fake", func=noisy, quiet=False, debug=False)

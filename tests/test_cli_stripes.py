@@ -52,7 +52,7 @@ def test_json_summary_and_files(tmp_path, capsys):
     assert data["branch_faces"] == res.to_json()["branch_faces"]
     assert [(z["face"], z["index"]) for z in data["zero_faces"]] == \
         [(z["face"], z["index"]) for z in res.to_json()["zero_faces"]]
-    P, vt, f, _ = parse_obj(data["files"]["obj"])
+    _P, vt, f, _ = parse_obj(data["files"]["obj"])
     assert np.array_equal(f[:, :, 0] - 1, res.mesh.faces) and vt.size == 3 * len(f)
     # (the smoothest line field of this torus is degenerate: compare the pattern, not the phase)
     c = np.cos(2 * np.pi * vt)  # per corner; no zero or branch face here, so equal at every vertex
@@ -65,7 +65,7 @@ def test_json_summary_and_files(tmp_path, capsys):
     assert np.allclose(lo, hi, atol=1e-9)
     side = json.load(open(data["files"]["sidecar"]))
     assert side["branch"]["faces"] == res.branch_faces.tolist() and side["n"] == 2
-    Q, _, _, lines = parse_obj(data["files"]["isolines"])
+    _Q, _, _, lines = parse_obj(data["files"]["isolines"])
     assert data["files"]["n_isolines"] == len(lines) > 0 and all(len(p) >= 2 for p in lines)
     assert (tmp_path / "torus-stripes.png").stat().st_size > 1000
 

@@ -1,7 +1,8 @@
 """dhlb.examples: named complexes against textbook homology, Euler characteristics and manifold checks."""
 
 from collections import Counter
-from itertools import combinations, permutations, product as iproduct
+from itertools import combinations, permutations
+from itertools import product as iproduct
 from math import comb, factorial, gcd
 
 import numpy as np
@@ -249,14 +250,14 @@ def test_cube_nd_large_is_vectorized():
 
 def test_sphere_and_simplex_points():
     for n in range(0, 5):
-        X, P = E.sphere(n, return_points=True)
+        _X, P = E.sphere(n, return_points=True)
         assert P.shape == (n + 2, n + 1)
         np.testing.assert_allclose(np.linalg.norm(P, axis=1), 1.0)
         if n > 0:
             d = [np.linalg.norm(P[a] - P[b]) for a, b in combinations(range(n + 2), 2)]
             np.testing.assert_allclose(d, d[0])
             np.testing.assert_allclose(P.sum(axis=0), 0.0, atol=1e-12)
-    S, Q = E.simplex(3, return_points=True)
+    _S, Q = E.simplex(3, return_points=True)
     assert Q.tolist() == [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]
 
 

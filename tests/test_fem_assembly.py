@@ -131,7 +131,7 @@ def test_weighted_and_lumped_mass():
 
 
 def test_mismatched_complexes_are_refused():
-    X, P = cube_nd(2, 2, return_points=True)
+    X, _P = cube_nd(2, 2, return_points=True)
     Y, Q = cube_nd(2, 3, return_points=True)
     with pytest.raises(ShapeError, match="different complexes"):
         mass_matrix(HermitianLineBundle.trivial(X), EuclideanComplex(Y, points=Q))

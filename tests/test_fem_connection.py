@@ -24,7 +24,7 @@ def geometry(n, m, seed):
 
 def random_orthogonal(rng, e, k, field):
     Z = rng.normal(size=(e, k, k)) + (1j * rng.normal(size=(e, k, k)) if field == "C" else 0)
-    Q, R = np.linalg.qr(Z)
+    Q, _R = np.linalg.qr(Z)
     return Q
 
 
@@ -150,7 +150,7 @@ def test_connection_mass():
 # ---------------------------------------------------------------------- bad input
 def test_bad_input():
     X, geo = geometry(2, 2, 0)
-    Y, geo_y = geometry(2, 3, 0)
+    _Y, geo_y = geometry(2, 3, 0)
     B = VectorBundle.trivial(X, 2)
     with pytest.raises(ShapeError, match="different complexes"):
         connection_laplacian(B, geo_y)

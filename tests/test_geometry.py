@@ -12,8 +12,14 @@ from hypothesis.extra.numpy import arrays
 from scipy.spatial import Delaunay
 
 from dhlb import SimplicialComplex
-from dhlb.errors import (DegenerateSimplexError, InvalidMetricError, InvalidParameterError, NonFiniteError,
-                         NonManifoldError, ShapeError)
+from dhlb.errors import (
+    DegenerateSimplexError,
+    InvalidMetricError,
+    InvalidParameterError,
+    NonFiniteError,
+    NonManifoldError,
+    ShapeError,
+)
 from dhlb.examples import cube_nd
 from dhlb.geometry import EuclideanComplex, SimplexStack, metric_from_squared_lengths, squared_lengths_from_points
 

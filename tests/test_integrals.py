@@ -157,7 +157,7 @@ def test_expi_moment_against_mpmath(n):
     for _ in range(10):
         th = rng.choice([-1, 1], n + 1) * 10.0 ** rng.uniform(-8, 3, n + 1)
         p = rng.integers(0, 3, n + 1)
-        nodes = sum(([1j * th[m]] * (p[m] + 1) for m in range(n + 1)), [])
+        nodes = [1j * th[m] for m in range(n + 1) for _ in range(p[m] + 1)]
         ref = factorial(n) * np.prod([factorial(int(k)) for k in p]) * mp_divided_difference(nodes)
         assert abs(expi_moment(th, p) - ref) <= RTOL * abs(ref)
 
@@ -300,7 +300,7 @@ def test_relabeling_covariance():
     """Renumbering the vertices of a simplex permutes the matrices (Ω and r follow the orientation)."""
     rng = np.random.default_rng(8)
     n = 3
-    p, gram, vol = simplex(rng, n)
+    _p, gram, vol = simplex(rng, n)
     edges = [tuple(e) for e in local_edges(n)]
     alpha = dict(zip(edges, rng.normal(size=len(edges))))
     alpha_full = lambda a, b: alpha[a, b] if a < b else -alpha[b, a]  # noqa: E731

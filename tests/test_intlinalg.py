@@ -210,7 +210,7 @@ def test_solve_integer_none_means_no_solution(A, data):
     m = A.shape[0]
     b = np.array(data.draw(st.lists(st.integers(-6, 6), min_size=m, max_size=m)), dtype=np.int64)
     x = solve_integer(A, b)
-    U, D, V = smith_normal_form(A)
+    U, D, _V = smith_normal_form(A)
     c = as_obj(U).dot(as_obj(b)) if m else np.zeros(0, dtype=object)
     d = [int(D[i, i]) for i in range(min(D.shape)) if D[i, i]]
     solvable = not any(c[len(d):]) and all(c[i] % d[i] == 0 for i in range(len(d)))
@@ -244,7 +244,7 @@ def test_solve_integer_examples_and_large_sparse():
 @settings(max_examples=80, deadline=None)
 @given(st.integers(0, 4).flatmap(lambda n: st.lists(st.integers(-5, 5), min_size=n * n, max_size=n * n)))
 def test_integer_determinant_matches_sympy(vals):
-    n = int(round(len(vals) ** 0.5))
+    n = round(len(vals) ** 0.5)
     A = np.array(vals, dtype=np.int64).reshape(n, n)
     assert integer_determinant(A) == (int(sympy.Matrix(A.tolist()).det()) if n else 1)
 

@@ -154,7 +154,7 @@ def test_binary_ply_errors_name_the_element(tmp_path):
 def test_surface_and_volume_readers_refuse_the_other_kind(tmp_path):
     with pytest.raises(MeshParseError, match="contains no tetrahedra"):
         read_volume(_surface_mesh(tmp_path))
-    with pytest.raises(MeshParseError, match="volume mesh .1140 tetrahedra.; use read_volume"):
+    with pytest.raises(MeshParseError, match=r"volume mesh .1140 tetrahedra.; use read_volume"):
         read_surface(os.path.join(DATA, "octopus-low-tet.mesh"))
 
 

@@ -11,12 +11,34 @@ from hypothesis import strategies as st
 
 from dhlb import SimplicialComplex
 from dhlb.errors import InvalidSimplexError, NonManifoldError, NonOrientableError, SimplexNotFoundError
-from dhlb.topology.manifold import (fundamental_cycle, is_consistently_oriented, is_manifold, is_orientable,
-                                    is_pseudomanifold, manifold_report, orientation, require_manifold)
+from dhlb.topology.manifold import (
+    fundamental_cycle,
+    is_consistently_oriented,
+    is_manifold,
+    is_orientable,
+    is_pseudomanifold,
+    manifold_report,
+    orientation,
+    require_manifold,
+)
 from dhlb.topology.structure import boundary_complex, connected_components
-from tests.strategies import (balls, closed_manifolds, closed_surfaces, complexes, cone, klein_bottle,
-                              kuhn_cubes, mobius, octahedron, pure_simplex_lists, rp2, sphere, suspension,
-                              torus7, torus_grid)
+from tests.strategies import (
+    balls,
+    closed_manifolds,
+    closed_surfaces,
+    complexes,
+    cone,
+    klein_bottle,
+    kuhn_cubes,
+    mobius,
+    octahedron,
+    pure_simplex_lists,
+    rp2,
+    sphere,
+    suspension,
+    torus7,
+    torus_grid,
+)
 
 # ---------------------------------------------------------------------------- brute-force references
 

@@ -10,8 +10,15 @@ import scipy.sparse as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dhlb.errors import (DhlbWarning, InvalidConnectionError, InvalidParameterError, NonFiniteError,
-                         SectionZeroError, ShapeError, UnreferencedVertexWarning)
+from dhlb.errors import (
+    DhlbWarning,
+    InvalidConnectionError,
+    InvalidParameterError,
+    NonFiniteError,
+    SectionZeroError,
+    ShapeError,
+    UnreferencedVertexWarning,
+)
 from dhlb.stripes import stripe_form
 from dhlb.surface import direction_vectors, field_indices, tangent_bundle, validate_surface
 from dhlb.surface.guidance import curvature_guidance
@@ -173,7 +180,7 @@ def test_line_bundle_needs_consistent_orientation():
     form, _ = _random_form(3, 2)
     assert (form.edge_sign < 0).any()
     with pytest.raises(InvalidConnectionError, match="edge"):
-        form.line_bundle
+        _ = form.line_bundle
 
 
 # ---------------------------------------------------------------------- bad input

@@ -11,14 +11,20 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import dhlb.surface as surface
-from dhlb.errors import (DhlbWarning, InvalidParameterError, NonFiniteError, NonManifoldError, SectionZeroError,
-                         DegenerateSimplexError)
+from dhlb.errors import (
+    DegenerateSimplexError,
+    DhlbWarning,
+    InvalidParameterError,
+    NonFiniteError,
+    NonManifoldError,
+    SectionZeroError,
+)
 from dhlb.fem import bundle_matrices, connection_laplacian, smallest_eigenpairs
 from dhlb.geometry import EuclideanComplex
 from dhlb.stripes import stripe_form, stripe_matrices, stripe_pattern, texture_coordinates
-from dhlb.surface import direction_vectors, field_indices, tangent_bundle, validate_surface
+from dhlb.surface import direction_vectors, field_indices, tangent_bundle
 from dhlb.topology.complex import SimplicialComplex
-from tests.surface_meshes import cylinder, grid, icosphere, torus
+from tests.surface_meshes import grid, icosphere, torus
 from tests.test_stripes_texture import jittered, side_points, twin_sides
 
 
@@ -60,7 +66,8 @@ def test_constant_field_on_flat_meshes_gives_the_exact_plane_wave(name, n, energ
     assert abs(res.eigenvalue) < 1e-9 and res.solver["converged"]
     nu = 2 * np.pi * res.form.frequency[0]
     E = mesh.complex.simplices(1)
-    assert np.isclose(2 * np.pi / nu, 4.0 * np.mean(np.linalg.norm(mesh.points[E[:, 1]] - mesh.points[E[:, 0]], axis=1)))
+    mean_edge = np.mean(np.linalg.norm(mesh.points[E[:, 1]] - mesh.points[E[:, 0]], axis=1))
+    assert np.isclose(2 * np.pi / nu, 4.0 * mean_edge)
     faces = np.repeat(np.arange(mesh.n_faces), 5)
     B = rng.dirichlet(np.ones(3), faces.size)
     x = np.einsum("kc,kcd->kd", B, mesh.points[mesh.faces[faces]]) @ d
@@ -182,7 +189,7 @@ def test_conjugate_symmetric_minimizer_appendix_a(seed):
     dc, A, M = cover_problem(form)
     P = dc.embedding().toarray()
     # the base cotan energy (branch triangles removed) is the cover energy restricted to conjugate-symmetric ψ̃
-    Ab, Mb, cplx = stripe_matrices(form, "cotan", complex_form=False)
+    Ab, _Mb, cplx = stripe_matrices(form, "cotan", complex_form=False)
     assert not cplx
     assert np.allclose(Ab.toarray(), 0.5 * (P.conj().T @ A @ P).real, atol=1e-12)
     rng = np.random.default_rng(seed)

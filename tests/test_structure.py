@@ -1,6 +1,6 @@
 """Structural operations: skeleta, stars, links, components, boundary, subdivision, relabeling."""
 
-from itertools import combinations
+from itertools import combinations, pairwise
 from math import factorial
 
 import networkx as nx
@@ -11,10 +11,21 @@ from hypothesis import strategies as st
 
 from dhlb import SimplicialComplex
 from dhlb.errors import InvalidSimplexError, NonManifoldError, SimplexNotFoundError
-from dhlb.topology.structure import (boundary_complex, closed_star, coface_counts,
-                                     components, connected_components, incidence, link,
-                                     link_component_counts, parent_indices, skeleton, star,
-                                     subcomplex, subfaces)
+from dhlb.topology.structure import (
+    boundary_complex,
+    closed_star,
+    coface_counts,
+    components,
+    connected_components,
+    incidence,
+    link,
+    link_component_counts,
+    parent_indices,
+    skeleton,
+    star,
+    subcomplex,
+    subfaces,
+)
 from dhlb.topology.subdivision import barycentric_subdivision, relabeled
 from tests.strategies import balls, complexes, pure_simplex_lists, simplex_lists, sphere, torus7
 
@@ -155,7 +166,7 @@ def test_barycentric_subdivision_brute_force(X):
     assert np.array_equal(np.bincount(vmap[:, 0]), X.counts)
     for top in Sd.maximal_simplices()[Sd.dim]:  # a top simplex of Sd is a full flag
         chain = [set(X.simplices(k)[r]) for k, r in vmap[top]]
-        assert all(a < b for a, b in zip(chain, chain[1:]))
+        assert all(a < b for a, b in pairwise(chain))
     if X.is_pure:
         assert Sd.n_simplices(X.dim) == factorial(X.dim + 1) * X.n_simplices(X.dim)
 
@@ -207,7 +218,7 @@ def test_relabeling_invariance(simplices, rnd):
 def test_complex_methods_delegate():
     X = SimplicialComplex(torus7())
     assert X.skeleton(1).counts == (7, 21)
-    assert [s.tolist() for s in X.star(0, 0)][0] == [0]
+    assert next(s.tolist() for s in X.star(0, 0)) == [0]
     assert X.link(0, 0).counts == (6, 6)
     assert X.connected_components()[0] == 1
     assert X.boundary_complex() is None

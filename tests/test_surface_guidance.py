@@ -11,8 +11,13 @@ import scipy.sparse as sp
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.surface import tangent_bundle
 from dhlb.surface.directions import field_indices
-from dhlb.surface.guidance import (boundary_guidance, curvature_guidance, dihedral_angles, hopf_differential,
-                                   user_guidance)
+from dhlb.surface.guidance import (
+    boundary_guidance,
+    curvature_guidance,
+    dihedral_angles,
+    hopf_differential,
+    user_guidance,
+)
 from tests.surface_meshes import cylinder, ellipsoid, grid, icosphere
 
 UMBILICS = np.array([[sx * 3 * np.sqrt(5 / 8), 0, sz * np.sqrt(3 / 8)] for sx in (1, -1) for sz in (1, -1)])
@@ -22,7 +27,7 @@ def test_hopf_differential_vanishes_on_the_sphere():
     means = []
     for level in (2, 3, 4):
         tb = tangent_bundle(*icosphere(level), n=2)
-        q, q_dual = hopf_differential(tb)
+        q, _q_dual = hopf_differential(tb)
         assert np.abs(q).max() < 0.07  # H = 1; the 12 valence-5 vertices keep a small anisotropy
         means.append(np.abs(q).mean())
     assert means[0] < 0.025 and means[1] < means[0] / 2 and means[2] < means[1] / 2
@@ -64,7 +69,7 @@ def test_ellipsoid_has_four_umbilics(level):
 
 def test_curvature_guidance_variants():
     tb = tangent_bundle(*ellipsoid(2), n=4)
-    q, q_dual = hopf_differential(tb)
+    q, _q_dual = hopf_differential(tb)
     g = curvature_guidance(tb, "max")
     assert np.allclose(g.values, q**2) and g.kind == "curvature-max" and not g.empty
     assert np.allclose(curvature_guidance(tb, "min").values, q**2)  # (−q)² = q²

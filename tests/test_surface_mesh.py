@@ -8,9 +8,19 @@ import warnings
 import numpy as np
 import pytest
 
-from dhlb.errors import (DegenerateSimplexError, DhlbWarning, EmptyComplexError, InconsistentOrientationError,
-                         InvalidParameterError, InvalidSimplexError, NonFiniteError, NonManifoldError,
-                         NonOrientableError, ShapeError, UnreferencedVertexWarning)
+from dhlb.errors import (
+    DegenerateSimplexError,
+    DhlbWarning,
+    EmptyComplexError,
+    InconsistentOrientationError,
+    InvalidParameterError,
+    InvalidSimplexError,
+    NonFiniteError,
+    NonManifoldError,
+    NonOrientableError,
+    ShapeError,
+    UnreferencedVertexWarning,
+)
 from dhlb.io import read_surface
 from dhlb.surface import SurfaceMesh, tangent_bundle, validate_surface
 from tests.surface_meshes import grid, icosphere
@@ -129,7 +139,7 @@ def test_non_manifold_vertex_double_cone():
 def test_moebius_band_is_not_orientable():
     V, F = read_surface(os.path.join(DATA, "moebius.obj"))
     for reorient in (False, True):
-        with pytest.raises(NonOrientableError, match="Möbius band.*future work"):
+        with pytest.raises(NonOrientableError, match=r"Möbius band.*future work"):
             validate_surface(V, F, reorient=reorient)
 
 

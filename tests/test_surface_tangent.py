@@ -234,7 +234,7 @@ def test_fans_refuse_a_vertex_with_two_fans():
     from dhlb.errors import NonManifoldError
     from dhlb.surface._fans import vertex_fans
 
-    V, F = icosphere(0)
+    _V, F = icosphere(0)
     F2 = np.where(F == 0, 0, F + 11)  # a second icosahedron sharing vertex 0 (a double cone there)
     FF = np.vstack([F, F2[:, ::-1]])
     with pytest.raises(NonManifoldError, match="vertex 0"):

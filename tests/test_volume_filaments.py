@@ -11,10 +11,24 @@ from hypothesis import strategies as st
 
 from dhlb import SimplicialComplex
 from dhlb.bundles import HermitianLineBundle
-from dhlb.errors import (DhlbWarning, InconsistentOrientationError, InvalidParameterError, NonFiniteError,
-                         NonManifoldError, SectionZeroError, ShapeError)
-from dhlb.volume import (box_tet_mesh, extract_filaments, face_zeros, hausdorff_distance, hopf_link,
-                         linking_number, vortex_ring)
+from dhlb.errors import (
+    DhlbWarning,
+    InconsistentOrientationError,
+    InvalidParameterError,
+    NonFiniteError,
+    NonManifoldError,
+    SectionZeroError,
+    ShapeError,
+)
+from dhlb.volume import (
+    box_tet_mesh,
+    extract_filaments,
+    face_zeros,
+    hausdorff_distance,
+    hopf_link,
+    linking_number,
+    vortex_ring,
+)
 
 BOX = box_tet_mesh(5)
 TRIVIAL = HermitianLineBundle.trivial(BOX.complex)

@@ -8,8 +8,17 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dhlb.errors import CurveIntersectionError, InvalidParameterError, NonFiniteError, ShapeError
-from dhlb.volume import (gauss_linking_integral, hausdorff_distance, hopf_link, linking_matrix, linking_number,
-                         polyline_distance, torus_knot, trefoil, vortex_ring)
+from dhlb.volume import (
+    gauss_linking_integral,
+    hausdorff_distance,
+    hopf_link,
+    linking_matrix,
+    linking_number,
+    polyline_distance,
+    torus_knot,
+    trefoil,
+    vortex_ring,
+)
 
 
 def brute_gauss(a, b, k=30):

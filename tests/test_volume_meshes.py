@@ -9,10 +9,16 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dhlb.errors import (DegenerateSimplexError, InconsistentOrientationError, InvalidParameterError,
-                         InvalidSimplexError, NonFiniteError, NonManifoldError, ShapeError)
-from dhlb.volume import ball_tet_mesh, box_tet_mesh, check_tet_mesh, signed_volumes
-from dhlb.volume import tetgen
+from dhlb.errors import (
+    DegenerateSimplexError,
+    InconsistentOrientationError,
+    InvalidParameterError,
+    InvalidSimplexError,
+    NonFiniteError,
+    NonManifoldError,
+    ShapeError,
+)
+from dhlb.volume import ball_tet_mesh, box_tet_mesh, check_tet_mesh, signed_volumes, tetgen
 
 TET = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
 

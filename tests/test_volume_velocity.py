@@ -8,8 +8,19 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
-from dhlb.volume import (FilamentField, box_tet_mesh, edge_circulation, gauss_legendre, hopf_link,
-                         segment_velocity, superpose, trefoil, uniform_flow, velocity_bundle, vortex_ring)
+from dhlb.volume import (
+    FilamentField,
+    box_tet_mesh,
+    edge_circulation,
+    gauss_legendre,
+    hopf_link,
+    segment_velocity,
+    superpose,
+    trefoil,
+    uniform_flow,
+    velocity_bundle,
+    vortex_ring,
+)
 
 RNG = np.random.default_rng(7)
 P0 = RNG.normal(size=(12, 3))

@@ -6,7 +6,6 @@ hermitian line bundles with curvature (:mod:`.hermitian`), Weil's theorem (:mod:
 the index formula (:mod:`.index`).
 """
 
-from dhlb.bundles.vector_bundle import VectorBundle
 from dhlb.bundles.morphisms import (
     direct_sum,
     dual,
@@ -24,6 +23,7 @@ from dhlb.bundles.paths import (
     loop_group_presentation,
     spanning_forest,
 )
+from dhlb.bundles.vector_bundle import VectorBundle
 
 __all__ = [
     "VectorBundle",
@@ -42,15 +42,16 @@ __all__ = [
     "spanning_forest",
 ]
 
-from dhlb.bundles.line_bundle import (  # noqa: E402
+from dhlb.bundles.hermitian import HermitianLineBundle
+from dhlb.bundles.index import index_form, index_sum, rotation_form
+from dhlb.bundles.line_bundle import (
     LineBundleClass,
     connection_form,
     form_class,
     integrate_exact_form,
     line_bundle_class,
 )
-from dhlb.bundles.hermitian import HermitianLineBundle  # noqa: E402
-from dhlb.bundles.weil import (  # noqa: E402
+from dhlb.bundles.weil import (
     BundlesWithCurvature,
     bundles_with_curvature,
     check_integrality,
@@ -58,7 +59,6 @@ from dhlb.bundles.weil import (  # noqa: E402
     integer_cycle_basis,
     line_bundle_with_curvature,
 )
-from dhlb.bundles.index import index_form, index_sum, rotation_form  # noqa: E402
 
 __all__ += [
     "LineBundleClass",

@@ -124,7 +124,8 @@ class Mod2PiSolution:
         """Undo the collapses in reverse order: each pair's triangle equation defines its edge.
 
         Column 0 carries the constant part (with Ω, wrapped to (−π, π]); the other columns the
-        integer coefficients of the core variables (right-hand side 0)."""
+        integer coefficients of the core variables (right-hand side 0).
+        """
         f, Om = self._f, self._Omega
         for e, t in reversed(self._rounds):
             ft = f[t]
@@ -165,8 +166,11 @@ class Mod2PiSolution:
         return tuple(int(d) for d in self._d if d > 1)
 
     def omega(self, free=None, torsion=None) -> np.ndarray:
-        """A solution ω (angles in (−π, π]); ``free`` sets the ``q − r`` free coordinates, ``torsion``
-        the branch ``k`` (mod d) of each torsion row."""
+        """A solution ω (angles in (−π, π]).
+
+        ``free`` sets the ``q − r`` free coordinates, ``torsion`` the branch ``k`` (mod d) of each
+        torsion row.
+        """
         q = self._V.shape[0]
         r = self._d.size
         y1 = np.zeros(q)

@@ -116,6 +116,7 @@ class ComplexOps(_FloatOps):
     name = "C"
 
     def random(self, shape, rng: np.random.Generator) -> np.ndarray:
+        """Random complex matrices of the given shape (standard normal real and imaginary parts)."""
         return rng.standard_normal(shape) + 1j * rng.standard_normal(shape)
 
 
@@ -131,13 +132,16 @@ class PrimeFieldOps:
 
     @property
     def name(self) -> str:
+        """The field's name, ``"('GF', p)"``."""
         return str(("GF", self.p))
 
     @property
     def spec(self):
+        """The field specification ``("GF", p)`` accepted by :func:`field_ops`."""
         return ("GF", self.p)
 
     def asarray(self, values, what: str = "values") -> np.ndarray:
+        """Validated int64 array of ``values`` reduced mod p (``what`` names them in errors)."""
         arr = np.asarray(values)
         if arr.dtype == bool:
             arr = arr.astype(np.int64)
@@ -149,27 +153,35 @@ class PrimeFieldOps:
         return arr.astype(np.int64) % self.p
 
     def eye(self, K: int) -> np.ndarray:
+        """The K×K identity matrix (int64)."""
         return np.eye(K, dtype=np.int64)
 
     def matmul(self, A, B) -> np.ndarray:
+        """Batched matrix product mod p."""
         return ff.matmul_mod(A, B, self.p)
 
     def inv(self, A) -> tuple[np.ndarray, np.ndarray]:
+        """Batched inverse mod p and a mask of singular matrices."""
         return ff.inv_mod(A, self.p)
 
     def close(self, A, B) -> np.ndarray:
+        """Bool per batch element: ``A == B`` mod p (last two axes)."""
         return np.all((np.asarray(A) - np.asarray(B)) % self.p == 0, axis=(-2, -1))
 
     def nullspace(self, A) -> np.ndarray:
+        """A basis (columns) of the kernel of one matrix mod p."""
         return ff.nullspace_mod(A, self.p)
 
     def is_invertible(self, A) -> bool:
+        """True if the square matrix ``A`` is invertible mod p."""
         return not bool(ff.inv_mod(A, self.p)[1])
 
     def random(self, shape, rng: np.random.Generator) -> np.ndarray:
+        """Uniformly random matrices with entries in ``0 .. p-1``."""
         return rng.integers(0, self.p, size=shape, dtype=np.int64)
 
     def unitary_defect(self, A):  # pragma: no cover - guarded by the bundle constructor
+        """Not defined over GF(p): always raises :class:`~dhlb.errors.InvalidConnectionError`."""
         raise InvalidConnectionError("metric=True is only meaningful over R or C")
 
 

@@ -101,7 +101,8 @@ def inv_mod(A, p: int) -> tuple[np.ndarray, np.ndarray]:
     A = np.asarray(A, dtype=np.int64) % p
     batch = A.shape[:-2]
     K = A.shape[-1]
-    M = np.concatenate([A.reshape(-1, K, K), np.broadcast_to(np.eye(K, dtype=np.int64), (int(np.prod(batch, dtype=np.int64)), K, K))], axis=2)
+    eye = np.broadcast_to(np.eye(K, dtype=np.int64), (int(np.prod(batch, dtype=np.int64)), K, K))
+    M = np.concatenate([A.reshape(-1, K, K), eye], axis=2)
     N = M.shape[0]
     singular = np.zeros(N, bool)
     idx = np.arange(N)

@@ -21,6 +21,7 @@ Examples
 from __future__ import annotations
 
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -36,6 +37,15 @@ from dhlb.errors import (
     NonOrientableError,
     NotClosedError,
 )
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike
+
+    from dhlb.forms.chain import Chain
+    from dhlb.forms.cochain import Cochain
+    from dhlb.topology.complex import SimplicialComplex
 
 __all__ = ["HermitianLineBundle"]
 
@@ -90,7 +100,7 @@ class HermitianLineBundle:
         ``dΩ ≠ 0`` on a tetrahedron (names it).
     """
 
-    def __init__(self, X, connection, curvature, *, atol: float = 1e-8):
+    def __init__(self, X: SimplicialComplex, connection: ArrayLike, curvature: ArrayLike, *, atol: float = 1e-8):
         self._X = X
         self._atol = float(atol)
         n1, n2 = X.n_simplices(1), X.n_simplices(2)
@@ -101,9 +111,12 @@ class HermitianLineBundle:
         except (TypeError, ValueError):
             raise InvalidConnectionError(f"the connection must be a complex array of length n_1 = {n1}") from None
         if r.size != n1:
-            raise InvalidConnectionError(f"the connection needs one unit complex number per edge: length n_1 = {n1}, got {r.size}")
+            raise InvalidConnectionError(
+                f"the connection needs one unit complex number per edge: length n_1 = {n1}, got {r.size}"
+            )
         if not np.all(np.isfinite(r)):
-            raise NonFiniteError(f"the connection contains NaN or infinity (edge {simplex_name(X, 1, int(np.argmin(np.isfinite(r))))})")
+            bad_edge = simplex_name(X, 1, int(np.argmin(np.isfinite(r))))
+            raise NonFiniteError(f"the connection contains NaN or infinity (edge {bad_edge})")
         dev = np.abs(np.abs(r) - 1.0)
         if np.any(dev > atol):
             e = int(np.argmax(dev))
@@ -139,19 +152,22 @@ class HermitianLineBundle:
 
     # ------------------------------------------------------------------ construction
     @classmethod
-    def from_angles(cls, X, angles, curvature, **kw) -> "HermitianLineBundle":
+    def from_angles(
+        cls, X: SimplicialComplex, angles: ArrayLike, curvature: ArrayLike, **kw: Any
+    ) -> HermitianLineBundle:
         """From connection angles ``ω_ij`` (``r = exp(iω)``)."""
         w = _real_vector(angles, X.n_simplices(1), "the connection angles")
         return cls(X, np.exp(1j * w), curvature, **kw)
 
     @classmethod
-    def trivial(cls, X, **kw) -> "HermitianLineBundle":
+    def trivial(cls, X: SimplicialComplex, **kw: Any) -> HermitianLineBundle:
         """The product bundle: ``r = 1``, ``Ω = 0``."""
         return cls(X, np.ones(X.n_simplices(1)), np.zeros(X.n_simplices(2)), **kw)
 
     # ------------------------------------------------------------------ data
     @property
-    def X(self):
+    def X(self) -> SimplicialComplex:
+        """The base simplicial complex."""
         return self._X
 
     @property
@@ -166,6 +182,7 @@ class HermitianLineBundle:
 
     @property
     def atol(self) -> float:
+        """The absolute tolerance of the unit-modulus and curvature checks."""
         return self._atol
 
     @cached_property
@@ -173,13 +190,13 @@ class HermitianLineBundle:
         """The S¹-valued connection form ``ω = angle(r)`` in (−π, π]."""
         return wrap_angle(np.angle(self._r))
 
-    def connection_form(self):
+    def connection_form(self) -> Cochain:
         """The connection form ω as an S¹-valued :class:`dhlb.forms.Cochain`."""
         from dhlb.forms import Cochain
 
         return Cochain(self._X, 1, self.connection_angles, "S1")
 
-    def curvature_form(self):
+    def curvature_form(self) -> Cochain:
         """The curvature Ω as a real :class:`dhlb.forms.Cochain`."""
         from dhlb.forms import Cochain
 
@@ -197,11 +214,13 @@ class HermitianLineBundle:
         return f"HermitianLineBundle(X={self._X!r})"
 
     # ------------------------------------------------------------------ operations
-    def gauge(self, g) -> "HermitianLineBundle":
+    def gauge(self, g: ArrayLike) -> HermitianLineBundle:
         """New frames ``X'_i = g_i X_i`` (``g`` unit complex per vertex): ``r'_ij = conj(g_j) r_ij g_i``."""
         g = np.asarray(g, dtype=np.complex128).reshape(-1)
         if g.size != self._X.n_vertices or np.any(np.abs(np.abs(g) - 1) > self._atol):
-            raise InvalidConnectionError(f"a gauge transformation is one unit complex number per vertex ({self._X.n_vertices})")
+            raise InvalidConnectionError(
+                f"a gauge transformation is one unit complex number per vertex ({self._X.n_vertices})"
+            )
         E = self._X.simplices(1)
         return HermitianLineBundle(self._X, np.conj(g[E[:, 1]]) * self._r * g[E[:, 0]], self._Om, atol=self._atol)
 
@@ -209,18 +228,18 @@ class HermitianLineBundle:
         if not isinstance(other, HermitianLineBundle) or (other.X is not self._X and other.X != self._X):
             raise InvalidConnectionError("both line bundles must live over the same complex")
 
-    def tensor(self, other: "HermitianLineBundle") -> "HermitianLineBundle":
+    def tensor(self, other: HermitianLineBundle) -> HermitianLineBundle:
         """``L ⊗ L'``: connections multiply, curvatures add."""
         self._check_same(other)
         return HermitianLineBundle(self._X, self._r * other._r, self._Om + other._Om, atol=self._atol)
 
     __mul__ = tensor
 
-    def dual(self) -> "HermitianLineBundle":
+    def dual(self) -> HermitianLineBundle:
         """``L*``: conjugate connection, curvature ``−Ω``."""
         return HermitianLineBundle(self._X, np.conj(self._r), -self._Om, atol=self._atol)
 
-    def power(self, n: int) -> "HermitianLineBundle":
+    def power(self, n: int) -> HermitianLineBundle:
         """``L^{⊗n}`` for an integer ``n`` (negative: powers of the dual)."""
         n = int(n)
         return HermitianLineBundle(self._X, self._r**n, n * self._Om, atol=self._atol)
@@ -241,7 +260,7 @@ class HermitianLineBundle:
         E = self._X.simplices(1)[T.nontree]
         return wrap_angle(phi[E[:, 0]] + w[T.nontree] - phi[E[:, 1]])
 
-    def holonomy(self, cycle) -> float:
+    def holonomy(self, cycle: ArrayLike | Chain) -> float:
         """Holonomy angle ``Σ c_e ω_e`` (mod 2π) around an integer 1-cycle ``c``.
 
         Raises
@@ -252,10 +271,11 @@ class HermitianLineBundle:
         c = self._chain(cycle, 1)
         return float(wrap_angle(c @ self.connection_angles))
 
-    def find_isomorphism(self, other: "HermitianLineBundle"):
+    def find_isomorphism(self, other: HermitianLineBundle) -> np.ndarray | None:
         """Unit ``g`` per vertex with ``other = self.gauge(g)``, or None (needs equal curvature)."""
         self._check_same(other)
-        if not np.allclose(self._Om, other._Om, rtol=0, atol=self._atol * max(1.0, float(np.max(np.abs(self._Om), initial=0)))):
+        tol = self._atol * max(1.0, float(np.max(np.abs(self._Om), initial=0)))
+        if not np.allclose(self._Om, other._Om, rtol=0, atol=tol):
             return None
         d = wrap_angle(self.class_angles() - other.class_angles())
         if np.any(np.abs(d) > self._atol * 100):
@@ -268,7 +288,7 @@ class HermitianLineBundle:
         step[child] = np.where(T.parent[child] < child, 1.0, -1.0) * ratio[T.parent_edge[child]]
         return np.exp(1j * paths.tree_accumulate(T, step, np.add, 0.0))
 
-    def is_isomorphic(self, other: "HermitianLineBundle") -> bool:
+    def is_isomorphic(self, other: HermitianLineBundle) -> bool:
         """Isomorphic as bundles with curvature: equal Ω and equal class in Hom(ker ∂₁, S¹)."""
         return self.find_isomorphism(other) is not None
 
@@ -290,11 +310,11 @@ class HermitianLineBundle:
             raise NotClosedError(f"the {k}-chain is not a cycle: its boundary has coefficient {int(b[s])} on {where}")
         return c
 
-    def integrate_curvature(self, cycle) -> float:
+    def integrate_curvature(self, cycle: ArrayLike | Chain) -> float:
         """``∫_C Ω = Σ C_t Ω_t`` over an integral 2-cycle ``C`` (checked: ``∂C = 0``)."""
         return float(self._chain(cycle, 2) @ self._Om)
 
-    def fundamental_cycle(self, orientation=None) -> np.ndarray:
+    def fundamental_cycle(self, orientation: ArrayLike | None = None) -> np.ndarray:
         """The fundamental 2-cycle ``Σ_t o_t t`` of the closed oriented surface X.
 
         Parameters
@@ -317,7 +337,9 @@ class HermitianLineBundle:
         cnt = np.bincount(X.faces(2).ravel(), minlength=X.n_simplices(1))
         if np.any(cnt == 1):
             e = int(np.argmax(cnt == 1))
-            raise NonManifoldError(f"the degree needs a closed surface, but edge {simplex_name(X, 1, e)} lies in one triangle only")
+            raise NonManifoldError(
+                f"the degree needs a closed surface, but edge {simplex_name(X, 1, e)} lies in one triangle only"
+            )
         if orientation is None:
             return np.asarray(X.orientation(), dtype=np.int64)
         o = np.asarray(orientation)
@@ -331,7 +353,7 @@ class HermitianLineBundle:
             )
         return o
 
-    def degree(self, orientation=None) -> int:
+    def degree(self, orientation: ArrayLike | None = None) -> int:
         """``deg L = (1/2π) Σ_t o_t Ω_t`` over a closed oriented surface.
 
         Parameters
@@ -361,13 +383,13 @@ class HermitianLineBundle:
         return check_integrality(self._X, self._Om, atol=self._atol)
 
     # ------------------------------------------------------------------ sections and indices
-    def rotation_form(self, section) -> np.ndarray:
+    def rotation_form(self, section: ArrayLike) -> np.ndarray:
         """Rotation form ξ of a nowhere-vanishing section (see :func:`dhlb.bundles.index.rotation_form`)."""
         from dhlb.bundles.index import rotation_form
 
         return rotation_form(self, section)
 
-    def index_form(self, section) -> np.ndarray:
+    def index_form(self, section: ArrayLike) -> np.ndarray:
         """Index form ``(dξ + Ω)/2π`` as int64 per triangle (see :func:`dhlb.bundles.index.index_form`)."""
         from dhlb.bundles.index import index_form
 

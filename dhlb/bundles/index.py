@@ -24,10 +24,17 @@ Examples
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dhlb.bundles._util import coboundary, simplex_name
 from dhlb.errors import CurvatureMismatchError, NonFiniteError, SectionZeroError
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from dhlb.bundles.hermitian import HermitianLineBundle
 
 __all__ = ["rotation_form", "index_form", "index_sum"]
 
@@ -54,7 +61,7 @@ def _section(L, section) -> np.ndarray:
     return z
 
 
-def rotation_form(L, section) -> np.ndarray:
+def rotation_form(L: HermitianLineBundle, section: ArrayLike) -> np.ndarray:
     """``ξ_ij = arg(z_j / (r_ij z_i)) ∈ (−π, π]`` per canonical edge (float64, length n_1).
 
     Raises
@@ -68,7 +75,7 @@ def rotation_form(L, section) -> np.ndarray:
     return np.where(xi <= -np.pi, np.pi, xi)
 
 
-def index_form(L, section) -> np.ndarray:
+def index_form(L: HermitianLineBundle, section: ArrayLike) -> np.ndarray:
     """``ind = (dξ + Ω) / 2π`` as int64, one per triangle in the order of ``X.simplices(2)``.
 
     The values are integers by Theorem 11; they are checked to tolerance (a failure would
@@ -88,10 +95,12 @@ def index_form(L, section) -> np.ndarray:
     return n.astype(np.int64)
 
 
-def index_sum(L, section, cycle=None) -> int:
-    """``Σ_t C_t ind_t`` over an integer 2-cycle ``C`` (default: the fundamental cycle
-    ``X.orientation()`` of a closed oriented surface).  Poincaré–Hopf: this equals
-    ``(1/2π) ∫_C Ω`` (the degree, for the fundamental cycle)."""
+def index_sum(L: HermitianLineBundle, section: ArrayLike, cycle: ArrayLike | None = None) -> int:
+    """The index sum ``Σ_t C_t ind_t`` over an integer 2-cycle ``C``.
+
+    ``C`` defaults to the fundamental cycle ``X.orientation()`` of a closed oriented surface.
+    Poincaré–Hopf: this equals ``(1/2π) ∫_C Ω`` (the degree, for the fundamental cycle).
+    """
     ind = index_form(L, section)
     if cycle is None:
         cycle = L.fundamental_cycle()

@@ -24,12 +24,22 @@ Examples
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dhlb.bundles import paths
 from dhlb.bundles.fields import field_ops
 from dhlb.bundles.vector_bundle import VectorBundle
 from dhlb.errors import InvalidConnectionError, NotClosedError, NotExactError
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    import scipy.sparse as sp
+    from numpy.typing import ArrayLike
+
+    from dhlb.topology.complex import SimplicialComplex
 
 __all__ = [
     "LineBundleClass",
@@ -50,32 +60,34 @@ class LineBundleClass:
     field : ``"R"``, ``"C"`` or ``("GF", p)``
     """
 
-    def __init__(self, X, values, field="C", atol: float = 1e-9):
+    def __init__(self, X: SimplicialComplex, values: ArrayLike, field: str | tuple[str, int] = "C", atol: float = 1e-9):
         self.X = X
         self.ops = field_ops(field, atol)
         self.forest = paths.spanning_forest(X)
         v = self.ops.asarray(np.asarray(values).reshape(-1), "class values")
         if v.size != self.forest.nontree.size:
-            raise InvalidConnectionError(f"need one value per fundamental cycle ({self.forest.nontree.size}), got {v.size}")
+            raise InvalidConnectionError(
+                f"need one value per fundamental cycle ({self.forest.nontree.size}), got {v.size}"
+            )
         if np.any(v == 0):
             raise InvalidConnectionError("values of a class in Hom(ker ∂₁, F*) must be nonzero")
         self.values = v
 
-    def _new(self, values) -> "LineBundleClass":
+    def _new(self, values) -> LineBundleClass:
         return LineBundleClass(self.X, values, self.ops.spec, self.ops.atol)
 
     @property
-    def cycles(self):
+    def cycles(self) -> sp.csr_matrix:
         """The Z-basis of ker ∂₁ the values refer to (sparse rows, see :func:`paths.fundamental_cycles`)."""
         return paths.fundamental_cycles(self.X, self.forest)
 
-    def __mul__(self, other: "LineBundleClass") -> "LineBundleClass":
+    def __mul__(self, other: LineBundleClass) -> LineBundleClass:
         """The class of the tensor product."""
         if self.ops.exact:
             return self._new(self.values * other.values % self.ops.p)
         return self._new(self.values * other.values)
 
-    def inverse(self) -> "LineBundleClass":
+    def inverse(self) -> LineBundleClass:
         """The class of the dual bundle."""
         if self.ops.exact:
             from dhlb.bundles.finite_field import pow_mod
@@ -93,11 +105,13 @@ class LineBundleClass:
     __hash__ = None
 
     def is_trivial(self) -> bool:
+        """True if the class is trivial (value 1 on every fundamental cycle)."""
         return bool(np.all(self.ops.close(self.values[None, :], np.ones((1, self.values.size)))))
 
-    def evaluate(self, cycle):
-        """The value ``Π ω_e^{c_e}`` on an integer 1-cycle ``c`` (length n_1): a complex number
-        over C, a float over R, an int in ``1 .. p-1`` over GF(p).
+    def evaluate(self, cycle: ArrayLike) -> Any:
+        """The value ``Π ω_e^{c_e}`` on an integer 1-cycle ``c`` (length n_1).
+
+        A complex number over C, a float over R, an int in ``1 .. p-1`` over GF(p).
 
         Raises
         ------
@@ -110,7 +124,9 @@ class LineBundleClass:
         b = self.X.boundary(1) @ c
         if np.any(b != 0):
             v = int(np.nonzero(b)[0][0])
-            raise NotClosedError(f"the 1-chain is not a cycle: its boundary is {int(b[v])} at vertex {int(self.X.vertex_labels[v])}")
+            raise NotClosedError(
+                f"the 1-chain is not a cycle: its boundary is {int(b[v])} at vertex {int(self.X.vertex_labels[v])}"
+            )
         w = self.connection_form()
         if self.ops.exact:
             from dhlb.bundles.finite_field import pow_mod
@@ -149,12 +165,16 @@ def connection_form(L: VectorBundle) -> np.ndarray:
     return L.transports[:, 0, 0].copy()
 
 
-def form_class(X, omega, field="C", atol: float = 1e-9) -> LineBundleClass:
+def form_class(
+    X: SimplicialComplex, omega: ArrayLike, field: str | tuple[str, int] = "C", atol: float = 1e-9
+) -> LineBundleClass:
     """The class of an F*-valued 1-form ``ω`` (per canonical edge) in Hom(ker ∂₁, F*)."""
     return line_bundle_class(VectorBundle(X, np.asarray(omega).reshape(-1), field, atol=atol))
 
 
-def integrate_exact_form(X, omega, field="C", atol: float = 1e-9) -> np.ndarray:
+def integrate_exact_form(
+    X: SimplicialComplex, omega: ArrayLike, field: str | tuple[str, int] = "C", atol: float = 1e-9
+) -> np.ndarray:
     """``g`` with ``ω_ij = g_j / g_i`` (``g = 1`` at the roots) for an exact F*-valued 1-form.
 
     Raises

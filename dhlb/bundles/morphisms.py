@@ -26,10 +26,17 @@ True
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dhlb.bundles.vector_bundle import VectorBundle
 from dhlb.errors import ConvergenceError, InvalidConnectionError
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike
 
 __all__ = [
     "gauge",
@@ -53,7 +60,7 @@ def _vertex_matrices(E: VectorBundle, g, what: str) -> np.ndarray:
     return E.ops.asarray(arr, what)
 
 
-def gauge(E: VectorBundle, g) -> VectorBundle:
+def gauge(E: VectorBundle, g: ArrayLike) -> VectorBundle:
     """The gauge-transformed bundle ``η'_ij = g_j η_ij g_i⁻¹``; ``g`` is an isomorphism E → E'.
 
     ``g`` has shape (n_0, K, K) (or (n_0,) for rank 1).  The result keeps ``metric=True``
@@ -125,13 +132,15 @@ def hom(E: VectorBundle, F: VectorBundle) -> VectorBundle:
     return tensor(F, dual(E))
 
 
-def is_morphism(E: VectorBundle, F: VectorBundle, f) -> bool:
+def is_morphism(E: VectorBundle, F: VectorBundle, f: ArrayLike) -> bool:
     """True if ``f`` (shape (n_0, K_F, K_E)) makes every edge diagram commute: ``f_j η_ij = θ_ij f_i``."""
     _check_pair(E, F)
     ops = E.ops
     f = ops.asarray(np.asarray(f), "the morphism")
     if f.shape != (E.X.n_vertices, F.rank, E.rank):
-        raise InvalidConnectionError(f"a morphism has shape (n_0, K_F, K_E) = {(E.X.n_vertices, F.rank, E.rank)}, got {f.shape}")
+        raise InvalidConnectionError(
+            f"a morphism has shape (n_0, K_F, K_E) = {(E.X.n_vertices, F.rank, E.rank)}, got {f.shape}"
+        )
     Ed = E.X.simplices(1)
     lhs = ops.matmul(f[Ed[:, 1]], E.transports)
     rhs = ops.matmul(F.transports, f[Ed[:, 0]])
@@ -168,7 +177,9 @@ def _invertible_in_span(ops, N: np.ndarray, K: int, rng, max_enumeration: int):
     )
 
 
-def find_isomorphism(E: VectorBundle, F: VectorBundle, *, rng=None, max_enumeration: int = 2**16):
+def find_isomorphism(
+    E: VectorBundle, F: VectorBundle, *, rng: np.random.Generator | int | None = None, max_enumeration: int = 2**16
+) -> np.ndarray | None:
     """An isomorphism ``f: E → F`` (array (n_0, K, K), ``f_j η_ij = θ_ij f_i``) or ``None``.
 
     Per component: solve ``M^F_g f = f M^E_g`` for all loop generators g (a linear system in
@@ -196,7 +207,10 @@ def find_isomorphism(E: VectorBundle, F: VectorBundle, *, rng=None, max_enumerat
         if not np.any(sel):
             roots.append(I)
             continue
-        A = (_kron(MF[sel], np.broadcast_to(I, MF[sel].shape)) - _kron(np.broadcast_to(I, ME[sel].shape), np.swapaxes(ME[sel], 1, 2))).reshape(-1, K * K)
+        A = (
+            _kron(MF[sel], np.broadcast_to(I, MF[sel].shape))
+            - _kron(np.broadcast_to(I, ME[sel].shape), np.swapaxes(ME[sel], 1, 2))
+        ).reshape(-1, K * K)
         if ops.exact:
             A = A % ops.p
         N = ops.nullspace(A)
@@ -230,6 +244,6 @@ def _no_isomorphism(ops, ME, MF, E: VectorBundle, F: VectorBundle):
     return None
 
 
-def is_isomorphic(E: VectorBundle, F: VectorBundle, **kwargs) -> bool:
+def is_isomorphic(E: VectorBundle, F: VectorBundle, **kwargs: Any) -> bool:
     """True if :func:`find_isomorphism` finds an isomorphism."""
     return find_isomorphism(E, F, **kwargs) is not None

@@ -24,12 +24,19 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
+from itertools import pairwise
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import breadth_first_order, connected_components
 
 from dhlb.errors import NotAPathError
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from dhlb.topology.complex import SimplicialComplex
 
 __all__ = [
     "SpanningForest",
@@ -70,9 +77,10 @@ class SpanningForest:
 
     @property
     def n_components(self) -> int:
+        """Number of trees (connected components)."""
         return int(self.roots.size)
 
-    def step_forward(self, X) -> np.ndarray:
+    def step_forward(self, X: SimplicialComplex) -> np.ndarray:
         """Bool per vertex: the edge from the parent is canonically oriented parent → vertex."""
         return self.parent < np.arange(self.parent.size)
 
@@ -128,7 +136,7 @@ def bfs_forest(n: int, a, b, roots=None) -> tuple[np.ndarray, np.ndarray, np.nda
     return labels.astype(np.int64), root, parent, order[1:].astype(np.int64)
 
 
-def spanning_forest(X, base: int | None = None, edges=None) -> SpanningForest:
+def spanning_forest(X: SimplicialComplex, base: int | None = None, edges: ArrayLike | None = None) -> SpanningForest:
     """BFS spanning forest; the root of each component is its smallest vertex, or ``base``.
 
     ``edges`` (optional edge rows) restricts the graph to a subset of the 1-skeleton; then
@@ -221,7 +229,7 @@ def _sweep_levels(parent, order, step, compose, identity, max_levels: int):
     starts.append(n)
     val = np.array(step, copy=True)[order]
     val[: starts[1]] = identity
-    for a, b in zip(starts[1:-1], starts[2:]):
+    for a, b in pairwise(starts[1:]):
         val[a:b] = compose(val[a:b], val[ppos[a:b]])
     out = np.empty_like(val)
     out[order] = val
@@ -254,7 +262,9 @@ def path_edges(X, path) -> tuple[np.ndarray, np.ndarray]:
     bad = (p < 0) | (p >= X.n_vertices)
     if np.any(bad):
         i = int(np.argmax(bad))
-        raise NotAPathError(f"path position {i}: vertex {int(p[i])} is not a vertex of the complex (0 .. {X.n_vertices - 1})")
+        raise NotAPathError(
+            f"path position {i}: vertex {int(p[i])} is not a vertex of the complex (0 .. {X.n_vertices - 1})"
+        )
     u, v = p[:-1], p[1:]
     idx, ok = edge_lookup(X, u, v)
     if not np.all(ok):
@@ -281,11 +291,14 @@ def tree_path_chains(X, forest: SpanningForest, vertices) -> sp.csr_matrix:
         vals.append(np.where(par < c, 1, -1))
         cur[active] = par
         active = forest.parent[cur] >= 0
-    cat = (lambda xs: np.concatenate(xs) if xs else np.zeros(0, np.int64))
+
+    def cat(xs):
+        return np.concatenate(xs) if xs else np.zeros(0, np.int64)
+
     return sp.csr_matrix((cat(vals), (cat(rows), cat(cols))), shape=(vertices.size, X.n_simplices(1)), dtype=np.int64)
 
 
-def fundamental_cycles(X, forest: SpanningForest, edges=None) -> sp.csr_matrix:
+def fundamental_cycles(X: SimplicialComplex, forest: SpanningForest, edges: ArrayLike | None = None) -> sp.csr_matrix:
     """The fundamental 1-cycles ``chain(u) + e − chain(v)`` of non-tree edges (rows).
 
     Together (``edges=None``: all non-tree edges) they form a Z-basis of ker ∂₁.  Cost
@@ -321,10 +334,11 @@ class LoopGroupPresentation:
 
     @property
     def n_generators(self) -> int:
+        """Number of generators (non-tree edges)."""
         return int(self.generators.size)
 
 
-def loop_group_presentation(X, forest: SpanningForest) -> LoopGroupPresentation:
+def loop_group_presentation(X: SimplicialComplex, forest: SpanningForest) -> LoopGroupPresentation:
     """Generators (non-tree edges) and relators (triangles) of π₁(X) at the forest roots.
 
     Examples

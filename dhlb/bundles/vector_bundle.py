@@ -22,6 +22,7 @@ Examples
 from __future__ import annotations
 
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -29,6 +30,14 @@ from dhlb.bundles import paths
 from dhlb.bundles._util import simplex_name
 from dhlb.bundles.fields import field_ops
 from dhlb.errors import InvalidConnectionError, NotAPathError
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from numpy.typing import ArrayLike
+
+    from dhlb.bundles.fields import ComplexOps, PrimeFieldOps, RealOps
+    from dhlb.topology.complex import SimplicialComplex
 
 __all__ = ["VectorBundle"]
 
@@ -54,7 +63,15 @@ class VectorBundle:
         message names the edge.
     """
 
-    def __init__(self, X, transports, field="R", *, metric: bool = False, atol: float = 1e-9):
+    def __init__(
+        self,
+        X: SimplicialComplex,
+        transports: ArrayLike,
+        field: str | tuple[str, int] = "R",
+        *,
+        metric: bool = False,
+        atol: float = 1e-9,
+    ):
         self._X = X
         self._ops = field_ops(field, atol)
         self._atol = float(atol)
@@ -95,7 +112,7 @@ class VectorBundle:
 
     # ------------------------------------------------------------------ basic data
     @property
-    def X(self):
+    def X(self) -> SimplicialComplex:
         """The base complex."""
         return self._X
 
@@ -105,12 +122,12 @@ class VectorBundle:
         return int(self._eta.shape[1])
 
     @property
-    def field(self):
+    def field(self) -> str | tuple[str, int]:
         """The field specification: ``"R"``, ``"C"`` or ``("GF", p)``."""
         return self._ops.spec
 
     @property
-    def ops(self):
+    def ops(self) -> RealOps | ComplexOps | PrimeFieldOps:
         """The field operations object (see :mod:`dhlb.bundles.fields`)."""
         return self._ops
 
@@ -121,6 +138,7 @@ class VectorBundle:
 
     @property
     def atol(self) -> float:
+        """The absolute tolerance of the floating-point comparisons (unused over GF(p))."""
         return self._atol
 
     @property
@@ -133,14 +151,23 @@ class VectorBundle:
         """``(n_1, K, K)`` read-only: ``η_ji = η_ij⁻¹`` per canonical edge."""
         return self._eta_inv
 
-    def _like(self, transports, metric=None) -> "VectorBundle":
-        return VectorBundle(self._X, transports, self._ops.spec, metric=self._metric if metric is None else metric, atol=self._atol)
+    def _like(self, transports, metric=None) -> VectorBundle:
+        metric = self._metric if metric is None else metric
+        return VectorBundle(self._X, transports, self._ops.spec, metric=metric, atol=self._atol)
 
     def __repr__(self) -> str:
         return f"VectorBundle(rank={self.rank}, field={self.field!r}, metric={self._metric}, X={self._X!r})"
 
     @classmethod
-    def trivial(cls, X, rank: int, field="R", *, metric: bool = False, atol: float = 1e-9) -> "VectorBundle":
+    def trivial(
+        cls,
+        X: SimplicialComplex,
+        rank: int,
+        field: str | tuple[str, int] = "R",
+        *,
+        metric: bool = False,
+        atol: float = 1e-9,
+    ) -> VectorBundle:
         """The product bundle ``V × F^K`` with identity transports.
 
         Examples
@@ -154,9 +181,20 @@ class VectorBundle:
         return cls(X, eta, field, metric=metric, atol=atol)
 
     @classmethod
-    def from_monodromy(cls, X, matrices, field="R", *, base: int | None = None, metric: bool = False, atol: float = 1e-9):
-        """The bundle of Theorem 2 (surjectivity): identity on a spanning forest, ``matrices[g]``
-        on the g-th non-tree edge.  Its monodromy representation is exactly ``matrices``.
+    def from_monodromy(
+        cls,
+        X: SimplicialComplex,
+        matrices: ArrayLike,
+        field: str | tuple[str, int] = "R",
+        *,
+        base: int | None = None,
+        metric: bool = False,
+        atol: float = 1e-9,
+    ) -> VectorBundle:
+        """The bundle of Theorem 2 (surjectivity) with monodromy representation ``matrices``.
+
+        Its transports are the identity on a spanning forest and ``matrices[g]`` on the g-th
+        non-tree edge, so its monodromy representation is exactly ``matrices``.
 
         Examples
         --------
@@ -186,7 +224,7 @@ class VectorBundle:
         e, fwd = paths.path_edges(self._X, [i, j])
         return self._oriented(e, fwd)[0].copy()
 
-    def transport(self, path, v) -> np.ndarray:
+    def transport(self, path: Sequence[int] | np.ndarray, v: ArrayLike) -> np.ndarray:
         """Parallel transport of ``v`` (shape (K,) or (K, m)) along a vertex path.
 
         Raises
@@ -206,7 +244,7 @@ class VectorBundle:
             out = ops.matmul(M, out)
         return out[:, 0] if vec else out
 
-    def monodromy(self, loop) -> np.ndarray:
+    def monodromy(self, loop: Sequence[int] | np.ndarray) -> np.ndarray:
         """``P_γ = η_{e_ℓ} ⋯ η_{e_1}`` around a closed path ``γ`` (first vertex = last vertex)."""
         loop = np.asarray(loop)
         if loop.ndim != 1 or loop.size < 1 or loop[0] != loop[-1]:
@@ -321,7 +359,7 @@ class VectorBundle:
             return np.zeros((self._X.n_vertices, K, 0), ops.dtype)
         return np.concatenate(cols, axis=2)
 
-    def is_parallel(self, section) -> bool:
+    def is_parallel(self, section: ArrayLike) -> bool:
         """True if ``section`` (shape (n_0, K)) satisfies ``ψ_j = η_ij ψ_i`` on every edge."""
         s = self._ops.asarray(np.asarray(section), "the section").reshape(self._X.n_vertices, self.rank, 1)
         E = self._X.simplices(1)
@@ -339,23 +377,29 @@ class VectorBundle:
         return bool(np.all(counts == self.rank))
 
     # ------------------------------------------------------------------ operations (see morphisms.py)
-    def gauge(self, g) -> "VectorBundle":
-        """The bundle ``η'_ij = g_j η_ij g_i⁻¹`` (``g`` is an isomorphism onto it); see :func:`dhlb.bundles.morphisms.gauge`."""
+    def gauge(self, g: ArrayLike) -> VectorBundle:
+        """The bundle ``η'_ij = g_j η_ij g_i⁻¹`` (``g`` is an isomorphism onto it).
+
+        See :func:`dhlb.bundles.morphisms.gauge`.
+        """
         from dhlb.bundles.morphisms import gauge
 
         return gauge(self, g)
 
-    def direct_sum(self, other) -> "VectorBundle":
+    def direct_sum(self, other: VectorBundle) -> VectorBundle:
+        """The direct sum ``E ⊕ F``; see :func:`dhlb.bundles.morphisms.direct_sum`."""
         from dhlb.bundles.morphisms import direct_sum
 
         return direct_sum(self, other)
 
-    def tensor(self, other) -> "VectorBundle":
+    def tensor(self, other: VectorBundle) -> VectorBundle:
+        """The tensor product ``E ⊗ F``; see :func:`dhlb.bundles.morphisms.tensor`."""
         from dhlb.bundles.morphisms import tensor
 
         return tensor(self, other)
 
-    def dual(self) -> "VectorBundle":
+    def dual(self) -> VectorBundle:
+        """The dual bundle ``E*``; see :func:`dhlb.bundles.morphisms.dual`."""
         from dhlb.bundles.morphisms import dual
 
         return dual(self)

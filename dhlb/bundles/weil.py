@@ -30,6 +30,7 @@ Examples
 from __future__ import annotations
 
 import itertools
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -39,6 +40,11 @@ from dhlb.bundles._surface import surface_cycles
 from dhlb.bundles._util import coboundary, simplex_name, wrap_angle
 from dhlb.bundles.hermitian import HermitianLineBundle, _real_vector
 from dhlb.errors import CurvatureMismatchError, IntegralityError, InvalidConnectionError, NotClosedError
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from dhlb.topology.complex import SimplicialComplex
 
 __all__ = [
     "integer_cycle_basis",
@@ -50,7 +56,7 @@ __all__ = [
 ]
 
 
-def integer_cycle_basis(X):
+def integer_cycle_basis(X: SimplicialComplex) -> sp.csc_matrix:
     """An integer basis of the 2-cycles to test, ``(n_2, ℓ)`` sparse int64.
 
     For complexes without 3-simplices this is a Z-basis of ker ∂₂.  With 3-simplices it is
@@ -78,7 +84,7 @@ def _raise_defect(X, cycle, period, defect, what):
     )
 
 
-def check_integrality(X, Omega, atol: float = 1e-8) -> np.ndarray:
+def check_integrality(X: SimplicialComplex, Omega: ArrayLike, atol: float = 1e-8) -> np.ndarray:
     """Check ``∫_C Ω ∈ 2πZ`` for an integer basis of 2-cycles; return the periods ``∫_C Ω / 2π``.
 
     Returns
@@ -137,7 +143,9 @@ def _check_closed(X, Om: np.ndarray, atol: float) -> None:
             raise NotClosedError(f"Ω is not closed: dΩ = {dOm[s]:.6g} on the tetrahedron {simplex_name(X, 3, s)}")
 
 
-def line_bundle_with_curvature(X, Omega, holonomy=None, *, atol: float = 1e-8) -> HermitianLineBundle:
+def line_bundle_with_curvature(
+    X: SimplicialComplex, Omega: ArrayLike, holonomy: ArrayLike | None = None, *, atol: float = 1e-8
+) -> HermitianLineBundle:
     """A hermitian line bundle whose curvature is exactly ``Omega`` (Theorem 8).
 
     Parameters
@@ -172,7 +180,9 @@ def line_bundle_with_curvature(X, Omega, holonomy=None, *, atol: float = 1e-8) -
     check_integrality(X, Om, atol=atol)
     sol = solve_mod_2pi(X, Om)
     if not sol.consistent:  # pragma: no cover - excluded by check_integrality
-        raise IntegralityError(f"Ω is not integral (residual {sol.defect:.3g} in the deferred equations)", defect=sol.defect)
+        raise IntegralityError(
+            f"Ω is not integral (residual {sol.defect:.3g} in the deferred equations)", defect=sol.defect
+        )
     return HermitianLineBundle.from_angles(X, sol.omega(), Om, atol=atol)
 
 
@@ -200,7 +210,7 @@ class BundlesWithCurvature:
         Their dual S¹ cocycles (from :func:`dhlb.topology.homology.cohomology` with ``"S1"``).
     """
 
-    def __init__(self, X, Omega, *, atol: float = 1e-8):
+    def __init__(self, X: SimplicialComplex, Omega: ArrayLike, *, atol: float = 1e-8):
         from dhlb.topology.homology import cohomology, homology
 
         self.X = X
@@ -219,18 +229,25 @@ class BundlesWithCurvature:
     def __repr__(self) -> str:
         return f"BundlesWithCurvature(b1={self.b1}, torsion_orders={self.torsion_orders})"
 
-    def bundle(self, free_angles=None, torsion=None) -> HermitianLineBundle:
-        """The bundle with holonomy ``free_angles[i]`` around free generator i and
-        ``h₀ + 2π torsion[j] / d_j`` around torsion generator j."""
+    def bundle(self, free_angles: ArrayLike | None = None, torsion: ArrayLike | None = None) -> HermitianLineBundle:
+        """The bundle with the given holonomy around the generators of H_1.
+
+        Its holonomy is ``free_angles[i]`` around free generator i and ``h₀ + 2π torsion[j] / d_j``
+        around torsion generator j.
+        """
         b, t = self.b1, len(self.torsion_orders)
         theta = np.zeros(b) if free_angles is None else np.asarray(free_angles, dtype=np.float64).reshape(-1)
         k = np.zeros(t, np.int64) if torsion is None else np.asarray(torsion, dtype=np.int64).reshape(-1)
         if theta.size != b or k.size != t:
-            raise InvalidConnectionError(f"holonomy needs {b} free angles and {t} torsion residues, got {theta.size} and {k.size}")
+            raise InvalidConnectionError(
+                f"holonomy needs {b} free angles and {t} torsion residues, got {theta.size} and {k.size}"
+            )
         # the free cocycles are dual to the free generators (pairing = identity); solve anyway
         x = np.linalg.solve(self._pair_free, theta - self._h0[:b]) if b else np.zeros(0)
         shift = self.cocycles[:, :b] @ x + self.cocycles[:, b:] @ k
-        return HermitianLineBundle.from_angles(self.X, self.base.connection_angles + shift, self.base.curvature, atol=self.atol)
+        return HermitianLineBundle.from_angles(
+            self.X, self.base.connection_angles + shift, self.base.curvature, atol=self.atol
+        )
 
     def coordinates(self, L: HermitianLineBundle) -> tuple[np.ndarray, tuple]:
         """``(free_angles, torsion)`` of a bundle with the same curvature (inverse of :meth:`bundle`)."""
@@ -239,21 +256,22 @@ class BundlesWithCurvature:
         h = np.array([L.holonomy(g) for g in self.generators.T])
         b = self.b1
         d = np.array(self.torsion_orders, dtype=np.float64)
-        k = np.round(wrap_angle(h[b:] - self._h0[b:]) * d / (2 * np.pi)).astype(np.int64) % np.maximum(d, 1).astype(np.int64)
+        k = np.round(wrap_angle(h[b:] - self._h0[b:]) * d / (2 * np.pi)).astype(np.int64)
+        k %= np.maximum(d, 1).astype(np.int64)
         return wrap_angle(h[:b]), tuple(int(x) for x in k)
 
-    def enumerate_torsion(self, free_angles=None) -> list:
+    def enumerate_torsion(self, free_angles: ArrayLike | None = None) -> list:
         """One bundle per torsion residue vector (``Π d`` of them) with the given free angles."""
         ranges = [range(d) for d in self.torsion_orders]
         return [self.bundle(free_angles, ks) for ks in itertools.product(*ranges)]
 
 
-def bundles_with_curvature(X, Omega, *, atol: float = 1e-8) -> BundlesWithCurvature:
+def bundles_with_curvature(X: SimplicialComplex, Omega: ArrayLike, *, atol: float = 1e-8) -> BundlesWithCurvature:
     """The H¹(X; S¹)-parametrized family of bundles with curvature Ω (Remark 7)."""
     return BundlesWithCurvature(X, Omega, atol=atol)
 
 
-def flat_line_bundles(X, free_angles=None, *, atol: float = 1e-8) -> list:
+def flat_line_bundles(X: SimplicialComplex, free_angles: ArrayLike | None = None, *, atol: float = 1e-8) -> list:
     """The flat hermitian line bundles with the given free holonomies, one per torsion class.
 
     Over RP² there are exactly two (holonomy 0 and π); over the torus the list has one

@@ -14,6 +14,11 @@ To add a command, write the module and append its name to :data:`COMMAND_MODULES
 from __future__ import annotations
 
 import importlib
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from collections.abc import Iterator
+    from types import ModuleType
 
 __all__ = ["COMMAND_MODULES", "iter_commands"]
 
@@ -21,7 +26,7 @@ __all__ = ["COMMAND_MODULES", "iter_commands"]
 COMMAND_MODULES = ("info", "field", "stripes", "vortex", "demo")
 
 
-def iter_commands():
+def iter_commands() -> Iterator[ModuleType]:
     """Yield the command modules listed in :data:`COMMAND_MODULES`."""
     for name in COMMAND_MODULES:
         yield importlib.import_module(f"dhlb.commands.{name}")

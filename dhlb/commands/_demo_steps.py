@@ -80,8 +80,9 @@ def boundary(out, progress, *, backend=None) -> list[dict]:
 
     V, F = read_surface(example_path("saddle.obj"))
     view = {"view": (0.3, -1.0, 1.2), "up": (0.0, 0.0, 1.0), "size": (600, 600)}
-    return [_field(out, progress, "boundary-n4", V, F, "saddle", "cross field aligned to the boundary (λ = −10), saddle disk",
-                   view, n=4, align="boundary", lam=-10.0, backend=backend)]
+    caption = "cross field aligned to the boundary (λ = −10), saddle disk"
+    return [_field(out, progress, "boundary-n4", V, F, "saddle", caption, view, n=4, align="boundary", lam=-10.0,
+                   backend=backend)]
 
 
 def stripes(out, progress, *, backend=None) -> list[dict]:

@@ -99,7 +99,9 @@ def demo_velocity(name: str, points, *, circulation: float = 2 * np.pi, core_rad
     elif name == "trefoil":
         curves = [torus_knot(2, 3, major=0.55 * rho, minor=0.25 * rho, n=240) + c]
     else:
-        raise InvalidParameterError(f"unknown demo field {name!r}; choose one of {', '.join(DEMOS)} or give a .npy file")
+        raise InvalidParameterError(
+            f"unknown demo field {name!r}; choose one of {', '.join(DEMOS)} or give a .npy file"
+        )
     a = 0.08 * rho if core_radius is None else float(core_radius)
     return FilamentField(curves, circulation=circulation, core_radius=a), curves
 
@@ -109,8 +111,10 @@ def _polylines(filaments):
 
 
 def write_polylines_obj(path, filaments) -> str:
-    """Write filaments as OBJ polylines: ``v x y z`` lines, then one ``l i j k …`` per filament (closed
-    ones repeat their first vertex at the end).
+    """Write filaments as OBJ polylines.
+
+    ``v x y z`` lines, then one ``l i j k …`` per filament (closed ones repeat their first vertex
+    at the end).
 
     Examples
     --------

@@ -20,7 +20,8 @@ def check_int(value, name: str, minimum: int, why: str = "") -> int:
         raise InvalidParameterError(f"{name} must be an integer, got {value!r} ({type(value).__name__})")
     value = int(value)
     if value < minimum:
-        raise InvalidParameterError(f"{name} must be an integer >= {minimum}, got {value}" + (f"; {why}" if why else ""))
+        reason = f"; {why}" if why else ""
+        raise InvalidParameterError(f"{name} must be an integer >= {minimum}, got {value}{reason}")
     return value
 
 

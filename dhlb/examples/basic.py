@@ -3,16 +3,20 @@
 from __future__ import annotations
 
 from itertools import combinations
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.examples._util import as_complex, check_int, from_blocks
 from dhlb.topology.complex import SimplicialComplex
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 __all__ = ["simplex", "ball", "sphere", "join", "cone", "suspension"]
 
 
-def simplex(n: int, return_points: bool = False):
+def simplex(n: int, return_points: bool = False) -> SimplicialComplex | tuple[SimplicialComplex, np.ndarray]:
     """The full n-simplex ``(0, 1, ..., n)`` with all its faces: a triangulated n-ball.
 
     Parameters
@@ -42,7 +46,7 @@ def simplex(n: int, return_points: bool = False):
     return X
 
 
-def ball(n: int, return_points: bool = False):
+def ball(n: int, return_points: bool = False) -> SimplicialComplex | tuple[SimplicialComplex, np.ndarray]:
     """The n-ball as a single n-simplex; the same as :func:`simplex`.
 
     Examples
@@ -70,7 +74,7 @@ def _regular_simplex_on_sphere(n_vertices: int) -> np.ndarray:
     return H / np.linalg.norm(H, axis=1, keepdims=True)
 
 
-def sphere(n: int, return_points: bool = False):
+def sphere(n: int, return_points: bool = False) -> SimplicialComplex | tuple[SimplicialComplex, np.ndarray]:
     """The n-sphere as the boundary of the (n+1)-simplex ``(0, ..., n+1)``.
 
     The minimal triangulation of ``S^n``: vertices ``0 .. n+1``, every set of ``n + 1`` of them is a
@@ -108,7 +112,7 @@ def sphere(n: int, return_points: bool = False):
     return X
 
 
-def join(X, Y) -> SimplicialComplex:
+def join(X: SimplicialComplex | ArrayLike, Y: SimplicialComplex | ArrayLike) -> SimplicialComplex:
     """The simplicial join ``X * Y``: simplices ``σ ∪ τ`` for ``σ ∈ X``, ``τ ∈ Y`` (either may be empty).
 
     Parameters
@@ -141,7 +145,7 @@ def join(X, Y) -> SimplicialComplex:
     return from_blocks(blocks)
 
 
-def cone(X) -> SimplicialComplex:
+def cone(X: SimplicialComplex | ArrayLike) -> SimplicialComplex:
     """The cone over ``X``: every simplex ``σ`` of ``X`` also spans ``σ ∪ {apex}``.
 
     Parameters
@@ -164,7 +168,7 @@ def cone(X) -> SimplicialComplex:
     return join(X, [(0,)])
 
 
-def suspension(X) -> SimplicialComplex:
+def suspension(X: SimplicialComplex | ArrayLike) -> SimplicialComplex:
     """The (unreduced) suspension of ``X``: two cones over ``X`` glued along ``X``.
 
     Parameters

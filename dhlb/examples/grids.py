@@ -3,12 +3,16 @@
 from __future__ import annotations
 
 import numbers
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import InvalidParameterError
 from dhlb.examples._util import check_int, kuhn_paths
 from dhlb.topology.complex import SimplicialComplex
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
 
 __all__ = ["cube_nd", "torus_nd"]
 
@@ -41,7 +45,9 @@ def _grid_points(shape: tuple[int, ...], cells: tuple[int, ...]) -> np.ndarray:
     return idx / np.asarray(cells, dtype=np.float64)
 
 
-def cube_nd(n: int, m=1, return_points: bool = False):
+def cube_nd(
+    n: int, m: int | Sequence[int] = 1, return_points: bool = False
+) -> SimplicialComplex | tuple[SimplicialComplex, np.ndarray]:
     """Freudenthal–Kuhn triangulation of the cube ``[0, 1]^n`` with ``m`` cells per axis.
 
     Each grid cell ``c + [0, 1]^n`` (in units of the cell size) is split into ``n!`` simplices,
@@ -99,7 +105,9 @@ def cube_nd(n: int, m=1, return_points: bool = False):
     return X
 
 
-def torus_nd(n: int, m=3, return_points: bool = False):
+def torus_nd(
+    n: int, m: int | Sequence[int] = 3, return_points: bool = False
+) -> SimplicialComplex | tuple[SimplicialComplex, np.ndarray]:
     """Freudenthal–Kuhn triangulation of the flat torus ``R^n / Z^n`` with ``m`` cells per axis.
 
     The periodic version of :func:`cube_nd`: the grid points ``(i_0, ..., i_{n-1})`` are taken

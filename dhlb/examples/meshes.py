@@ -3,13 +3,22 @@
 from __future__ import annotations
 
 import warnings
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from dhlb.errors import EmptyComplexError, InvalidSimplexError, NonFiniteError, RaggedInputError, UnreferencedVertexWarning
+from dhlb.errors import (
+    EmptyComplexError,
+    InvalidSimplexError,
+    NonFiniteError,
+    RaggedInputError,
+    UnreferencedVertexWarning,
+)
 from dhlb.topology._input import parse_rows
 from dhlb.topology.complex import SimplicialComplex
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["MeshComplex", "surface", "tet_mesh"]
 
@@ -46,7 +55,9 @@ def _mesh(cells, V, k: int, what: str) -> MeshComplex:
     if arr.shape[0] == 0:
         raise EmptyComplexError(f"no {what}s given: pass an integer array of shape (m, {k + 1}) with m >= 1")
     if arr.ndim != 2 or arr.shape[1] != k + 1:
-        raise InvalidSimplexError(f"{what}s must be a non-empty integer array of shape (m, {k + 1}), got shape {arr.shape}")
+        raise InvalidSimplexError(
+            f"{what}s must be a non-empty integer array of shape (m, {k + 1}), got shape {arr.shape}"
+        )
     pts = None
     if V is not None:
         try:
@@ -79,7 +90,7 @@ def _mesh(cells, V, k: int, what: str) -> MeshComplex:
     return MeshComplex(X, pts, X.index(k, arr), SimplicialComplex.orientation_of(arr))
 
 
-def surface(F, V=None) -> MeshComplex:
+def surface(F: ArrayLike, V: ArrayLike | None = None) -> MeshComplex:
     """The 2-complex of a triangle mesh, keeping the orientation of each input triangle.
 
     Parameters
@@ -121,7 +132,7 @@ def surface(F, V=None) -> MeshComplex:
     return _mesh(F, V, 2, "triangle")
 
 
-def tet_mesh(T, V=None) -> MeshComplex:
+def tet_mesh(T: ArrayLike, V: ArrayLike | None = None) -> MeshComplex:
     """The 3-complex of a tetrahedral mesh, keeping the orientation of each input tetrahedron.
 
     Parameters

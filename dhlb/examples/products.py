@@ -2,14 +2,23 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dhlb.examples._util import as_complex, from_blocks, shuffle_paths
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from dhlb.topology.complex import SimplicialComplex
+
 __all__ = ["product"]
 
 
-def product(X, Y, return_pairs: bool = False):
+def product(
+    X: SimplicialComplex | ArrayLike, Y: SimplicialComplex | ArrayLike, return_pairs: bool = False
+) -> SimplicialComplex | tuple[SimplicialComplex, np.ndarray]:
     """The product ``X × Y`` with the shuffle (staircase) triangulation of each cell ``σ × τ``.
 
     The vertices of ``X`` and of ``Y`` are ordered by their compact indices. For a p-simplex
@@ -17,9 +26,10 @@ def product(X, Y, return_pairs: bool = False):
     cut into ``binom(p + q, p)`` simplices of dimension ``p + q``, one per monotone lattice path
     ``(0, 0) = (i_0, j_0), (i_1, j_1), ..., (p, q)`` (each step raises one coordinate by one):
     the simplex with vertices ``(x_{i_r}, y_{j_r})`` (the classical triangulation of a product of
-    ordered simplicial complexes; its simplices are the shuffles of Eilenberg–Zilber 1953). Equivalently the simplices are the chains of the
-    product order in which both projections are simplices. The triangulations of neighbouring
-    prisms agree on common faces, so this is a simplicial complex homeomorphic to ``|X| × |Y|``.
+    ordered simplicial complexes; its simplices are the shuffles of Eilenberg–Zilber 1953). Equivalently
+    the simplices are the chains of the product order in which both projections are simplices. The
+    triangulations of neighbouring prisms agree on common faces, so this is a simplicial complex
+    homeomorphic to ``|X| × |Y|``.
 
     Parameters
     ----------

@@ -115,7 +115,7 @@ def _cross_polytope_flags(n: int):
     return (signs[:, None, None, :] * masks[None]).reshape(-1, d, d)
 
 
-def projective_space(n: int, return_points: bool = False):
+def projective_space(n: int, return_points: bool = False) -> SimplicialComplex | tuple[SimplicialComplex, np.ndarray]:
     """Real projective space ``RP^n`` as the antipodal quotient of the subdivided cross-polytope.
 
     The barycentric subdivision of the boundary of the ``(n+1)``-dimensional cross-polytope

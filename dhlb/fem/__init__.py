@@ -1,5 +1,6 @@
 """Layer 4: finite elements on hermitian line bundles — Θ/Λ/Ξ integrals, mass and Dirichlet matrices, solvers."""
 from dhlb.fem.assembly import bundle_matrices, dirichlet_matrix, lumped_mass, mass_matrix
+from dhlb.fem.backends import available_backends, select_backend
 from dhlb.fem.connection import connection_laplacian, connection_mass, cotan_edge_weights
 from dhlb.fem.integrals import (
     expi_divided_difference,
@@ -11,7 +12,6 @@ from dhlb.fem.integrals import (
     theta,
     xi,
 )
-from dhlb.fem.backends import available_backends, select_backend
 from dhlb.fem.solvers import EigenResult, backward_errors, smallest_eigenpairs, solve
 
 __all__ = [

@@ -84,7 +84,7 @@ def _degree(polys: tuple, r: float) -> int:
 
 
 def _radius_key(r: float) -> float:
-    """r rounded up to a power of 2^(1/4): a bounded set of cached series degrees."""
+    """R rounded up to a power of 2^(1/4): a bounded set of cached series degrees."""
     return float(2.0 ** (np.ceil(4 * np.log2(max(r, 1e-12))) / 4))
 
 

@@ -9,7 +9,7 @@ Per-simplex arrays list local edges / triangles in lexicographic order
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 from itertools import combinations
 from math import comb
 
@@ -33,7 +33,7 @@ HOLONOMY_ATOL = 1e-8    # |r_ab r_bc r_ca - exp(iΩ_abc)| allowed
 UNIT_ATOL = 1e-9        # ||r| - 1| allowed
 
 
-@lru_cache(maxsize=None)
+@cache
 def _combos(n: int, k: int) -> np.ndarray:
     arr = np.array(list(combinations(range(n + 1), k)), dtype=np.int64).reshape(-1, k)
     arr.setflags(write=False)

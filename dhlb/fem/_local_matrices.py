@@ -5,8 +5,9 @@ See :mod:`dhlb.fem.integrals` for the conventions, the local gauge and the formu
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 from math import factorial, prod
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,10 +23,13 @@ from dhlb.fem._local_data import (
 )
 from dhlb.fem._moments import pair_moments
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 __all__ = ["local_mass_matrices", "local_dirichlet_matrices", "local_matrices"]
 
 
-@lru_cache(maxsize=None)
+@cache
 def _xi_diagonal(n: int) -> np.ndarray:
     """``Ξ_aa(l, l') = n! Π p! / (n+4)!`` with ``p = 2e_a + e_l + e_l'`` (no curvature), ``[a, l, l']``."""
     out = np.empty((n + 1, n + 1, n + 1))
@@ -145,7 +149,9 @@ def _dirichlet(g, vol, n, tensor, r):
     return out, th_ab
 
 
-def local_mass_matrices(volume, omega, connection=None, *, dim=None) -> np.ndarray:
+def local_mass_matrices(
+    volume: ArrayLike, omega: ArrayLike, connection: ArrayLike | None = None, *, dim: int | None = None
+) -> np.ndarray:
     """Local mass matrices ``M[b, a] = r_ab vol Θ_ab(a, b)`` of the piecewise-linear sections (Theorem 15).
 
     Parameters
@@ -176,7 +182,9 @@ def local_mass_matrices(volume, omega, connection=None, *, dim=None) -> np.ndarr
     return _finish(_mass(vol, n, tensor, r), batched)
 
 
-def local_dirichlet_matrices(gram, volume, omega, connection=None) -> np.ndarray:
+def local_dirichlet_matrices(
+    gram: ArrayLike, volume: ArrayLike, omega: ArrayLike, connection: ArrayLike | None = None
+) -> np.ndarray:
     """Local Dirichlet matrices ``∫_σ |∇ψ̃|² = zᴴ A z`` of the piecewise-linear sections (Theorem 17).
 
     Parameters
@@ -206,7 +214,9 @@ def local_dirichlet_matrices(gram, volume, omega, connection=None) -> np.ndarray
     return _finish(_dirichlet(g, vol, n, tensor, r)[0], batched)
 
 
-def local_matrices(gram, volume, omega, connection=None) -> tuple[np.ndarray, np.ndarray]:
+def local_matrices(
+    gram: ArrayLike, volume: ArrayLike, omega: ArrayLike, connection: ArrayLike | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """Both local matrices ``(M, A)``; see :func:`local_mass_matrices` and :func:`local_dirichlet_matrices`.
 
     Examples

@@ -17,6 +17,8 @@ stiffness matrix (the cotangent Laplacian for n = 2).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import scipy.sparse as sp
 
@@ -25,6 +27,12 @@ from dhlb.fem._fast_local import fast_local_entries, fast_local_matrices
 from dhlb.fem._local_matrices import local_mass_matrices, local_matrices
 from dhlb.topology import _keys
 from dhlb.topology.structure import subfaces
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from dhlb.bundles.hermitian import HermitianLineBundle
+    from dhlb.geometry.euclidean import EuclideanComplex
 
 __all__ = ["mass_matrix", "dirichlet_matrix", "bundle_matrices", "lumped_mass"]
 
@@ -63,8 +71,11 @@ def _scatter(X, local: np.ndarray) -> sp.csr_matrix:
 
 
 def _scatter_entries(X, off: np.ndarray, diag: np.ndarray) -> sp.csr_matrix:
-    """As :func:`_scatter` for Hermitian local matrices in the compact layout of
-    :func:`dhlb.fem._fast_local.fast_local_entries` (``off[p] = K_s[b, a]`` for local edge ``p = (a, b)``)."""
+    """As :func:`_scatter` for Hermitian local matrices in a compact layout.
+
+    The layout is that of :func:`dhlb.fem._fast_local.fast_local_entries` (``off[p] = K_s[b, a]``
+    for local edge ``p = (a, b)``).
+    """
     n = X.dim
     P = X.top_entry_positions
     pairs = _keys.combination_columns(n + 1, 2)
@@ -83,7 +94,9 @@ def _csr(X, positions, real_parts, imag_parts) -> sp.csr_matrix:
     data = np.bincount(pos, weights=re, minlength=nnz).astype(complex)
     im = [(p, w) for p, w in zip(positions, imag_parts) if w is not None]
     if im:
-        data.imag = np.bincount(np.concatenate([p for p, _ in im]), weights=np.concatenate([w for _, w in im]), minlength=nnz)
+        data.imag = np.bincount(
+            np.concatenate([p for p, _ in im]), weights=np.concatenate([w for _, w in im]), minlength=nnz
+        )
     return sp.csr_matrix((data, adj.indices.copy(), adj.indptr.copy()), shape=(X.n_vertices, X.n_vertices))
 
 
@@ -99,7 +112,9 @@ def _weights(weights, m: int) -> np.ndarray:
     return w
 
 
-def mass_matrix(bundle, geometry, *, lumped: bool = False, weights=None) -> sp.csr_matrix:
+def mass_matrix(
+    bundle: HermitianLineBundle, geometry: EuclideanComplex, *, lumped: bool = False, weights: ArrayLike | None = None
+) -> sp.csr_matrix:
     """The mass matrix ``M`` of Theorem 15: ``<<ψ, φ>> = ψᴴ M φ``.
 
     Parameters
@@ -143,7 +158,7 @@ def mass_matrix(bundle, geometry, *, lumped: bool = False, weights=None) -> sp.c
     return _scatter(X, local)
 
 
-def dirichlet_matrix(bundle, geometry) -> sp.csr_matrix:
+def dirichlet_matrix(bundle: HermitianLineBundle, geometry: EuclideanComplex) -> sp.csr_matrix:
     """The Dirichlet matrix ``A`` of Theorem 17: ``∫ |∇ψ̃|² = ψᴴ A ψ`` (the generalised cotangent Laplacian).
 
     Examples
@@ -157,12 +172,14 @@ def dirichlet_matrix(bundle, geometry) -> sp.csr_matrix:
     >>> bool(abs(A - geo.stiffness_matrix()).max() < 1e-14)   # Ω = 0: the cotangent Laplacian
     True
     """
-    X, rows, vol, omega, r = _local_data(bundle, geometry)
+    X, _rows, vol, omega, r = _local_data(bundle, geometry)
     gram = np.asarray(geometry.barycentric_gradient_gram, dtype=float)
     return _scatter(X, fast_local_matrices(gram, vol, omega, r)[1])
 
 
-def bundle_matrices(bundle, geometry, *, lumped: bool = False) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+def bundle_matrices(
+    bundle: HermitianLineBundle, geometry: EuclideanComplex, *, lumped: bool = False
+) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """``(A, M)``: Dirichlet and mass matrix in one pass (the moments are shared).
 
     Examples
@@ -174,7 +191,7 @@ def bundle_matrices(bundle, geometry, *, lumped: bool = False) -> tuple[sp.csr_m
     >>> A.shape == M.shape == (27, 27)
     True
     """
-    X, rows, vol, omega, r = _local_data(bundle, geometry)
+    X, _rows, vol, omega, r = _local_data(bundle, geometry)
     gram = np.asarray(geometry.barycentric_gradient_gram, dtype=float)
     if X.dim in (2, 3):
         m_off, m_diag, a_off, a_diag = fast_local_entries(gram, vol, omega, r)
@@ -186,7 +203,7 @@ def bundle_matrices(bundle, geometry, *, lumped: bool = False) -> tuple[sp.csr_m
     return (A, mass_matrix(bundle, geometry, lumped=True)) if lumped else (A, M)
 
 
-def lumped_mass(geometry) -> np.ndarray:
+def lumped_mass(geometry: EuclideanComplex) -> np.ndarray:
     """The lumped mass ``Σ_{σ ∋ i} vol(σ)/(n+1)`` per vertex, as a vector."""
     X = geometry.complex
     n = X.dim

@@ -46,12 +46,21 @@ True
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import scipy.sparse as sp
 
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.topology import _keys
 from dhlb.topology.structure import subfaces
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from dhlb.bundles.hermitian import HermitianLineBundle
+    from dhlb.bundles.vector_bundle import VectorBundle
+    from dhlb.geometry.euclidean import EuclideanComplex
 
 __all__ = ["connection_laplacian", "connection_mass", "cotan_edge_weights"]
 
@@ -109,7 +118,7 @@ def _transports(bundle) -> tuple[np.ndarray, bool]:
     return T, bool(np.all(np.abs(gram - np.eye(k)) <= 16 * np.finfo(float).eps))
 
 
-def cotan_edge_weights(geometry, *, simplex_weights=None) -> np.ndarray:
+def cotan_edge_weights(geometry: EuclideanComplex, *, simplex_weights: ArrayLike | None = None) -> np.ndarray:
     """The weights ``w_ij = −Σ_σ s_σ c^σ_ij`` per canonical edge (rows of ``complex.simplices(1)``).
 
     For triangle meshes ``w_ij = (cot β_ij + cot β_ji)/2`` (one term on boundary edges); the
@@ -134,7 +143,9 @@ def cotan_edge_weights(geometry, *, simplex_weights=None) -> np.ndarray:
     return np.bincount(subfaces(X, n, 1).ravel(), weights=loc.ravel(), minlength=X.n_simplices(1))
 
 
-def connection_laplacian(bundle, geometry, *, simplex_weights=None) -> sp.csr_matrix:
+def connection_laplacian(
+    bundle: VectorBundle | HermitianLineBundle, geometry: EuclideanComplex, *, simplex_weights: ArrayLike | None = None
+) -> sp.csr_matrix:
     """The cotangent connection Laplacian ``A`` with ``vᴴ A v = Σ_{i<j} w_ij |v_j − η_ij v_i|²``.
 
     Parameters
@@ -213,7 +224,7 @@ def connection_laplacian(bundle, geometry, *, simplex_weights=None) -> sp.csr_ma
     return sp.coo_matrix((L.ravel(), (rows.ravel(), cols.ravel())), shape=(N * k, N * k)).tocsr()
 
 
-def connection_mass(geometry, rank: int = 1, *, lumped: bool = True) -> sp.csr_matrix:
+def connection_mass(geometry: EuclideanComplex, rank: int = 1, *, lumped: bool = True) -> sp.csr_matrix:
     """The mass matrix of rank-k sections, ``M ⊗ I_k`` (lumped: ``Σ_{σ ∋ i} vol(σ)/(n+1)`` on the diagonal).
 
     Parameters

@@ -65,13 +65,12 @@ relative accuracy for all real curvatures, tiny or much larger than π.
 from __future__ import annotations
 
 from math import factorial, prod
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.fem._expdd import expi_divided_difference as _dd
-from dhlb.fem._moments import pair_moments
-from dhlb.fem._local_matrices import local_dirichlet_matrices, local_mass_matrices, local_matrices
 from dhlb.fem._local_data import (
     curvature_tensor,
     local_edges,
@@ -80,6 +79,11 @@ from dhlb.fem._local_data import (
     parse_omega,
     tensor_last,
 )
+from dhlb.fem._local_matrices import local_dirichlet_matrices, local_mass_matrices, local_matrices
+from dhlb.fem._moments import pair_moments
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = [
     "expi_divided_difference",
@@ -97,7 +101,7 @@ __all__ = [
 ]
 
 
-def expi_divided_difference(phases, multiplicities) -> np.ndarray:
+def expi_divided_difference(phases: ArrayLike, multiplicities: ArrayLike) -> np.ndarray:
     """Confluent divided difference ``exp[iθ_1^(μ_1), ..., iθ_C^(μ_C)]`` of the exponential.
 
     Parameters
@@ -132,7 +136,7 @@ def expi_divided_difference(phases, multiplicities) -> np.ndarray:
     return _dd(th, mu)
 
 
-def expi_moment(phases, powers) -> np.ndarray:
+def expi_moment(phases: ArrayLike, powers: ArrayLike) -> np.ndarray:
     """Normalized moment ``(1/vol) ∫_σ Π x_m^{p_m} exp(i Σ_m θ_m x_m)`` over an n-simplex.
 
     Parameters
@@ -174,7 +178,7 @@ def _pair_integral(omega, idx, extra, dim):
     return val if batched else val[0]
 
 
-def theta(omega, i, j, k, l, *, dim=None):
+def theta(omega: ArrayLike, i: int, j: int, k: int, l: int, *, dim: int | None = None) -> np.ndarray | complex:
     """Θ of Definition 18: ``(1/vol) ∫_σ x_k x_l exp(-i Σ_m Ω_ijm x_m)``.
 
     Parameters
@@ -203,7 +207,7 @@ def theta(omega, i, j, k, l, *, dim=None):
     return _pair_integral(omega, (i, j, k, l), (k, l), dim)
 
 
-def lambda_(omega, i, j, *, dim=None):
+def lambda_(omega: ArrayLike, i: int, j: int, *, dim: int | None = None) -> np.ndarray | complex:
     """Λ of Definition 19: ``(1/vol) ∫_σ exp(-i Σ_m Ω_ijm x_m)``.
 
     Examples
@@ -216,7 +220,7 @@ def lambda_(omega, i, j, *, dim=None):
     return _pair_integral(omega, (i, j), (), dim)
 
 
-def xi(omega, i, j, k, l, *, dim=None):
+def xi(omega: ArrayLike, i: int, j: int, k: int, l: int, *, dim: int | None = None) -> np.ndarray | complex:
     """Ξ of Definition 19: ``(1/vol) ∫_σ x_i x_j x_k x_l exp(-i Σ_m Ω_ijm x_m)``.
 
     Examples

@@ -8,10 +8,16 @@ are integrated over (:meth:`dhlb.forms.Cochain.pair`).
 from __future__ import annotations
 
 import numbers
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import InvalidCochainError, NotAPathError, SimplexNotFoundError
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from dhlb.topology.complex import SimplicialComplex
 
 __all__ = ["Chain"]
 
@@ -62,7 +68,9 @@ def _coefficients(chain, X, k, integer: bool) -> np.ndarray:
             raise InvalidCochainError("chain coefficients must be finite")
         if integer:
             if np.any(c != np.round(c)):
-                raise InvalidCochainError("this group needs integer chain coefficients (S1, C*, Z are not real vector spaces)")
+                raise InvalidCochainError(
+                    "this group needs integer chain coefficients (S1, C*, Z are not real vector spaces)"
+                )
             c = c.astype(np.int64)
     return c.astype(np.int64) if c.dtype.kind in "bu" else c
 
@@ -79,7 +87,7 @@ class Chain:
     ([-1], [-1, 1, -1])
     """
 
-    def __init__(self, X, k, coefficients):
+    def __init__(self, X: SimplicialComplex, k: int, coefficients: ArrayLike):
         self._X, self._k = _check_complex(X), _check_degree(k)
         c = _coefficients(coefficients, X, self._k, integer=True)
         if c.ndim != 1:
@@ -89,7 +97,7 @@ class Chain:
         self._c = c
 
     @classmethod
-    def from_simplices(cls, X, rows, coefficients=None) -> "Chain":
+    def from_simplices(cls, X: SimplicialComplex, rows: ArrayLike, coefficients: ArrayLike | None = None) -> Chain:
         """Σ c_i σ_i over oriented simplices given as vertex tuples (input labels, any order)."""
         arr = _as_rows(rows)
         _check_complex(X)
@@ -102,7 +110,7 @@ class Chain:
         return cls(X, k, out)
 
     @classmethod
-    def path(cls, X, vertices) -> "Chain":
+    def path(cls, X: SimplicialComplex, vertices: ArrayLike) -> Chain:
         """The 1-chain of the edge path ``v0 → v1 → …`` (input labels); repeat v0 to close it.
 
         Raises
@@ -125,22 +133,27 @@ class Chain:
         steps = np.stack([v[:-1], v[1:]], axis=1)
         if np.any(steps[:, 0] == steps[:, 1]):
             i = int(np.argmax(steps[:, 0] == steps[:, 1]))
-            raise NotAPathError(f"step {i} of the path stays at vertex {int(steps[i, 0])}; consecutive vertices must differ")
+            raise NotAPathError(
+                f"step {i} of the path stays at vertex {int(steps[i, 0])}; consecutive vertices must differ"
+            )
         ok = X.contains(1, steps) if X.dim >= 1 else np.zeros(len(steps), bool)
         if not np.all(ok):
             i = int(np.argmin(ok))
-            raise NotAPathError(f"step {i} of the path, {int(steps[i, 0])} → {int(steps[i, 1])}, is not an edge of the complex")
+            raise NotAPathError(
+                f"step {i} of the path, {int(steps[i, 0])} → {int(steps[i, 1])}, is not an edge of the complex"
+            )
         try:
             return cls.from_simplices(X, steps)
         except SimplexNotFoundError as exc:  # pragma: no cover - guarded by contains() above
             raise NotAPathError(str(exc)) from None
 
     @property
-    def complex(self):
+    def complex(self) -> SimplicialComplex:
+        """The simplicial complex the chain lives on."""
         return self._X
 
     @property
-    def k(self) -> int:
+    def k(self) -> int:  # noqa: D102 (a docstring makes Sphinx links to "k" in shapes ambiguous with Cochain.k)
         return self._k
 
     @property
@@ -148,7 +161,7 @@ class Chain:
         """Integer coefficients, one per k-simplex (read-only)."""
         return self._c
 
-    def boundary(self) -> "Chain":
+    def boundary(self) -> Chain:
         """∂c, a (k−1)-chain (for k = 0: the empty chain of degree 0 is not defined; raises)."""
         if self._k == 0:
             raise InvalidCochainError("the boundary of a 0-chain is not a chain of this complex (∂_0 = 0)")

@@ -9,12 +9,20 @@ so Stokes' theorem ``⟨dω, c⟩ = ⟨ω, ∂c⟩`` holds by construction.
 from __future__ import annotations
 
 import numbers
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import InvalidCochainError
 from dhlb.forms.chain import Chain, _as_rows, _check_complex, _check_degree, _coefficients, _same_complex
 from dhlb.forms.groups import Group, get_group
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike
+
+    from dhlb.topology.complex import SimplicialComplex
 
 __all__ = ["Cochain", "Chain"]
 
@@ -77,7 +85,7 @@ class Cochain:
 
     __array_ufunc__ = None  # keep numpy from broadcasting over a Cochain
 
-    def __init__(self, X, k, values, group="R"):
+    def __init__(self, X: SimplicialComplex, k: int, values: ArrayLike, group: str | Group = "R"):
         self._X = _check_complex(X)
         self._k = _check_degree(k)
         self._group = get_group(group)
@@ -86,7 +94,7 @@ class Cochain:
         self._values = vals
 
     @classmethod
-    def _wrap(cls, X, k, values, group: Group) -> "Cochain":
+    def _wrap(cls, X, k, values, group: Group) -> Cochain:
         """Trusted constructor (values already converted by the group)."""
         out = cls.__new__(cls)
         out._X, out._k, out._group = X, k, group
@@ -96,7 +104,7 @@ class Cochain:
         return out
 
     @classmethod
-    def identity(cls, X, k, group="R") -> "Cochain":
+    def identity(cls, X: SimplicialComplex, k: int, group: str | Group = "R") -> Cochain:
         """The identity form: 0 for additive groups, 1 for C*.
 
         Examples
@@ -109,7 +117,9 @@ class Cochain:
         return cls._wrap(_check_complex(X), _check_degree(k), np.full(X.n_simplices(k), g.identity, dtype=g.dtype), g)
 
     @classmethod
-    def from_simplices(cls, X, rows, values, group="R") -> "Cochain":
+    def from_simplices(
+        cls, X: SimplicialComplex, rows: ArrayLike, values: ArrayLike, group: str | Group = "R"
+    ) -> Cochain:
         """A form given on some oriented k-simplices (input labels, vertices in any order).
 
         A simplex listed against its canonical orientation gets the inverse value; simplices
@@ -146,7 +156,7 @@ class Cochain:
 
     # ------------------------------------------------------------------ attributes
     @property
-    def complex(self):
+    def complex(self) -> SimplicialComplex:
         """The simplicial complex the form lives on."""
         return self._X
 
@@ -172,11 +182,11 @@ class Cochain:
         return f"Cochain(k={self._k}, group={self.group!r}, n={self._values.size})"
 
     # ------------------------------------------------------------------ calculus
-    def d(self) -> "Cochain":
+    def d(self) -> Cochain:
         """The exterior derivative ``d_k ω``, a (k+1)-form in the same group."""
         return Cochain._wrap(self._X, self._k + 1, self._group.d(self._X, self._k, self._values), self._group)
 
-    def pair(self, chain):
+    def pair(self, chain: Chain | ArrayLike) -> Any:
         """``∫_c ω = ⟨ω, c⟩`` in the group (S¹: wrapped angle; C*: ``Π ω_σ^{c_σ}``).
 
         ``chain`` is a :class:`Chain` or an array of coefficients of shape (n_k,) — or
@@ -197,7 +207,7 @@ class Cochain:
 
     __call__ = pair
 
-    def is_closed(self, tol=None) -> bool:
+    def is_closed(self, tol: float | None = None) -> bool:
         """True if ``dω`` is the identity up to ``tol`` (default: relative 1e-9; exact for Z).
 
         Examples
@@ -213,7 +223,7 @@ class Cochain:
         tol = self._group.default_tol(self._values) if tol is None else tol
         return bool(np.all(self._group.distance(dw) <= tol))
 
-    def is_exact(self, tol=None) -> bool:
+    def is_exact(self, tol: float | None = None) -> bool:
         """True if ``ω = dα`` for a (k−1)-form α in the same group (see :func:`dhlb.forms.solve_d`)."""
         from dhlb.forms.solve import is_exact
 
@@ -230,12 +240,12 @@ class Cochain:
         if not _same_complex(self._X, other._X):
             raise InvalidCochainError("cannot combine forms on different simplicial complexes")
 
-    def op(self, other: "Cochain") -> "Cochain":
+    def op(self, other: Cochain) -> Cochain:
         """The group law (``+`` or ``×``), valuewise."""
         self._check_compatible(other)
         return Cochain._wrap(self._X, self._k, self._group.op(self._values, other._values), self._group)
 
-    def inverse(self) -> "Cochain":
+    def inverse(self) -> Cochain:
         """The inverse in the group (``-ω`` or ``1/ω``)."""
         return Cochain._wrap(self._X, self._k, self._group.inv(self._values), self._group)
 
@@ -298,14 +308,14 @@ class Cochain:
 
     __hash__ = None
 
-    def allclose(self, other: "Cochain", tol=None) -> bool:
+    def allclose(self, other: Cochain, tol: float | None = None) -> bool:
         """True if ``self ∘ other⁻¹`` is within ``tol`` of the identity (S¹ compares mod 2π)."""
         self._check_compatible(other)
         diff = self._group.op(self._values, self._group.inv(other._values))
         tol = self._group.default_tol(np.concatenate([self._values, other._values])) if tol is None else tol
         return bool(np.all(self._group.distance(diff) <= tol))
 
-    def to_group(self, group) -> "Cochain":
+    def to_group(self, group: str | Group) -> Cochain:
         """The image under a standard homomorphism to another group.
 
         Allowed: Z→R, Z→C, R→C (inclusions), R→S1 (mod 2π), S1→C* (``exp(iθ)``),
@@ -329,7 +339,7 @@ class Cochain:
             raise InvalidCochainError(f"no standard conversion {self.group}→{g.name}; allowed: {allowed}")
         return Cochain(self._X, self._k, conv(self._values), g)
 
-    def lift(self) -> "Cochain":
+    def lift(self) -> Cochain:
         """The real form with the canonical S¹ representatives in (−π, π] (S¹ only).
 
         Examples

@@ -27,9 +27,14 @@ Examples
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dhlb.errors import InvalidCochainError, NonFiniteError
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["Group", "get_group", "wrap_angle", "GROUP_NAMES", "simplex_name", "DEFAULT_RTOL"]
 
@@ -39,7 +44,7 @@ DEFAULT_RTOL = 1e-9
 _KIND = {0: "vertex", 1: "edge", 2: "triangle", 3: "tetrahedron"}
 
 
-def wrap_angle(theta):
+def wrap_angle(theta: ArrayLike) -> np.ndarray | float:
     """Representative of ``theta`` modulo 2π in the half-open interval (−π, π].
 
     Examples
@@ -80,7 +85,9 @@ class Group:
         try:
             arr = np.array(values)
         except (ValueError, TypeError) as exc:
-            raise InvalidCochainError(f"values of a {k}-form must be a 1-D numeric array of length {n}: {exc}") from None
+            raise InvalidCochainError(
+                f"values of a {k}-form must be a 1-D numeric array of length {n}: {exc}"
+            ) from None
         if arr.ndim != 1 or arr.shape[0] != n:
             raise InvalidCochainError(
                 f"values of a {k}-form must have shape ({n},) (one per {k}-simplex), got shape {arr.shape}"
@@ -214,7 +221,7 @@ class _Circle(Group):
 
 
 class _NonzeroComplexes(Group):
-    """C* = C \\ {0} under multiplication."""
+    r"""C* = C \ {0} under multiplication."""
 
     name, dtype, additive, identity = "C*", np.complex128, False, 1
 
@@ -266,7 +273,7 @@ _ALIASES = {
 GROUP_NAMES = tuple(_GROUPS)
 
 
-def get_group(group) -> Group:
+def get_group(group: str | Group) -> Group:
     """The :class:`Group` for a name (case-insensitive; aliases such as ``"circle"``, ``"cstar"``).
 
     Raises

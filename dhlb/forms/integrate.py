@@ -59,7 +59,7 @@ def _fundamental_cycle(X, pred, e: int) -> list[int]:
     return [int(v) for v in X.vertex_labels[cyc]]
 
 
-def integrate_closed_1form(omega: Cochain, root: int = 0, tol=None) -> Cochain:
+def integrate_closed_1form(omega: Cochain, root: int = 0, tol: float | None = None) -> Cochain:
     """A 0-form f with ``df = ω``, by integration along a breadth-first spanning forest.
 
     Each connected component has one root where f is the identity (0, or 1 for C*): the

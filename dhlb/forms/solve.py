@@ -27,6 +27,7 @@ the number of terms.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -36,8 +37,11 @@ from scipy.sparse import linalg as spla
 from dhlb.errors import ConvergenceError, InvalidCochainError, NotClosedError, NotExactError
 from dhlb.forms.chain import Chain
 from dhlb.forms.cochain import Cochain
-from dhlb.forms.integrate import integrate_closed_1form
 from dhlb.forms.groups import DEFAULT_RTOL, TWO_PI, get_group, simplex_name, wrap_angle
+from dhlb.forms.integrate import integrate_closed_1form
+
+if TYPE_CHECKING:
+    from dhlb.forms.groups import Group
 
 __all__ = ["SolveResult", "solve_d", "is_exact", "integrate_closed_1form"]
 
@@ -133,7 +137,10 @@ def _solve_integer(beta: Cochain) -> SolveResult:
             why = f"it is exact over R but not over Z (a torsion obstruction: H^{k}(X; Z) has torsion)"
         else:
             i = int(np.argmax(np.abs(real.solution.d().values - beta.values)))
-            why = f"it is not even exact over R (least-squares residual {real.residual:.3g}, largest on the {simplex_name(X, k, i)})"
+            why = (
+                f"it is not even exact over R (least-squares residual {real.residual:.3g}, "
+                f"largest on the {simplex_name(X, k, i)})"
+            )
         raise NotExactError(f"the integer {k}-form is not d of an integer {k - 1}-form: {why}")
     if x.dtype == object:
         raise NotExactError("an integer solution exists but does not fit into int64")
@@ -237,7 +244,7 @@ def _solve_cstar(beta: Cochain, tol) -> SolveResult:
 
 
 # ---------------------------------------------------------------------------- public entry points
-def solve_d(beta: Cochain, group=None, tol=None) -> SolveResult:
+def solve_d(beta: Cochain, group: str | Group | None = None, tol: float | None = None) -> SolveResult:
     """Find a (k−1)-form α with ``dα = β`` (see the module docstring for the methods).
 
     Parameters
@@ -298,7 +305,7 @@ def solve_d(beta: Cochain, group=None, tol=None) -> SolveResult:
     return _solve_cstar(beta, tol)
 
 
-def is_exact(beta: Cochain, tol=None) -> bool:
+def is_exact(beta: Cochain, tol: float | None = None) -> bool:
     """True if ``β = dα`` for some (k−1)-form α in β's group (0-forms: iff β is the identity).
 
     Examples

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from functools import cached_property
 from math import factorial
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -18,6 +19,9 @@ import scipy.sparse as sp
 from dhlb.errors import InvalidMetricError, InvalidParameterError, NonFiniteError, NonManifoldError, ShapeError
 from dhlb.geometry.simplex import SimplexStack
 from dhlb.topology.complex import SimplicialComplex
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["EuclideanComplex"]
 
@@ -70,7 +74,14 @@ class EuclideanComplex:
     1.0
     """
 
-    def __init__(self, complex: SimplicialComplex, points=None, edge_lengths=None, *, rtol: float | None = None):
+    def __init__(
+        self,
+        complex: SimplicialComplex,
+        points: ArrayLike | None = None,
+        edge_lengths: ArrayLike | None = None,
+        *,
+        rtol: float | None = None,
+    ):
         if not isinstance(complex, SimplicialComplex):
             raise TypeError(f"complex must be a dhlb.SimplicialComplex, got {type(complex).__name__}")
         if (points is None) == (edge_lengths is None):

@@ -28,10 +28,14 @@ from __future__ import annotations
 from functools import cached_property
 from itertools import combinations
 from math import factorial
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import DegenerateSimplexError, InvalidMetricError, NonFiniteError, ShapeError
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["SimplexStack", "metric_from_squared_lengths", "squared_lengths_from_points", "default_rtol"]
 
@@ -43,7 +47,7 @@ def default_rtol(n: int) -> float:
     return 100.0 * max(n, 1) * np.finfo(float).eps
 
 
-def squared_lengths_from_points(points) -> np.ndarray:
+def squared_lengths_from_points(points: ArrayLike) -> np.ndarray:
     """Squared edge lengths ``(m, n+1, n+1)`` of simplices given by points ``(m, n+1, d)``.
 
     Examples
@@ -58,7 +62,7 @@ def squared_lengths_from_points(points) -> np.ndarray:
     return np.einsum("mabk,mabk->mab", diff, diff)
 
 
-def metric_from_squared_lengths(sq_lengths) -> np.ndarray:
+def metric_from_squared_lengths(sq_lengths: ArrayLike) -> np.ndarray:
     """Metric ``g`` ``(m, n, n)`` in the edge basis from squared lengths ``(m, n+1, n+1)``.
 
     ``g_ab = (L2[0,a] + L2[0,b] - L2[a,b]) / 2`` (polarization identity; see module docstring).
@@ -115,7 +119,7 @@ class SimplexStack:
 
     # ------------------------------------------------------------------ constructors
     @classmethod
-    def from_points(cls, points, *, rtol: float | None = None) -> "SimplexStack":
+    def from_points(cls, points: ArrayLike, *, rtol: float | None = None) -> SimplexStack:
         """Stack from vertex positions ``(m, n+1, d)``, ``d >= n``; uses a QR factor of the edges."""
         P = np.asarray(points, dtype=float)
         if P.ndim != 3 or P.shape[1] < 1:
@@ -133,7 +137,7 @@ class SimplexStack:
         return cls(g, factor=R, points=P, rtol=rtol)
 
     @classmethod
-    def from_squared_lengths(cls, sq_lengths, *, rtol: float | None = None) -> "SimplexStack":
+    def from_squared_lengths(cls, sq_lengths: ArrayLike, *, rtol: float | None = None) -> SimplexStack:
         """Stack from squared edge lengths ``(m, n+1, n+1)`` (symmetric, zero diagonal, > 0 off it)."""
         L2 = np.asarray(sq_lengths, dtype=float)
         if L2.ndim != 3 or L2.shape[1] != L2.shape[2] or L2.shape[1] < 1:
@@ -209,7 +213,7 @@ class SimplexStack:
                     out.append((int(s), (x, y, z)))
         return sorted(out)
 
-    def check(self, labels=None, what: str = "simplex") -> None:
+    def check(self, labels: ArrayLike | None = None, what: str = "simplex") -> None:
         """Raise if some metric is not positive definite, listing the offenders and why.
 
         Parameters

@@ -10,6 +10,8 @@ from __future__ import annotations
 import functools
 import gc
 import os
+from collections.abc import Callable
+from typing import ParamSpec, TypeVar
 
 import numpy as np
 
@@ -29,8 +31,11 @@ __all__ = [
     "normalize_cells",
 ]
 
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
 
-def no_gc(func):
+
+def no_gc(func: Callable[_P, _R]) -> Callable[_P, _R]:
     """Decorator: run a parser with the cyclic garbage collector paused.
 
     Parsing creates hundreds of thousands of small token lists; without this the collector's
@@ -39,7 +44,7 @@ def no_gc(func):
     """
 
     @functools.wraps(func)
-    def wrapper(*args, **kwargs):
+    def wrapper(*args: _P.args, **kwargs: _P.kwargs) -> _R:
         was_enabled = gc.isenabled()
         gc.disable()
         try:
@@ -184,7 +189,7 @@ def check_cells(cells: np.ndarray, n_points: int, path, lines=None, first_number
     >>> check_cells(np.array([[0, 1, 2], [0, 1, 5]]), 4, "m.obj", [10, 11], first_number=1)
     Traceback (most recent call last):
     ...
-    dhlb.errors.MeshParseError: m.obj, line 11: face refers to vertex 6 but the file has only 4 vertices (numbered from 1)
+    dhlb.errors.MeshParseError: m.obj, line 11: face refers to vertex 6 but the file has only 4 vertices ...
     """
     if cells.size == 0:
         return
@@ -253,14 +258,14 @@ def fan_triangulate(flat: np.ndarray, sizes: np.ndarray):
 
 
 def format_number_rows(array: np.ndarray, fmt: str, prefix: str = "") -> str:
-    """Format a 2-d array as text, one row per line, every entry with ``fmt``.
+    r"""Format a 2-d array as text, one row per line, every entry with ``fmt``.
 
     ``'%r'`` writes floats exactly (shortest round-trip representation), ``'%d'`` integers.
 
     Examples
     --------
     >>> format_number_rows(np.array([[0.1, 2.0]]), "%r", prefix="v ")
-    'v 0.1 2.0\\n'
+    'v 0.1 2.0\n'
     """
     array = np.asarray(array)
     if array.shape[0] == 0:

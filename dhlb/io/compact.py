@@ -3,15 +3,19 @@
 from __future__ import annotations
 
 import warnings
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import InvalidSimplexError, UnreferencedVertexWarning
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 __all__ = ["compact_mesh"]
 
 
-def compact_mesh(V, F) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def compact_mesh(V: ArrayLike, F: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Remove the vertices that no cell references and renumber the cells.
 
     Parameters

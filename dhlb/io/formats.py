@@ -23,7 +23,7 @@ SURFACE_FORMATS = ("obj", "off", "ply")
 VOLUME_FORMATS = ("mesh", "msh", "vtk")
 
 
-def format_of(path, fmt: str | None = None, hint: str = "(or pass fmt= explicitly)") -> str:
+def format_of(path: str | os.PathLike[str], fmt: str | None = None, hint: str = "(or pass fmt= explicitly)") -> str:
     """The format name of ``path``: ``fmt`` if given, else from the extension.
 
     Raises
@@ -38,7 +38,7 @@ def format_of(path, fmt: str | None = None, hint: str = "(or pass fmt= explicitl
     >>> format_of("a.stl")
     Traceback (most recent call last):
     ...
-    dhlb.errors.MeshParseError: a.stl: unknown file extension '.stl'; known: .obj .off .ply .mesh .msh .vtk .txt .simplices (or pass fmt= explicitly)
+    dhlb.errors.MeshParseError: a.stl: unknown file extension '.stl'; known: .obj .off .ply .mesh .msh ...
     """
     known = sorted(set(FORMATS.values()))
     if fmt is not None:

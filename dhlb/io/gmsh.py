@@ -8,6 +8,7 @@ to 0-based rows in the order of the ``$Nodes`` section.
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,6 +23,11 @@ from dhlb.io._text import (
     read_text,
     to_array,
 )
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["read_gmsh", "write_gmsh"]
 
@@ -153,7 +159,7 @@ def _nodes_and_elements(sec, version: str, path: str):
         _, (blocks, _n, _lo, _hi) = nodes.ints(4, "numEntityBlocks numNodes minNodeTag maxNodeTag")
         tag_parts, coord_parts, vlines = [], [], []
         for _ in range(blocks):
-            line, (edim, _etag, parametric, k) = nodes.ints(4, "entityDim entityTag parametric numNodesInBlock")
+            line, (_edim, _etag, _parametric, k) = nodes.ints(4, "entityDim entityTag parametric numNodesInBlock")
             tag_rows = nodes.take(k)
             bad = [ln for ln, t in tag_rows if len(t) != 1]
             if bad:
@@ -182,7 +188,7 @@ def _nodes_and_elements(sec, version: str, path: str):
 
 
 @no_gc
-def read_gmsh(path) -> tuple[np.ndarray, dict[int, np.ndarray]]:
+def read_gmsh(path: str | os.PathLike[str]) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     """Read an ASCII Gmsh ``.msh`` file (format 2.2 or 4.1).
 
     Returns
@@ -270,7 +276,9 @@ def read_gmsh(path) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     return V, cells
 
 
-def write_gmsh(path, V, cells, version: str = "2.2") -> None:
+def write_gmsh(
+    path: str | os.PathLike[str], V: ArrayLike, cells: ArrayLike | Mapping[int, ArrayLike], version: str = "2.2"
+) -> None:
     """Write nodes and simplices as an ASCII Gmsh file, format ``"2.2"`` (default) or ``"4.1"``.
 
     Parameters

@@ -8,6 +8,7 @@ hexahedra, prisms and pyramids are refused (dhlb handles simplicial meshes only)
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,6 +23,11 @@ from dhlb.io._text import (
     read_text,
     to_array,
 )
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["read_medit", "write_medit"]
 
@@ -46,7 +52,7 @@ def _value_after(lines, toks, line, path, what):
 
 
 @no_gc
-def read_medit(path) -> tuple[np.ndarray, dict[int, np.ndarray]]:
+def read_medit(path: str | os.PathLike[str]) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     """Read a Medit ``.mesh`` file.
 
     Returns
@@ -163,7 +169,7 @@ def _block(rows, numbers, width: int, dtype, path: str, what: str, values: str) 
     return to_array([r[:width] for r in rows], numbers, dtype, path, f"{what} value").reshape(-1, width)
 
 
-def write_medit(path, V, cells) -> None:
+def write_medit(path: str | os.PathLike[str], V: ArrayLike, cells: ArrayLike | Mapping[int, ArrayLike]) -> None:
     """Write vertices and simplices as an ASCII Medit ``.mesh`` file (reference numbers 0).
 
     Parameters

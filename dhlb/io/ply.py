@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,6 +23,11 @@ from dhlb.io._text import (
     to_array,
     to_flat_int,
 )
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["read_ply", "write_ply"]
 
@@ -285,7 +291,7 @@ def _need(data: bytes, pos: int, nbytes: int, elem: _Element, path: str, instanc
 
 # ---------------------------------------------------------------------------------- public API
 @no_gc
-def read_ply(path) -> tuple[np.ndarray, np.ndarray]:
+def read_ply(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
     """Read a PLY triangle mesh (ASCII or binary, either byte order, any extra properties).
 
     Returns
@@ -365,7 +371,14 @@ def read_ply(path) -> tuple[np.ndarray, np.ndarray]:
     return V, F
 
 
-def write_ply(path, V, F, binary: bool = False, byteorder: str = "<", vertex_properties=None) -> None:
+def write_ply(
+    path: str | os.PathLike[str],
+    V: ArrayLike,
+    F: ArrayLike,
+    binary: bool = False,
+    byteorder: str = "<",
+    vertex_properties: Mapping[str, ArrayLike] | None = None,
+) -> None:
     """Write a mesh as PLY: ``double x y z`` per vertex, ``list uchar int vertex_indices`` per face.
 
     Parameters

@@ -7,27 +7,35 @@ of mixed dimensions). Labels are non-negative integers; they need not be contigu
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import InvalidSimplexError, MeshParseError
 from dhlb.io._text import content_lines, no_gc, read_text, to_array
 
+if TYPE_CHECKING:
+    from collections.abc import Iterable, Sequence
+
+    from numpy.typing import ArrayLike
+
+    from dhlb.topology.complex import SimplicialComplex
+
 __all__ = ["read_simplices", "parse_simplices_text", "write_simplices"]
 
 
 @no_gc
 def parse_simplices_text(text: str, source: str = "<string>") -> list[tuple[int, ...]]:
-    """Parse the text of a simplex list (see :func:`read_simplices`); ``source`` names it in errors.
+    r"""Parse the text of a simplex list (see :func:`read_simplices`); ``source`` names it in errors.
 
     Examples
     --------
-    >>> parse_simplices_text("# a triangle and a dangling edge\\n0 1 2\\n2 3  # edge\\n")
+    >>> parse_simplices_text("# a triangle and a dangling edge\n0 1 2\n2 3  # edge\n")
     [(0, 1, 2), (2, 3)]
-    >>> parse_simplices_text("0 1 2\\n1 1 3\\n", "cx.txt")
+    >>> parse_simplices_text("0 1 2\n1 1 3\n", "cx.txt")
     Traceback (most recent call last):
     ...
-    dhlb.errors.MeshParseError: cx.txt, line 2: simplex (1, 1, 3) repeats vertex 1; a k-simplex needs k+1 distinct vertices
+    dhlb.errors.MeshParseError: cx.txt, line 2: simplex (1, 1, 3) repeats vertex 1; a k-simplex needs ...
     """
     by_len: dict[int, tuple[list, list, list]] = {}
     n = 0
@@ -61,7 +69,7 @@ def parse_simplices_text(text: str, source: str = "<string>") -> list[tuple[int,
     return out
 
 
-def read_simplices(path) -> list[tuple[int, ...]]:
+def read_simplices(path: str | os.PathLike[str]) -> list[tuple[int, ...]]:
     """Read a plain text list of simplices.
 
     Parameters
@@ -95,7 +103,9 @@ def read_simplices(path) -> list[tuple[int, ...]]:
     return parse_simplices_text(read_text(path), path)
 
 
-def write_simplices(path, simplices) -> None:
+def write_simplices(
+    path: str | os.PathLike[str], simplices: SimplicialComplex | Iterable[Sequence[int]] | ArrayLike
+) -> None:
     """Write simplices (an iterable of vertex tuples, or an int array) one per line.
 
     Examples

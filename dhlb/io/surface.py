@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import re
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -29,6 +30,11 @@ from dhlb.io.formats import format_of
 from dhlb.io.ply import read_ply, write_ply
 from dhlb.io.volume import read_cells, write_cells
 
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike
+
 __all__ = ["read_obj", "write_obj", "read_off", "write_off", "read_surface", "write_surface"]
 
 # OBJ statements that carry nothing a triangle mesh needs (texture, normals, grouping, materials,
@@ -40,7 +46,7 @@ _OBJ_IGNORED = frozenset(
 
 
 @no_gc
-def read_obj(path) -> tuple[np.ndarray, np.ndarray]:
+def read_obj(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
     """Read a Wavefront OBJ file as a triangle mesh.
 
     Supports ``v x y z [w | r g b]``, faces ``f`` with ``i``, ``i/t``, ``i//n`` or ``i/t/n``
@@ -127,7 +133,7 @@ def read_obj(path) -> tuple[np.ndarray, np.ndarray]:
     return V, F
 
 
-def write_obj(path, V, F) -> None:
+def write_obj(path: str | os.PathLike[str], V: ArrayLike, F: ArrayLike) -> None:
     """Write a triangle (or polygon) mesh as OBJ, 1-based, coordinates exact (shortest repr).
 
     Examples
@@ -152,8 +158,8 @@ _OFF_HEADER = re.compile(r"^(ST)?(C)?(N)?(4)?(n)?OFF$")
 
 
 @no_gc
-def read_off(path) -> tuple[np.ndarray, np.ndarray]:
-    """Read an OFF file (also ``COFF``, ``NOFF``, ``STOFF``... : extra vertex/face values are skipped).
+def read_off(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
+    r"""Read an OFF file (also ``COFF``, ``NOFF``, ``STOFF``... : extra vertex/face values are skipped).
 
     Faces are ``k i_1 .. i_k [colour]`` with 0-based indices; polygons are fan-triangulated.
 
@@ -174,7 +180,7 @@ def read_off(path) -> tuple[np.ndarray, np.ndarray]:
     --------
     >>> import os, tempfile
     >>> from dhlb.io import read_off
-    >>> text = "OFF\\n3 1 0\\n0 0 0\\n1 0 0\\n0 1 0\\n3 0 1 2\\n"
+    >>> text = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"
     >>> with tempfile.TemporaryDirectory() as d:
     ...     p = os.path.join(d, "t.off"); _ = open(p, "w").write(text)
     ...     V, F = read_off(p)
@@ -241,7 +247,7 @@ def read_off(path) -> tuple[np.ndarray, np.ndarray]:
     return V, F
 
 
-def write_off(path, V, F) -> None:
+def write_off(path: str | os.PathLike[str], V: ArrayLike, F: ArrayLike) -> None:
     """Write a triangle (or polygon) mesh as ASCII OFF (0-based, exact coordinates).
 
     Examples
@@ -264,7 +270,7 @@ def write_off(path, V, F) -> None:
         fh.write(format_number_rows(sized, "%d"))
 
 
-def read_surface(path, fmt: str | None = None) -> tuple[np.ndarray, np.ndarray]:
+def read_surface(path: str | os.PathLike[str], fmt: str | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Read a triangle surface mesh, choosing the reader from the extension (or ``fmt``).
 
     Formats: ``obj``, ``off``, ``ply``; also ``mesh`` / ``msh`` / ``vtk`` files that contain
@@ -301,7 +307,9 @@ def read_surface(path, fmt: str | None = None) -> tuple[np.ndarray, np.ndarray]:
     raise MeshParseError(f"{fmt!r} files are not surface meshes (use obj, off, ply)", os.fspath(path))
 
 
-def write_surface(path, V, F, fmt: str | None = None, **kwargs) -> None:
+def write_surface(
+    path: str | os.PathLike[str], V: ArrayLike, F: ArrayLike, fmt: str | None = None, **kwargs: Any
+) -> None:
     """Write a triangle mesh; the format comes from the extension (``obj``, ``off``, ``ply``) or ``fmt``.
 
     Extra keyword arguments go to the writer (e.g. ``binary=True`` for PLY).

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -12,10 +13,16 @@ from dhlb.io.gmsh import read_gmsh, write_gmsh
 from dhlb.io.medit import read_medit, write_medit
 from dhlb.io.vtk import read_vtk, write_vtk
 
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+    from typing import Any
+
+    from numpy.typing import ArrayLike
+
 __all__ = ["read_volume", "write_volume", "read_cells", "write_cells"]
 
 
-def read_cells(path, fmt: str | None = None) -> tuple[np.ndarray, dict[int, np.ndarray]]:
+def read_cells(path: str | os.PathLike[str], fmt: str | None = None) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     """Read points and simplices by dimension from a ``.mesh``, ``.msh`` or ``.vtk`` file.
 
     Returns
@@ -40,7 +47,7 @@ def read_cells(path, fmt: str | None = None) -> tuple[np.ndarray, dict[int, np.n
     raise MeshParseError(f"{fmt!r} is not a volume format (use mesh, msh, vtk)", os.fspath(path))
 
 
-def read_volume(path, fmt: str | None = None) -> tuple[np.ndarray, np.ndarray]:
+def read_volume(path: str | os.PathLike[str], fmt: str | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Read a tetrahedral mesh from a ``.mesh`` (Medit), ``.msh`` (Gmsh) or ``.vtk`` (legacy) file.
 
     Returns
@@ -70,7 +77,13 @@ def read_volume(path, fmt: str | None = None) -> tuple[np.ndarray, np.ndarray]:
     return V, cells[3]
 
 
-def write_cells(path, V, cells, fmt: str | None = None, **kwargs) -> None:
+def write_cells(
+    path: str | os.PathLike[str],
+    V: ArrayLike,
+    cells: ArrayLike | Mapping[int, ArrayLike],
+    fmt: str | None = None,
+    **kwargs: Any,
+) -> None:
     """Write points and simplices to ``.mesh``, ``.msh`` or ``.vtk`` (format from the extension or ``fmt``).
 
     Examples
@@ -93,7 +106,9 @@ def write_cells(path, V, cells, fmt: str | None = None, **kwargs) -> None:
     raise MeshParseError(f"cannot write cells as {fmt!r} (use mesh, msh, vtk)", os.fspath(path))
 
 
-def write_volume(path, V, T, fmt: str | None = None, **kwargs) -> None:
+def write_volume(
+    path: str | os.PathLike[str], V: ArrayLike, T: ArrayLike, fmt: str | None = None, **kwargs: Any
+) -> None:
     """Write a tetrahedral mesh ``(V, T)`` to ``.mesh``, ``.msh`` or ``.vtk``.
 
     Examples

@@ -7,6 +7,7 @@ other cell types are refused. Point and cell data sections are ignored.
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -20,6 +21,11 @@ from dhlb.io._text import (
     read_text,
     to_array,
 )
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["read_vtk", "write_vtk"]
 
@@ -101,7 +107,7 @@ def _legacy_offsets(data: np.ndarray, lines: np.ndarray, n_cells: int, path: str
 
 
 @no_gc
-def read_vtk(path) -> tuple[np.ndarray, dict[int, np.ndarray]]:
+def read_vtk(path: str | os.PathLike[str]) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     """Read a legacy ASCII VTK ``UNSTRUCTURED_GRID`` file.
 
     Returns
@@ -205,7 +211,7 @@ def read_vtk(path) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     table = np.zeros((max(_TYPES) + 1, 3), dtype=np.int64)
     for t, row in _TYPES.items():
         table[t] = row
-    dims, n_points, n_corners = table[types].T
+    dims, n_points, _n_corners = table[types].T
     wrong = np.flatnonzero(np.diff(offsets) != n_points)
     if wrong.size:
         i = int(wrong[0])
@@ -222,7 +228,7 @@ def read_vtk(path) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     return V, out
 
 
-def write_vtk(path, V, cells) -> None:
+def write_vtk(path: str | os.PathLike[str], V: ArrayLike, cells: ArrayLike | Mapping[int, ArrayLike]) -> None:
     """Write points and simplices as a legacy ASCII VTK (version 3.0) unstructured grid.
 
     Parameters

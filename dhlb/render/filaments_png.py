@@ -11,10 +11,19 @@ are readable; an arrowhead in the middle of each filament shows its direction.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dhlb.errors import InvalidSimplexError, NonFiniteError, ShapeError
 from dhlb.render.png import _camera, _matplotlib, _unit, finish_figure
+
+if TYPE_CHECKING:
+    import os
+    from collections.abc import Sequence
+    from typing import Any
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["render_filaments_png"]
 
@@ -56,10 +65,23 @@ def _outline_edges(V, F, w):
     return edges, np.concatenate([front, np.ones(int(single.sum()), bool)])
 
 
-def render_filaments_png(path, filaments, V=None, F=None, *, view=(1.0, -1.6, 0.9), up=(0.0, 0.0, 1.0),
-                         size=(800, 800), dpi: int = 100, line_width: float = 2.2, fill=(0.90, 0.92, 0.95),
-                         outline_color="#5a6270", background="white", title: str | None = None) -> str:
-    """Render filaments (and optionally the boundary of their domain) to a PNG file.
+def render_filaments_png(
+    path: str | os.PathLike[str],
+    filaments: Sequence[Any],
+    V: ArrayLike | None = None,
+    F: ArrayLike | None = None,
+    *,
+    view: Sequence[float] = (1.0, -1.6, 0.9),
+    up: Sequence[float] = (0.0, 0.0, 1.0),
+    size: tuple[int, int] = (800, 800),
+    dpi: int = 100,
+    line_width: float = 2.2,
+    fill: Any = (0.90, 0.92, 0.95),
+    outline_color: Any = "#5a6270",
+    background: Any = "white",
+    title: str | None = None,
+) -> str:
+    r"""Render filaments (and optionally the boundary of their domain) to a PNG file.
 
     Parameters
     ----------
@@ -91,7 +113,7 @@ def render_filaments_png(path, filaments, V=None, F=None, *, view=(1.0, -1.6, 0.
     >>> with tempfile.TemporaryDirectory() as d:
     ...     p = render_filaments_png(os.path.join(d, "f.png"), hopf_link(n=40), mesh.points, mesh.boundary_faces,
     ...                              size=(200, 200))
-    ...     open(p, "rb").read(8) == b"\\x89PNG\\r\\n\\x1a\\n"
+    ...     open(p, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
     True
     """
     Figure, FigureCanvasAgg, PolyCollection = _matplotlib()

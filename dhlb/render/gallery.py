@@ -4,6 +4,11 @@ from __future__ import annotations
 
 import html
 import os
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from typing import Any
 
 __all__ = ["write_gallery"]
 
@@ -19,7 +24,9 @@ td, th { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; }
 """
 
 
-def write_gallery(path, title: str, pictures, *, table=None, intro: str = "") -> str:
+def write_gallery(
+    path: str | os.PathLike[str], title: str, pictures: Sequence[Any], *, table: Any = None, intro: str = ""
+) -> str:
     """Write ``path`` (an HTML file) showing ``pictures`` = [(file, caption), ...].
 
     Picture files are referenced relative to the page's directory (they must lie beside it or
@@ -35,7 +42,8 @@ def write_gallery(path, title: str, pictures, *, table=None, intro: str = "") ->
     True
     """
     base = os.path.dirname(os.path.abspath(path))
-    parts = [f"<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{html.escape(title)}</title>",
+    parts = [f"<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+             f"<title>{html.escape(title)}</title>",
              f"<style>{_STYLE}</style>\n</head>\n<body>\n<h1>{html.escape(title)}</h1>"]
     if intro:
         parts.append(f"<p>{html.escape(intro)}</p>")

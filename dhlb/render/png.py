@@ -11,10 +11,17 @@ positive index, blue for negative) are depth-sorted together and drawn back to f
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import InvalidParameterError, InvalidSimplexError, NonFiniteError, ShapeError
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from typing import Any
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["render_field_png"]
 
@@ -82,12 +89,28 @@ def _check(V, F, directions, singularities):
     return P, T.astype(np.int64), D, S
 
 
-def render_field_png(path, V, F, directions=None, singularities=None, *, view=(1.0, -1.6, 1.0), up=(0.0, 0.0, 1.0),
-                     size=(800, 800), dpi: int = 100, glyph_length: float | None = None, glyph_width: float = 0.7,
-                     glyph_color="#1a1a1a", face_color=(0.78, 0.80, 0.86), ambient: float = 0.3,
-                     max_glyphs: int = 40000, dot_radius: float | None = None, background="white",
-                     title: str | None = None) -> str:
-    """Render a mesh with a direction field and its singularities to a PNG file.
+def render_field_png(
+    path: str | os.PathLike[str],
+    V: ArrayLike,
+    F: ArrayLike,
+    directions: ArrayLike | None = None,
+    singularities: Any = None,
+    *,
+    view: Sequence[float] = (1.0, -1.6, 1.0),
+    up: Sequence[float] = (0.0, 0.0, 1.0),
+    size: tuple[int, int] = (800, 800),
+    dpi: int = 100,
+    glyph_length: float | None = None,
+    glyph_width: float = 0.7,
+    glyph_color: Any = "#1a1a1a",
+    face_color: Any = (0.78, 0.80, 0.86),
+    ambient: float = 0.3,
+    max_glyphs: int = 40000,
+    dot_radius: float | None = None,
+    background: Any = "white",
+    title: str | None = None,
+) -> str:
+    r"""Render a mesh with a direction field and its singularities to a PNG file.
 
     Parameters
     ----------
@@ -124,7 +147,7 @@ def render_field_png(path, V, F, directions=None, singularities=None, *, view=(1
     >>> F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
     >>> with tempfile.TemporaryDirectory() as d:
     ...     p = render_field_png(os.path.join(d, "t.png"), V, F, directions=np.tile([1.0, 0, 0], (4, 1)))
-    ...     open(p, "rb").read(8) == b"\\x89PNG\\r\\n\\x1a\\n"
+    ...     open(p, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
     True
     """
     Figure, FigureCanvasAgg, PolyCollection = _matplotlib()

@@ -11,11 +11,19 @@ phase change, within a budget of sub-triangles.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import InvalidParameterError
 from dhlb.render.png import _camera, _matplotlib, _unit, finish_figure
+
+if TYPE_CHECKING:
+    import os
+    from collections.abc import Callable, Sequence
+    from typing import Any
+
+    from dhlb.stripes.texture import StripeTexture
 
 __all__ = ["render_stripes_png", "face_grid"]
 
@@ -51,11 +59,25 @@ def _auto_k(texture, budget: int) -> int:
     return max(1, min(k, int(np.sqrt(budget / max(texture.mesh.n_faces, 1)))))
 
 
-def render_stripes_png(path, texture, *, k: int | None = None, view=(1.0, -1.6, 1.0), up=(0.0, 0.0, 1.0),
-                       size=(800, 800), dpi: int = 100, dark=(0.10, 0.10, 0.14), light=(0.96, 0.94, 0.88),
-                       fn=np.cos, ambient: float = 0.35, max_triangles: int = 400_000, mark_singularities: bool = False,
-                       background="white", title: str | None = None) -> str:
-    """Render a :class:`~dhlb.stripes.StripeTexture` to a PNG file.
+def render_stripes_png(
+    path: str | os.PathLike[str],
+    texture: StripeTexture,
+    *,
+    k: int | None = None,
+    view: Sequence[float] = (1.0, -1.6, 1.0),
+    up: Sequence[float] = (0.0, 0.0, 1.0),
+    size: tuple[int, int] = (800, 800),
+    dpi: int = 100,
+    dark: Any = (0.10, 0.10, 0.14),
+    light: Any = (0.96, 0.94, 0.88),
+    fn: Callable[[np.ndarray], np.ndarray] = np.cos,
+    ambient: float = 0.35,
+    max_triangles: int = 400_000,
+    mark_singularities: bool = False,
+    background: Any = "white",
+    title: str | None = None,
+) -> str:
+    r"""Render a :class:`~dhlb.stripes.StripeTexture` to a PNG file.
 
     Parameters
     ----------
@@ -89,7 +111,7 @@ def render_stripes_png(path, texture, *, k: int | None = None, view=(1.0, -1.6, 
     >>> tex = texture_coordinates(form, np.exp(4j * np.pi * V[:, 0]))
     >>> with tempfile.TemporaryDirectory() as d:
     ...     p = render_stripes_png(os.path.join(d, "s.png"), tex, view=(0, 0, 1), up=(0, 1, 0), size=(64, 64))
-    ...     open(p, "rb").read(8) == b"\\x89PNG\\r\\n\\x1a\\n"
+    ...     open(p, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
     True
     """
     Figure, FigureCanvasAgg, PolyCollection = _matplotlib()

@@ -21,12 +21,12 @@ Examples
 0.5
 """
 
-from dhlb.stripes.oneform import DoubleCover, StripeForm, stripe_form
-from dhlb.stripes.texture import StripeTexture, Subdivision, larg, texture_coordinates
-from dhlb.stripes.isolines import Isolines, isolines
-from dhlb.stripes.output import stripes_sidecar, write_stripes_obj
 from dhlb.stripes.energy import stripe_matrices
+from dhlb.stripes.isolines import Isolines, isolines
+from dhlb.stripes.oneform import DoubleCover, StripeForm, stripe_form
+from dhlb.stripes.output import stripes_sidecar, write_stripes_obj
 from dhlb.stripes.pattern import StripePattern, stripe_pattern
+from dhlb.stripes.texture import StripeTexture, Subdivision, larg, texture_coordinates
 
 __all__ = ["DoubleCover", "StripeForm", "stripe_form", "StripeTexture", "Subdivision", "larg", "texture_coordinates",
            "Isolines", "isolines", "stripes_sidecar", "write_stripes_obj", "stripe_matrices", "StripePattern",

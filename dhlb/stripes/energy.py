@@ -26,6 +26,7 @@ raises :class:`~dhlb.errors.InvalidParameterError`.
 from __future__ import annotations
 
 import warnings
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -36,6 +37,9 @@ from dhlb.fem.assembly import bundle_matrices
 from dhlb.fem.connection import connection_laplacian, connection_mass
 from dhlb.geometry.euclidean import EuclideanComplex
 from dhlb.topology.complex import SimplicialComplex
+
+if TYPE_CHECKING:
+    from dhlb.stripes.oneform import StripeForm
 
 __all__ = ["ENERGIES", "stripe_matrices"]
 
@@ -94,8 +98,14 @@ def _fem(form, lumped: bool, complex_form: bool):
     return 0.5 * dc.restrict(A), 0.5 * dc.restrict(M)
 
 
-def stripe_matrices(form, energy: str = "cotan", *, lumped: bool | None = None, branch_weight: float = 0.0,
-                    complex_form: bool | None = None) -> tuple[sp.csr_matrix, sp.csr_matrix, bool]:
+def stripe_matrices(
+    form: StripeForm,
+    energy: str = "cotan",
+    *,
+    lumped: bool | None = None,
+    branch_weight: float = 0.0,
+    complex_form: bool | None = None,
+) -> tuple[sp.csr_matrix, sp.csr_matrix, bool]:
     """``(A, M, is_complex)`` of the stripe eigenproblem of a :class:`~dhlb.stripes.StripeForm`.
 
     Parameters

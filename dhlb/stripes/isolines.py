@@ -28,6 +28,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -35,6 +36,9 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from dhlb.errors import InvalidParameterError, NonFiniteError
+
+if TYPE_CHECKING:
+    from dhlb.stripes.texture import StripeTexture
 
 __all__ = ["Isolines", "isolines"]
 
@@ -170,7 +174,7 @@ def _chain(seg: np.ndarray, n_nodes: int, split=None) -> tuple[list, np.ndarray]
     return polylines, cyc_root[roots][keep]
 
 
-def isolines(texture, level: float = 0.0, *, refine: int = 8, tol: float | None = None) -> Isolines:
+def isolines(texture: StripeTexture, level: float = 0.0, *, refine: int = 8, tol: float | None = None) -> Isolines:
     """The isolines ``α ≡ level (mod 2π)`` of a :class:`~dhlb.stripes.StripeTexture` as polylines.
 
     Parameters

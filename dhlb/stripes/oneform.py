@@ -1,5 +1,6 @@
-"""The stripe 1-form, the relative orientation of line-field representatives and the double cover
-(seed part 2, §3.1–§3.4, Alg. 6).
+"""The stripe 1-form, the relative orientation of line-field representatives and the double cover.
+
+Seed part 2, §3.1–§3.4, Alg. 6.
 
 Input: a validated mesh, one direction per vertex (a 3D vector, made tangent and unit) and a
 frequency per vertex. With ``n = 1`` the directions are oriented (a vector field); with ``n = 2``
@@ -55,17 +56,27 @@ import numbers
 import warnings
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
 
 from dhlb.bundles.hermitian import HermitianLineBundle
 from dhlb.bundles.vector_bundle import VectorBundle
-from dhlb.errors import (DhlbWarning, InvalidConnectionError, InvalidParameterError, NonFiniteError, SectionZeroError,
-                         ShapeError)
+from dhlb.errors import (
+    DhlbWarning,
+    InvalidConnectionError,
+    InvalidParameterError,
+    NonFiniteError,
+    SectionZeroError,
+    ShapeError,
+)
 from dhlb.surface.mesh import SurfaceMesh
 from dhlb.surface.tangent import TangentBundle
 from dhlb.topology.complex import SimplicialComplex
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["StripeForm", "DoubleCover", "stripe_form"]
 
@@ -101,7 +112,7 @@ class DoubleCover:
     face_lifts: np.ndarray
     points: np.ndarray
 
-    def lift(self, psi) -> np.ndarray:
+    def lift(self, psi: ArrayLike) -> np.ndarray:
         """The conjugate-symmetric lift ``ψ̃ = (ψ, ψ̄)`` of one complex value per base vertex."""
         z = np.asarray(psi, np.complex128).reshape(-1)
         if z.size != self.n_base_vertices:
@@ -117,7 +128,7 @@ class DoubleCover:
         vals = np.concatenate([np.ones(N), np.full(N, 1j), np.ones(N), np.full(N, -1j)])
         return sp.csr_matrix((vals, (rows, cols)), shape=(2 * N, 2 * N))
 
-    def restrict(self, matrix) -> sp.csr_matrix:
+    def restrict(self, matrix: sp.spmatrix) -> sp.csr_matrix:
         """``Re(Pᴴ H P)``: a Hermitian form on the cover restricted to conjugate-symmetric functions (real, 2N × 2N)."""
         H = sp.csr_matrix(matrix)
         n = 2 * self.n_base_vertices
@@ -186,6 +197,7 @@ class StripeForm:
 
     @cached_property
     def edge_lengths(self) -> np.ndarray:
+        """Euclidean length of every edge (rows of ``mesh.complex.simplices(1)``)."""
         E = self.mesh.complex.simplices(1)
         return np.linalg.norm(self.mesh.points[E[:, 1]] - self.mesh.points[E[:, 0]], axis=1)
 
@@ -241,7 +253,7 @@ class StripeForm:
         """``(m,)`` bool: ``s_ij s_jk s_ki = −1`` (the lifted boundary of the face is a hexagon)."""
         return np.prod(self.edge_sign[self.face_edges], axis=1) < 0
 
-    def lift_halfedges(self, values) -> np.ndarray:
+    def lift_halfedges(self, values: ArrayLike) -> np.ndarray:
         """Lift a 1-form on the double cover given by its canonical values (like ω̂) to the face sides.
 
         ``values[e]`` is the value on the lift of edge ``i < j`` starting at sheet 1 of ``i``; it is
@@ -341,8 +353,16 @@ def _directions(tb: TangentBundle, directions, method: str) -> tuple[np.ndarray,
     return tb.angles_to_vectors(np.arange(mesh.n_vertices), theta), theta
 
 
-def stripe_form(surface, directions, n: int = 1, *, frequency=None, spacing=None,
-                method: str = "intrinsic", warn_aliasing: bool = True) -> StripeForm:
+def stripe_form(
+    surface: SurfaceMesh | TangentBundle,
+    directions: ArrayLike,
+    n: int = 1,
+    *,
+    frequency: ArrayLike | None = None,
+    spacing: ArrayLike | None = None,
+    method: str = "intrinsic",
+    warn_aliasing: bool = True,
+) -> StripeForm:
     """The stripe 1-form ω̂, the signs s and the bundles of a stripe-pattern problem.
 
     Parameters

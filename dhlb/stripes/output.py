@@ -40,10 +40,16 @@ from __future__ import annotations
 import io
 import json
 import os
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from dhlb.stripes.texture import StripeTexture
 
 __all__ = ["stripes_sidecar", "write_stripes_obj"]
 
@@ -57,7 +63,9 @@ _INTERPOLATION = (
     "2pi-periodic (e.g. cos) for line fields (n = 2); any 2pi-periodic g for n = 1.")
 
 
-def stripes_sidecar(texture, *, obj_name: str | None = None, obj_face_of=None) -> dict:
+def stripes_sidecar(
+    texture: StripeTexture, *, obj_name: str | None = None, obj_face_of: ArrayLike | None = None
+) -> dict:
     """The JSON-serializable description of zero and branch faces (see the module docstring)."""
     mesh = texture.mesh
     zf, bf = texture.zero_faces, texture.branch_faces
@@ -92,13 +100,15 @@ def _expanded(texture, refine: int):
     vid = np.empty(3 * T, np.int64)
     vid[corner] = mesh.faces[face[corner], np.argmax(bary[corner], axis=1)]
     key = np.column_stack([face[~corner], np.round(bary[~corner] * 2**40).astype(np.int64)])
-    uk, first, inv = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    _uk, first, inv = np.unique(key, axis=0, return_index=True, return_inverse=True)
     vid[~corner] = mesh.n_vertices + inv.ravel()
     extra = np.einsum("pc,pcd->pd", bary[~corner][first], mesh.points[mesh.faces[face[~corner][first]]])
     return np.vstack([mesh.points, extra]), vid.reshape(T, 3), sub.alpha / TWO_PI, sub.face
 
 
-def write_stripes_obj(path, texture, *, sidecar: bool = True, expand: int = 0) -> tuple[str, str | None]:
+def write_stripes_obj(
+    path: str | os.PathLike[str], texture: StripeTexture, *, sidecar: bool = True, expand: int = 0
+) -> tuple[str, str | None]:
     """Write the pattern as an OBJ with per-corner UVs (and ``<path minus .obj>.json`` as the sidecar).
 
     Parameters

@@ -38,6 +38,7 @@ import numbers
 import time
 import warnings
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -48,6 +49,11 @@ from dhlb.stripes.oneform import StripeForm, stripe_form
 from dhlb.stripes.texture import StripeTexture, texture_coordinates
 from dhlb.surface.mesh import SurfaceMesh, validate_surface
 from dhlb.surface.tangent import TangentBundle
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["StripePattern", "stripe_pattern"]
 
@@ -84,14 +90,16 @@ class StripePattern:
     energy: str
     solver: dict
     timings: dict
-    orthogonal: "StripePattern | None" = field(default=None, repr=False)
+    orthogonal: StripePattern | None = field(default=None, repr=False)
 
     @property
     def mesh(self) -> SurfaceMesh:
+        """The validated surface mesh."""
         return self.form.mesh
 
     @property
     def n(self) -> int:
+        """1 for a vector field, 2 for a line field."""
         return self.form.n
 
     @property
@@ -114,7 +122,7 @@ class StripePattern:
         """Branch triangles (rows of ``mesh.faces``)."""
         return self.texture.branch_faces
 
-    def evaluate(self, faces, bary) -> np.ndarray:
+    def evaluate(self, faces: ArrayLike, bary: ArrayLike) -> np.ndarray:
         """α at barycentric points of faces (see :meth:`StripeTexture.evaluate`)."""
         return self.texture.evaluate(faces, bary)
 
@@ -131,7 +139,8 @@ class StripePattern:
             "frequency": {"min": float(f.min()), "max": float(f.max()), "mean": float(f.mean())},
             "eigenvalue": float(self.eigenvalue),
             "zero_faces": [{"face": int(r), "index": int(i), "position": p}
-                           for r, i, p in zip(mesh.face_rows[zf], self.zero_index[zf], self.texture.zero_points.tolist())],
+                           for r, i, p in zip(mesh.face_rows[zf], self.zero_index[zf],
+                                              self.texture.zero_points.tolist())],
             "branch_faces": [int(r) for r in mesh.face_rows[self.branch_faces]],
             "index_sum": int(self.zero_index.sum()),
             "solver": dict(self.solver),
@@ -147,7 +156,7 @@ class StripePattern:
 
 
 def _is_field(obj) -> bool:
-    return all(hasattr(obj, a) for a in ("mesh", "n", "directions")) and isinstance(getattr(obj, "mesh"), SurfaceMesh)
+    return all(hasattr(obj, a) for a in ("mesh", "n", "directions")) and isinstance(obj.mesh, SurfaceMesh)
 
 
 def _surface(V, F, reorient, components):
@@ -228,11 +237,26 @@ def _one(tb, X, n, frequency, spacing, method, energy, lumped, branch_weight, ba
     return StripePattern(form, psi, tex, lam, energy, solver, timings)
 
 
-def stripe_pattern(V, F=None, directions=None, frequency=None, *, spacing=None, n: int | None = None,
-                   energy: str = "cotan", backend=None, orthogonal: bool = False, method: str = "intrinsic",
-                   lumped: bool | None = None, branch_weight: float = 0.0, tol: float = 1e-10,
-                   block_size: int | None = None, reorient: bool = False, components: str = "all",
-                   warn_aliasing: bool = True) -> StripePattern:
+def stripe_pattern(
+    V: Any,
+    F: ArrayLike | None = None,
+    directions: Any = None,
+    frequency: ArrayLike | None = None,
+    *,
+    spacing: ArrayLike | None = None,
+    n: int | None = None,
+    energy: str = "cotan",
+    backend: Any = None,
+    orthogonal: bool = False,
+    method: str = "intrinsic",
+    lumped: bool | None = None,
+    branch_weight: float = 0.0,
+    tol: float = 1e-10,
+    block_size: int | None = None,
+    reorient: bool = False,
+    components: str = "all",
+    warn_aliasing: bool = True,
+) -> StripePattern:
     """A stripe pattern following ``directions`` with the given frequency (seed part 2).
 
     Parameters

@@ -36,10 +36,18 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import InvalidParameterError, NonFiniteError, SectionZeroError, ShapeError
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from numpy.typing import ArrayLike
+
+    from dhlb.stripes.oneform import StripeForm
 
 __all__ = ["StripeTexture", "Subdivision", "larg", "texture_coordinates"]
 
@@ -57,7 +65,7 @@ def _cones(t: np.ndarray):
     return c, tmin, t[r, c], t[r, (c + 1) % 3], np.clip(1.0 - 3.0 * tmin, 0.0, None)
 
 
-def larg(n, bary) -> np.ndarray:
+def larg(n: int | ArrayLike, bary: ArrayLike) -> np.ndarray:
     """The interpolant lArg_n of Eq. 4.2 at barycentric points ``bary`` (k, 3) (n broadcasts).
 
     In the cone ``(m, c, c+1)`` (``t_{c+2}`` smallest) it equals ``2πn/3 · (c + τ)`` with
@@ -102,7 +110,7 @@ class StripeTexture:
     branch_faces : (b,) int64;  branch_alpha : (b, 2) (β_m, β_l)
     """
 
-    def __init__(self, form, psi: np.ndarray):
+    def __init__(self, form: StripeForm, psi: np.ndarray):
         self.form = form
         self.mesh = form.mesh
         self.psi = psi
@@ -138,10 +146,12 @@ class StripeTexture:
 
     @property
     def zero_points(self) -> np.ndarray:
+        """Barycenters of the zero faces, shape ``(m, 3)``."""
         return self._barycenters(self.zero_faces)
 
     @property
     def branch_points(self) -> np.ndarray:
+        """Barycenters of the branch faces, shape ``(m, 3)``."""
         return self._barycenters(self.branch_faces)
 
     # ------------------------------------------------------------------ evaluation
@@ -173,7 +183,7 @@ class StripeTexture:
                                         "face: coordinates must be >= 0 and sum to 1")
         return f, np.clip(t, 0.0, None) / tot[:, None]
 
-    def evaluate(self, faces, bary) -> np.ndarray:
+    def evaluate(self, faces: ArrayLike, bary: ArrayLike) -> np.ndarray:
         """α at barycentric points ``bary`` (k, 3) of ``faces`` (k,) (or one face for all points).
 
         Barycentric coordinates refer to the corners of ``mesh.faces[f]`` in order. The value is
@@ -190,7 +200,7 @@ class StripeTexture:
             out[br] = 3.0 * tmin * self.branch_alpha[k, 0] + (ta - tmin) * B[r, c] + (tb - tmin) * B[r, c + 1]
         return out
 
-    def pattern(self, faces, bary, fn=np.cos) -> np.ndarray:
+    def pattern(self, faces: ArrayLike, bary: ArrayLike, fn: Callable[[np.ndarray], np.ndarray] = np.cos) -> np.ndarray:
         """``fn(α)`` at barycentric points; use an even 2π-periodic ``fn`` for line fields (n = 2)."""
         return fn(self.evaluate(faces, bary))
 
@@ -238,7 +248,7 @@ class StripeTexture:
                 f"branch_faces={self.branch_faces.size}, {self.mesh!r})")
 
 
-def texture_coordinates(form, psi) -> StripeTexture:
+def texture_coordinates(form: StripeForm, psi: ArrayLike) -> StripeTexture:
     """Texture coordinates (§4.3) of a section ψ of the stripe bundle of ``form``.
 
     Parameters

@@ -17,14 +17,20 @@ Examples
 0
 """
 
-from dhlb.surface.mesh import SurfaceMesh, validate_surface
-from dhlb.surface.tangent import TangentBundle, tangent_bundle
-from dhlb.surface.guidance import (Guidance, boundary_guidance, curvature_guidance, dihedral_angles,
-                                   hopf_differential, user_guidance)
-from dhlb.surface.energy import boundary_form, energy_matrices
 from dhlb.surface.directions import FieldIndices, Singularities, direction_vectors, field_indices, section_values
-from dhlb.surface.result import DirectionField
+from dhlb.surface.energy import boundary_form, energy_matrices
 from dhlb.surface.field import direction_field, guidance_for
+from dhlb.surface.guidance import (
+    Guidance,
+    boundary_guidance,
+    curvature_guidance,
+    dihedral_angles,
+    hopf_differential,
+    user_guidance,
+)
+from dhlb.surface.mesh import SurfaceMesh, validate_surface
+from dhlb.surface.result import DirectionField
+from dhlb.surface.tangent import TangentBundle, tangent_bundle
 
 __all__ = [
     "SurfaceMesh", "validate_surface", "TangentBundle", "tangent_bundle",

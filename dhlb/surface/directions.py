@@ -25,12 +25,16 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.bundles.index import index_form, rotation_form
 from dhlb.errors import NonFiniteError, ShapeError
 from dhlb.surface.tangent import TangentBundle
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["Singularities", "FieldIndices", "section_values", "direction_vectors", "field_indices"]
 
@@ -71,7 +75,7 @@ class FieldIndices:
     singularities: Singularities
 
 
-def section_values(tb: TangentBundle, u) -> np.ndarray:
+def section_values(tb: TangentBundle, u: ArrayLike) -> np.ndarray:
     """Validate a section: one finite complex value per compact vertex (or per row of the input V)."""
     arr = np.asarray(u)
     if arr.ndim != 1:
@@ -83,7 +87,7 @@ def section_values(tb: TangentBundle, u) -> np.ndarray:
     return z
 
 
-def direction_vectors(tb: TangentBundle, u) -> np.ndarray:
+def direction_vectors(tb: TangentBundle, u: ArrayLike) -> np.ndarray:
     """All n unit directions per vertex in 3D, ``(N, n, 3)``; zero vectors where ``u_i = 0``.
 
     Direction k at vertex i has rescaled angle ``(arg u_i + 2πk)/n`` and is mapped into the tangent
@@ -147,7 +151,7 @@ def _zeros_in_faces(tb: TangentBundle, z, faces) -> np.ndarray:
     return out / 3.0
 
 
-def field_indices(tb: TangentBundle, u) -> FieldIndices:
+def field_indices(tb: TangentBundle, u: ArrayLike) -> FieldIndices:
     """Per-face indices, their sum, the Poincaré–Hopf terms and the singular faces of a section.
 
     Raises

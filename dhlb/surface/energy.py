@@ -54,6 +54,7 @@ True
 from __future__ import annotations
 
 import numbers
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -62,6 +63,9 @@ from dhlb.errors import InvalidParameterError
 from dhlb.fem.assembly import bundle_matrices, mass_matrix
 from dhlb.surface.mesh import SurfaceMesh
 from dhlb.surface.tangent import TangentBundle, tangent_bundle
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["energy_matrices", "boundary_form", "check_s"]
 
@@ -120,8 +124,16 @@ def _tangent(V, F, n, reorient, components) -> TangentBundle:
     return tangent_bundle(V, F, 1 if n is None else n, reorient=reorient, components=components)
 
 
-def energy_matrices(V, F=None, n: int | None = None, s: float = 0.0, *, lumped: bool = False, reorient: bool = False,
-                    components: str = "all") -> tuple[sp.csr_matrix, sp.csr_matrix]:
+def energy_matrices(
+    V: ArrayLike | SurfaceMesh,
+    F: ArrayLike | None = None,
+    n: int | None = None,
+    s: float = 0.0,
+    *,
+    lumped: bool = False,
+    reorient: bool = False,
+    components: str = "all",
+) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """``(A_s, M)``: the energy ``2 E_s = ψᴴ A_s ψ`` of n-direction fields and the mass matrix.
 
     Parameters

@@ -6,10 +6,11 @@
 * **Aligned field** (Eq. 6.6): ``(A_s − λ_t M) ũ = M q`` for a guidance field q, ``u = ũ/‖ũ‖_M``
   and ``t = (1 + ‖ũ‖_M)⁻¹`` for the guidance scaled to ``‖q‖_M = 1`` (Appendix A: t is the weight of
   the alignment term in ``E_{s,t} = (1 − t) E_s − t E_l``; it decreases strictly from 1 (λ_t → −∞,
-  pure alignment) to 0 (λ_t → λ_1, the smoothest field); λ_t = 0 is the seed's default). Guidance: principal curvature through the discrete
-  Hopf differential (``"curvature"``: q^{n/2}; ``"min-curvature"``: (−q)^{n/2}), the boundary
-  tangent (``"boundary"``, ``"boundary-normal"``), per-vertex 3D vectors, or per-vertex complex
-  values in the frames of :class:`~dhlb.surface.TangentBundle` (:mod:`dhlb.surface.guidance`).
+  pure alignment) to 0 (λ_t → λ_1, the smoothest field); λ_t = 0 is the seed's default).
+  Guidance: principal curvature through the discrete Hopf differential (``"curvature"``: q^{n/2};
+  ``"min-curvature"``: (−q)^{n/2}), the boundary tangent (``"boundary"``, ``"boundary-normal"``),
+  per-vertex 3D vectors, or per-vertex complex values in the frames of
+  :class:`~dhlb.surface.TangentBundle` (:mod:`dhlb.surface.guidance`).
   A flat mesh has no principal directions: curvature alignment then falls back to the smoothest
   field with a warning.
 * **Several components.** The matrices are block diagonal; each component gets its own smallest

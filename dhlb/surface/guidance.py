@@ -21,6 +21,7 @@ one. For ``n = 2m`` the guidance is ``(±q)^m`` (the seed: ``q`` for n = 2, ``q�
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -29,14 +30,20 @@ import scipy.sparse.linalg as spla
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.surface.tangent import TangentBundle
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 __all__ = ["Guidance", "dihedral_angles", "hopf_differential", "curvature_guidance", "boundary_guidance",
            "user_guidance"]
 
 
 @dataclass(frozen=True)
 class Guidance:
-    """A guidance field: ``values`` (N,) complex in the power representation, ``kind``, and
-    ``empty`` (True if it vanishes everywhere; ``reason`` says why)."""
+    """A guidance field.
+
+    ``values`` (N,) complex in the power representation, ``kind``, and ``empty`` (True if it
+    vanishes everywhere; ``reason`` says why).
+    """
 
     values: np.ndarray
     kind: str
@@ -69,7 +76,7 @@ def dihedral_angles(tb: TangentBundle) -> np.ndarray:
     return np.where(inner, beta, 0.0)
 
 
-def hopf_differential(tb: TangentBundle, *, mass=None) -> tuple[np.ndarray, np.ndarray]:
+def hopf_differential(tb: TangentBundle, *, mass: ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The discrete Hopf differential as 2-vectors in the vertex frames.
 
     Parameters
@@ -113,8 +120,14 @@ def hopf_differential(tb: TangentBundle, *, mass=None) -> tuple[np.ndarray, np.n
     return q, qd
 
 
-def curvature_guidance(tb: TangentBundle, direction: str = "max", *, mass=None,
-                       magnitude: str = "power", flat_tol: float = 1e-10) -> Guidance:
+def curvature_guidance(
+    tb: TangentBundle,
+    direction: str = "max",
+    *,
+    mass: ArrayLike | None = None,
+    magnitude: str = "power",
+    flat_tol: float = 1e-10,
+) -> Guidance:
     """Principal-curvature guidance for even n: ``(q)^{n/2}`` ("max") or ``(−q)^{n/2}`` ("min").
 
     A mesh whose dihedral angles are all below ``flat_tol`` is flat: the result is all zeros
@@ -181,7 +194,7 @@ def boundary_guidance(tb: TangentBundle, *, normal: bool = False) -> Guidance:
     return _guidance(vals, "boundary-normal" if normal else "boundary", "the mesh has no boundary")
 
 
-def user_guidance(tb: TangentBundle, values) -> Guidance:
+def user_guidance(tb: TangentBundle, values: ArrayLike) -> Guidance:
     """Guidance from user data, one row per compact vertex or per row of the input V.
 
     * real ``(k, 3)``: 3D vectors, projected onto the vertex tangent planes; value

@@ -33,15 +33,31 @@ from __future__ import annotations
 
 import warnings
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import (DegenerateSimplexError, DhlbWarning, EmptyComplexError, InconsistentOrientationError,
-                         InvalidParameterError, InvalidSimplexError, NonFiniteError, NonManifoldError,
-                         NonOrientableError, ShapeError, UnreferencedVertexWarning)
+from dhlb.errors import (
+    DegenerateSimplexError,
+    DhlbWarning,
+    EmptyComplexError,
+    InconsistentOrientationError,
+    InvalidParameterError,
+    InvalidSimplexError,
+    NonFiniteError,
+    NonManifoldError,
+    NonOrientableError,
+    ShapeError,
+    UnreferencedVertexWarning,
+)
 from dhlb.geometry.simplex import SimplexStack
 from dhlb.topology.complex import SimplicialComplex
 from dhlb.topology.manifold import interior_pairs, is_consistently_oriented, manifold_report
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["SurfaceMesh", "validate_surface"]
 
@@ -192,7 +208,15 @@ class SurfaceMesh:
     [[0, 1], [1, 3], [2, 0], [3, 2]]
     """
 
-    def __init__(self, points, faces, complex, face_rows, flipped, n_input_vertices=None):
+    def __init__(
+        self,
+        points: np.ndarray,
+        faces: np.ndarray,
+        complex: SimplicialComplex,
+        face_rows: np.ndarray,
+        flipped: np.ndarray,
+        n_input_vertices: int | None = None,
+    ):
         self.n_input_vertices = int(points.shape[0] if n_input_vertices is None else n_input_vertices)
         self.points = points
         self.faces = faces
@@ -204,10 +228,12 @@ class SurfaceMesh:
 
     @property
     def n_vertices(self) -> int:
+        """Number of vertices."""
         return self.points.shape[0]
 
     @property
     def n_faces(self) -> int:
+        """Number of triangles."""
         return self.faces.shape[0]
 
     @property
@@ -239,6 +265,7 @@ class SurfaceMesh:
 
     @cached_property
     def euler_characteristic(self) -> int:
+        """The Euler characteristic ``V − E + F``."""
         return self.complex.euler_characteristic
 
     @cached_property
@@ -258,15 +285,17 @@ class SurfaceMesh:
 
     @cached_property
     def is_boundary_vertex(self) -> np.ndarray:
+        """Bool per vertex: True on the boundary."""
         mask = np.zeros(self.n_vertices, bool)
         mask[self.boundary_halfedges.ravel()] = True
         return mask
 
     @property
     def is_closed(self) -> bool:
+        """True if the surface has no boundary."""
         return self.boundary_halfedges.shape[0] == 0
 
-    def per_vertex(self, values, what: str = "values") -> np.ndarray:
+    def per_vertex(self, values: ArrayLike, what: str = "values") -> np.ndarray:
         """Per-vertex input data in compact order: ``values`` has one row per compact vertex or per row of V."""
         arr = np.asarray(values)
         if arr.ndim >= 1 and arr.shape[0] == self.n_input_vertices:
@@ -276,7 +305,7 @@ class SurfaceMesh:
         raise ShapeError(f"{what} must have one row per row of the input V ({self.n_input_vertices}) or per "
                          f"compact vertex ({self.n_vertices}), got shape {arr.shape}")
 
-    def to_input(self, values, fill=np.nan) -> np.ndarray:
+    def to_input(self, values: ArrayLike, fill: Any = np.nan) -> np.ndarray:
         """Scatter per-vertex values (compact order) back to one row per row of the input V."""
         arr = np.asarray(values)
         out = np.full((self.n_input_vertices,) + arr.shape[1:], fill, dtype=np.result_type(arr, np.asarray(fill)))
@@ -288,7 +317,7 @@ class SurfaceMesh:
                 f"chi={self.euler_characteristic}, boundary_edges={len(self.boundary_halfedges)})")
 
 
-def validate_surface(V, F, *, reorient: bool = False, components: str = "all") -> SurfaceMesh:
+def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, components: str = "all") -> SurfaceMesh:
     """Check a triangle mesh and return it as an oriented :class:`SurfaceMesh`.
 
     Parameters

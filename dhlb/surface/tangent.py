@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import numbers
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -51,6 +52,9 @@ from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.geometry.euclidean import EuclideanComplex
 from dhlb.surface._fans import TWO_PI, AngleMap, vertex_fans
 from dhlb.surface.mesh import SurfaceMesh, validate_surface
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["TangentBundle", "tangent_bundle"]
 
@@ -82,7 +86,7 @@ class TangentBundle:
             raise TypeError(f"mesh must be a SurfaceMesh (see validate_surface), got {type(mesh).__name__}")
         if isinstance(n, (bool, np.bool_)) or not isinstance(n, numbers.Integral) or n < 1:
             raise InvalidParameterError(f"n (the number of directions) must be an integer >= 1, got {n!r}")
-        self.mesh = mesh
+        self.mesh: SurfaceMesh = mesh
         self.n = int(n)
 
     # ------------------------------------------------------------------ per corner / per face
@@ -118,6 +122,7 @@ class TangentBundle:
 
     @cached_property
     def is_boundary_vertex(self) -> np.ndarray:
+        """Bool per vertex: True on the boundary."""
         return self._fans.boundary
 
     @cached_property
@@ -230,7 +235,7 @@ class TangentBundle:
 
     @cached_property
     def total_boundary_turning(self) -> float:
-        """n Σ_{i ∈ ∂} (π − Θ_i); ``total_curvature + total_boundary_turning = 2π n χ``."""
+        """N Σ_{i ∈ ∂} (π − Θ_i); ``total_curvature + total_boundary_turning = 2π n χ``."""
         return float(self.n * self.boundary_turning.sum())
 
     # ------------------------------------------------------------------ angles <-> 3D directions
@@ -250,7 +255,7 @@ class TangentBundle:
         return AngleMap(np.concatenate([verts, np.arange(N)]), np.concatenate([theta, np.full(N, TWO_PI)]),
                         np.concatenate([psi, np.full(N, TWO_PI)]), N)
 
-    def angles_to_vectors(self, vertices, angles) -> np.ndarray:
+    def angles_to_vectors(self, vertices: ArrayLike, angles: ArrayLike) -> np.ndarray:
         """Unit 3D tangent vectors at ``vertices`` with the given rescaled angles (broadcast).
 
         Examples
@@ -266,7 +271,7 @@ class TangentBundle:
         T = self.frames[v]
         return np.cos(psi)[..., None] * T[..., 0, :] + np.sin(psi)[..., None] * T[..., 1, :]
 
-    def vectors_to_angles(self, vectors) -> tuple[np.ndarray, np.ndarray]:
+    def vectors_to_angles(self, vectors: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """Rescaled angle and length of the tangential part of one 3D vector per vertex.
 
         ``vectors`` has one row per compact vertex or per row of the input V. Returns
@@ -288,7 +293,14 @@ class TangentBundle:
         return f"TangentBundle(n={self.n}, {self.mesh!r})"
 
 
-def tangent_bundle(V, F=None, n: int = 1, *, reorient: bool = False, components: str = "all") -> TangentBundle:
+def tangent_bundle(
+    V: ArrayLike | SurfaceMesh,
+    F: ArrayLike | None = None,
+    n: int = 1,
+    *,
+    reorient: bool = False,
+    components: str = "all",
+) -> TangentBundle:
     """The discrete n-th tangent power bundle of a triangle mesh (validated first).
 
     Parameters

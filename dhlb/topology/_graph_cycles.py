@@ -13,8 +13,11 @@ from scipy.sparse import csgraph
 
 
 def incidence(A: sp.csc_matrix):
-    """``(head, tail)`` per column if every column is ``e_head - e_tail`` (``head != tail``) or zero
-    (then head = tail = -1), else None.  ``A``: canonical int64 CSC."""
+    """``(head, tail)`` per column of an incidence matrix, else None.
+
+    Every column must be ``e_head - e_tail`` (``head != tail``) or zero (then head = tail = -1).
+    ``A``: canonical int64 CSC.
+    """
     nnz = np.diff(A.indptr)
     if np.any((nnz != 2) & (nnz != 0)):
         return None
@@ -36,7 +39,8 @@ def bfs_forest(head, tail, m):
 
     Returns ``order`` (vertices, parents first), ``pred`` (``m`` for component roots),
     ``tree_col`` (the column of the tree edge to the parent, -1 for roots), ``sign`` (+1 if that
-    column points from the vertex to its parent) and ``root`` (the root of each vertex)."""
+    column points from the vertex to its parent) and ``root`` (the root of each vertex).
+    """
     e = np.flatnonzero(head >= 0)
     h, t = head[e], tail[e]
     G = sp.coo_matrix((np.ones(len(e)), (h, t)), shape=(m, m)).tocsr()

@@ -33,9 +33,12 @@ def _check_labels(values: np.ndarray, where) -> np.ndarray:
         if not np.all(np.isfinite(values)):
             raise InvalidSimplexError(f"{where()}: vertex labels must be finite integers (found NaN/inf)")
         if np.any(values != np.round(values)):
-            raise InvalidSimplexError(f"{where()}: vertex labels must be integers (found {values[values != np.round(values)][0]!r})")
+            first = values[values != np.round(values)][0]
+            raise InvalidSimplexError(f"{where()}: vertex labels must be integers (found {first!r})")
         out = values.astype(np.int64)
-    elif values.dtype == object and all(isinstance(v, numbers.Integral) and not isinstance(v, bool) for v in values.ravel()):
+    elif values.dtype == object and all(
+        isinstance(v, numbers.Integral) and not isinstance(v, bool) for v in values.ravel()
+    ):
         out = values.astype(np.int64)
     else:
         raise InvalidSimplexError(f"{where()}: vertex labels must be integers (got dtype {values.dtype})")
@@ -70,7 +73,9 @@ def parse_simplices(simplices) -> dict[int, np.ndarray]:
         if arr.ndim == 1:
             arr = arr.reshape(-1, 1)
         if arr.ndim != 2:
-            raise InvalidSimplexError(f"a simplex array must be 2-dimensional (one simplex per row), got shape {arr.shape}")
+            raise InvalidSimplexError(
+                f"a simplex array must be 2-dimensional (one simplex per row), got shape {arr.shape}"
+            )
         if arr.shape[0] == 0 or arr.shape[1] == 0:
             raise EmptyComplexError("no simplices given: pass at least one vertex tuple")
         rows = _check_labels(arr, lambda: "simplex array")
@@ -100,7 +105,9 @@ def parse_simplices(simplices) -> dict[int, np.ndarray]:
     try:
         items = list(simplices)
     except TypeError as exc:
-        raise InvalidSimplexError(f"simplices must be an iterable of vertex tuples or an int array, got {type(simplices).__name__}") from exc
+        raise InvalidSimplexError(
+            f"simplices must be an iterable of vertex tuples or an int array, got {type(simplices).__name__}"
+        ) from exc
     if not items:
         raise EmptyComplexError("no simplices given: pass at least one vertex tuple")
     by_len: dict[int, list[int]] = {}

@@ -83,10 +83,13 @@ class ChainReduction:
             self.R[1], self.C[1] = _to_dicts(mats[1])
 
     def _eliminate_graph(self, A) -> bool:
-        """Fast path for an incidence matrix ``∂_1``: pivots ``(v, tree edge to the parent)`` of a
-        breadth-first forest, parents first.  Then every pivot column is ``{v: u, root: -u}``
+        """Fast path for an incidence matrix ``∂_1``.
+
+        Pivots ``(v, tree edge to the parent)`` of a breadth-first forest, parents first.  Then
+        every pivot column is ``{v: u, root: -u}``
         (column sums stay zero, the fill goes to the root row), the stored rows are the original
-        rows, and the residual is zero.  Returns False if ``A`` is not an incidence matrix."""
+        rows, and the residual is zero.  Returns False if ``A`` is not an incidence matrix.
+        """
         A = sp.csc_matrix(A)
         if A.dtype.kind not in "iu":
             return False
@@ -98,7 +101,7 @@ class ChainReduction:
             return False
         head, tail = inc
         m = A.shape[0]
-        order, pred, tree_col, sign, root = bfs_forest(head, tail, m)
+        order, _pred, tree_col, _sign, root = bfs_forest(head, tail, m)
         Ar = A.tocsr()
         ip, ind, dat = Ar.indptr, Ar.indices.tolist(), Ar.data.tolist()
         for v in order.tolist():
@@ -214,8 +217,11 @@ class ChainReduction:
         return M
 
     def residual_core(self, k: int):
-        """``(rows, cols, M)``: the nonzero rows/columns of ``∂'_k`` (original indices) and the dense
-        object matrix on them; every other surviving row and column of ``∂'_k`` is zero."""
+        """``(rows, cols, M)``: the nonzero rows/columns of ``∂'_k`` and the dense matrix on them.
+
+        Rows and columns are original indices, ``M`` is an object matrix; every other surviving row
+        and column of ``∂'_k`` is zero.
+        """
         rows = sorted(r for r, line in self.R[k].items() if line)
         cols = sorted({c for r in rows for c in self.R[k][r]})
         cpos = {c: j for j, c in enumerate(cols)}

@@ -9,7 +9,7 @@ The structural operations (star, link, skeleta, components, subdivision) live in
 from __future__ import annotations
 
 from functools import cached_property
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 import scipy.sparse as sp
@@ -17,6 +17,11 @@ import scipy.sparse as sp
 from dhlb.errors import InvalidSimplexError, SimplexNotFoundError
 from dhlb.topology import _keys
 from dhlb.topology._input import parse_rows, parse_simplices
+
+if TYPE_CHECKING:
+    from collections.abc import Iterable, Sequence
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["SimplicialComplex", "VertexAdjacency"]
 
@@ -64,7 +69,7 @@ class SimplicialComplex:
     1
     """
 
-    def __init__(self, simplices):
+    def __init__(self, simplices: Iterable[Sequence[int]] | ArrayLike):
         blocks = parse_simplices(simplices)
         labels = np.unique(np.concatenate([b.ravel() for b in blocks.values()]))
         self._labels = labels
@@ -135,7 +140,7 @@ class SimplicialComplex:
         pos, found = _keys.lookup(self._labels, srt.ravel())
         return pos.reshape(srt.shape), found.reshape(srt.shape).all(axis=1)
 
-    def index(self, k: int, rows) -> np.ndarray:
+    def index(self, k: int, rows: ArrayLike) -> np.ndarray:
         """Row indices in :meth:`simplices` of k-simplices given by input vertex labels.
 
         The vertices of each row may be in any order.
@@ -154,10 +159,12 @@ class SimplicialComplex:
         comp, ok = self._labels_to_compact(srt)
         if not np.all(ok):
             bad = srt[np.argmin(ok)]
-            raise SimplexNotFoundError(f"the {k}-simplex {tuple(int(v) for v in bad)} is not in the complex (unknown vertex)")
+            raise SimplexNotFoundError(
+                f"the {k}-simplex {tuple(int(v) for v in bad)} is not in the complex (unknown vertex)"
+            )
         return self._row_index(k, comp)
 
-    def contains(self, k: int, rows) -> np.ndarray:
+    def contains(self, k: int, rows: ArrayLike) -> np.ndarray:
         """Boolean mask: which of the given k-simplices (input labels) belong to the complex."""
         srt, _ = self._compact_rows(rows, k)
         if srt.shape[0] == 0 or k > self._dim:
@@ -169,7 +176,7 @@ class SimplicialComplex:
         return out
 
     @staticmethod
-    def orientation_of(rows) -> np.ndarray:
+    def orientation_of(rows: ArrayLike) -> np.ndarray:
         """+1/-1 per row: the orientation of the vertex order relative to the canonical (sorted) one.
 
         Examples
@@ -271,7 +278,7 @@ class SimplicialComplex:
         return mats
 
     @cached_property
-    def vertex_adjacency(self) -> "VertexAdjacency":
+    def vertex_adjacency(self) -> VertexAdjacency:
         """CSR pattern of the vertex adjacency (diagonal + both directions of every edge).
 
         Operators on vertex functions (mass, Laplacians) share this pattern; ``upper[e]`` and
@@ -301,8 +308,10 @@ class SimplicialComplex:
 
     @cached_property
     def top_entry_positions(self) -> np.ndarray:
-        """Shape ``(n_top, k, k)``, ``k = dim + 1``: data position in :attr:`vertex_adjacency` of the
-        entry ``(v_b, v_a)`` for the local vertices ``a, b`` of each top simplex ``v = simplices(dim)[s]``.
+        """Data positions in :attr:`vertex_adjacency` of the local entries of each top simplex.
+
+        Shape ``(n_top, k, k)``, ``k = dim + 1``: the position of the entry ``(v_b, v_a)`` for the
+        local vertices ``a, b`` of each top simplex ``v = simplices(dim)[s]``.
 
         Summing per-simplex local matrices into a global vertex operator is one ``bincount``.
         """
@@ -342,37 +351,37 @@ class SimplicialComplex:
 
     # ------------------------------------------------------------------ delegated operations
     # Implemented in sibling modules (one room per concern); these are thin entry points.
-    def skeleton(self, k: int) -> "SimplicialComplex":
+    def skeleton(self, k: int) -> SimplicialComplex:
         """The k-skeleton: all simplices of dimension <= k (see :func:`dhlb.topology.structure.skeleton`)."""
         from dhlb.topology.structure import skeleton
 
         return skeleton(self, k)
 
-    def star(self, k: int, index: int):
+    def star(self, k: int, index: int) -> list[np.ndarray]:
         """Star of the k-simplex with row ``index`` (see :func:`dhlb.topology.structure.star`)."""
         from dhlb.topology.structure import star
 
         return star(self, k, index)
 
-    def link(self, k: int, index: int):
+    def link(self, k: int, index: int) -> SimplicialComplex | None:
         """Link of the k-simplex with row ``index`` (see :func:`dhlb.topology.structure.link`)."""
         from dhlb.topology.structure import link
 
         return link(self, k, index)
 
-    def connected_components(self):
+    def connected_components(self) -> tuple[int, np.ndarray]:
         """Component label per vertex (see :func:`dhlb.topology.structure.connected_components`)."""
         from dhlb.topology.structure import connected_components
 
         return connected_components(self)
 
-    def boundary_complex(self):
+    def boundary_complex(self) -> SimplicialComplex | None:
         """The boundary subcomplex (see :func:`dhlb.topology.structure.boundary_complex`)."""
         from dhlb.topology.structure import boundary_complex
 
         return boundary_complex(self)
 
-    def barycentric_subdivision(self):
+    def barycentric_subdivision(self) -> tuple[SimplicialComplex, np.ndarray]:
         """Barycentric subdivision (see :func:`dhlb.topology.subdivision.barycentric_subdivision`)."""
         from dhlb.topology.subdivision import barycentric_subdivision
 
@@ -407,13 +416,13 @@ class SimplicialComplex:
             self.__dict__["_orientation"] = cached
         return cached
 
-    def homology(self):
+    def homology(self) -> list:
         """Integer homology H_0..H_dim with torsion (see :func:`dhlb.topology.homology.homology`)."""
         from dhlb.topology.homology import homology
 
         return homology(self)
 
-    def cohomology(self, coefficients="Z"):
+    def cohomology(self, coefficients: str | int = "Z") -> list:
         """Cohomology with coefficients Z, R, ("Z", m) or S1 (see :func:`dhlb.topology.homology.cohomology`)."""
         from dhlb.topology.homology import cohomology
 

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from math import gcd
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -44,6 +45,12 @@ import scipy.sparse as sp
 from dhlb.errors import InvalidMatrixError, ShapeError
 from dhlb.topology._sparse_elim import ChainReduction
 from dhlb.topology.intlinalg import _snf, as_object_matrix, to_int_array
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from typing import Any
+
+    from dhlb.topology.complex import SimplicialComplex
 
 __all__ = [
     "HomologyGroup",
@@ -218,7 +225,7 @@ class _Structure:
         return self.red.lift_cochains(k, tau.T), d["orders"]
 
 
-def homology_from_boundaries(boundaries) -> list:
+def homology_from_boundaries(boundaries: Sequence[Any]) -> list:
     """Integral homology of a chain complex given by its boundary matrices.
 
     Parameters
@@ -254,7 +261,7 @@ def _boundaries(X):
     return [X.boundary(k) for k in range(X.dim + 1)]
 
 
-def homology(X) -> list:
+def homology(X: SimplicialComplex) -> list:
     """Integral homology ``H_0(X), ..., H_dim(X)`` of a simplicial complex.
 
     Returns a list of :class:`HomologyGroup` (rank, torsion, integer generator cycles over
@@ -273,7 +280,7 @@ def homology(X) -> list:
     return homology_from_boundaries(_boundaries(X))
 
 
-def betti_numbers(X) -> tuple:
+def betti_numbers(X: SimplicialComplex) -> tuple:
     """Betti numbers ``(b_0, ..., b_dim)`` (ranks of integral homology).
 
     Examples
@@ -299,7 +306,7 @@ def _parse_coefficients(coefficients):
                              "'Z/m' with m >= 2.")
 
 
-def cohomology_from_boundaries(boundaries, coefficients="Z") -> list:
+def cohomology_from_boundaries(boundaries: Sequence[Any], coefficients: str | int = "Z") -> list:
     """Cohomology ``H^k(G)``, ``k = 0..n``, of a chain complex; see :func:`cohomology`.
 
     Examples
@@ -350,7 +357,7 @@ def cohomology_from_boundaries(boundaries, coefficients="Z") -> list:
     return out
 
 
-def cohomology(X, coefficients="Z") -> list:
+def cohomology(X: SimplicialComplex, coefficients: str | int = "Z") -> list:
     """Cohomology ``H^k(X; G)``, ``k = 0..dim``, with representative cocycles (module docstring).
 
     Parameters

@@ -22,10 +22,15 @@ True
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import scipy.sparse as sp
 
 from dhlb.errors import InvalidMatrixError, ShapeError
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = [
     "hermite_normal_form",
@@ -103,7 +108,7 @@ def _egcd(a: int, b: int) -> tuple[int, int, int]:
 
 
 # ----------------------------------------------------------------------------- Hermite normal form
-def hermite_normal_form(A):
+def hermite_normal_form(A: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Column-style Hermite normal form ``H = A U`` with ``U`` unimodular.
 
     ``H = (0 | H')``: the first ``n - r`` columns are zero (so those columns of ``U`` are a
@@ -237,7 +242,7 @@ def _snf(A: np.ndarray):
     return U, M, V, Ui, Vi
 
 
-def smith_normal_form(A):
+def smith_normal_form(A: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Smith normal form ``U A V = D`` with unimodular ``U``, ``V``.
 
     ``D`` has the shape of ``A``, is zero off the diagonal, and its diagonal is
@@ -295,7 +300,7 @@ def integer_determinant(A) -> int:
     return sign * int(M[n - 1, n - 1]) if n else 1
 
 
-def is_unimodular(U) -> bool:
+def is_unimodular(U: ArrayLike) -> bool:
     """True iff ``U`` is a square integer matrix with determinant ±1.
 
     Examples
@@ -311,7 +316,7 @@ def is_unimodular(U) -> bool:
 _DENSE_LIMIT = 2_500  # entries; larger dense input goes through sparse elimination too
 
 
-def integer_kernel_basis(A):
+def integer_kernel_basis(A: ArrayLike | sp.spmatrix) -> np.ndarray | sp.csc_matrix:
     """Z-basis of ``ker A ∩ Z^n`` as the columns of an integer matrix.
 
     Small dense input uses the Hermite form ``A U = (0 | H)`` (seed, Lemma 1): the first
@@ -356,7 +361,7 @@ def dense_kernel_basis(M: np.ndarray) -> np.ndarray:
     return to_int_array(U[:, :z])
 
 
-def solve_integer(A, b):
+def solve_integer(A: ArrayLike | sp.spmatrix, b: ArrayLike) -> np.ndarray | None:
     """Integer solution ``x`` of ``A x = b``, or ``None`` if there is none.
 
     Parameters

@@ -22,6 +22,7 @@ Every 0-dimensional complex is a 0-manifold. Manifolds need not be connected.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -30,8 +31,17 @@ from scipy.sparse.csgraph import connected_components as _cc
 
 from dhlb.errors import InvalidSimplexError, NonManifoldError, NonOrientableError
 from dhlb.topology.complex import SimplicialComplex
-from dhlb.topology.structure import (coface_counts, incidence, link_component_counts, maximal_mask,
-                                     simplex_labels, subfaces)
+from dhlb.topology.structure import (
+    coface_counts,
+    incidence,
+    link_component_counts,
+    maximal_mask,
+    simplex_labels,
+    subfaces,
+)
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = [
     "Offense", "ManifoldReport", "manifold_report", "is_pseudomanifold", "is_manifold",
@@ -368,7 +378,7 @@ def fundamental_cycle(X: SimplicialComplex) -> np.ndarray:
     return orientation(X)
 
 
-def is_consistently_oriented(X: SimplicialComplex, F) -> tuple[bool, tuple | None]:
+def is_consistently_oriented(X: SimplicialComplex, F: ArrayLike) -> tuple[bool, tuple | None]:
     """Whether the top simplices given in the user's vertex order are consistently oriented.
 
     Parameters
@@ -403,7 +413,7 @@ def is_consistently_oriented(X: SimplicialComplex, F) -> tuple[bool, tuple | Non
     F = np.asarray(F)
     idx = X.index(n, F)
     sign = X.orientation_of(F)
-    uniq, first, cnt = np.unique(idx, return_index=True, return_counts=True)
+    uniq, _first, cnt = np.unique(idx, return_index=True, return_counts=True)
     if np.any(cnt > 1):
         r = int(uniq[cnt > 1][0])
         i, j = np.nonzero(idx == r)[0][:2]

@@ -16,6 +16,7 @@ Conventions
 from __future__ import annotations
 
 import numbers
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -24,6 +25,9 @@ from scipy.sparse.csgraph import connected_components as _cc
 from dhlb.errors import InvalidSimplexError, NonManifoldError, SimplexNotFoundError
 from dhlb.topology import _keys
 from dhlb.topology.complex import SimplicialComplex
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = [
     "skeleton", "subcomplex", "star", "link", "connected_components", "components",
@@ -171,7 +175,7 @@ def skeleton(X: SimplicialComplex, k: int) -> SimplicialComplex:
     return _from_blocks([labels[b] for b in blocks])
 
 
-def subcomplex(X: SimplicialComplex, k: int, indices) -> SimplicialComplex | None:
+def subcomplex(X: SimplicialComplex, k: int, indices: ArrayLike) -> SimplicialComplex | None:
     """Closure of the k-simplices with the given rows (vertex labels: X's compact indices).
 
     Returns ``None`` when ``indices`` is empty.

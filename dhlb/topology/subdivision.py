@@ -2,11 +2,16 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dhlb.errors import InvalidSimplexError
 from dhlb.topology.complex import SimplicialComplex
 from dhlb.topology.structure import _from_blocks, maximal_mask
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["barycentric_subdivision", "relabeled"]
 
@@ -61,7 +66,7 @@ def _permutations(n: int) -> np.ndarray:
     return np.array(list(permutations(range(n))), np.int64)
 
 
-def relabeled(X: SimplicialComplex, permutation) -> SimplicialComplex:
+def relabeled(X: SimplicialComplex, permutation: ArrayLike) -> SimplicialComplex:
     """The same complex with compact vertex v renamed ``permutation[v]``.
 
     ``permutation`` holds one distinct non-negative integer label per vertex of X.
@@ -82,7 +87,7 @@ def relabeled(X: SimplicialComplex, permutation) -> SimplicialComplex:
     if np.any(perm < 0):
         v = int(np.argmax(perm < 0))
         raise InvalidSimplexError(f"new label {int(perm[v])} of vertex {v} is negative")
-    uniq, first, cnt = np.unique(perm, return_index=True, return_counts=True)
+    uniq, _first, cnt = np.unique(perm, return_index=True, return_counts=True)
     if np.any(cnt > 1):
         lab = uniq[cnt > 1][0]
         a, b = np.nonzero(perm == lab)[0][:2]

@@ -21,8 +21,13 @@ Examples
 from dhlb.volume.curves import hopf_link, torus_knot, trefoil, vortex_ring
 from dhlb.volume.fields import FilamentField, segment_velocity, superpose, uniform_flow
 from dhlb.volume.filaments import Filament, FilamentSet, extract_filaments, face_zeros
-from dhlb.volume.linking import (gauss_linking_integral, hausdorff_distance, linking_matrix, linking_number,
-                                 polyline_distance)
+from dhlb.volume.linking import (
+                                 gauss_linking_integral,
+                                 hausdorff_distance,
+                                 linking_matrix,
+                                 linking_number,
+                                 polyline_distance,
+)
 from dhlb.volume.meshes import TetMesh, ball_tet_mesh, box_tet_mesh, check_tet_mesh, signed_volumes
 from dhlb.volume.velocity import edge_circulation, gauss_legendre, velocity_bundle
 from dhlb.volume.vortex import VortexResult, filament_linking_numbers, vortex_filaments

@@ -12,10 +12,15 @@ Examples
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.examples._util import check_int
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["vortex_ring", "hopf_link", "torus_knot", "trefoil"]
 
@@ -39,7 +44,9 @@ def _vec(value, name: str) -> np.ndarray:
     return a
 
 
-def vortex_ring(radius=1.0, center=(0.0, 0.0, 0.0), normal=(0.0, 0.0, 1.0), n: int = 128) -> np.ndarray:
+def vortex_ring(
+    radius: float = 1.0, center: ArrayLike = (0.0, 0.0, 0.0), normal: ArrayLike = (0.0, 0.0, 1.0), n: int = 128
+) -> np.ndarray:
     """A regular ``n``-gon inscribed in the circle of the given radius, center and normal.
 
     It runs counter-clockwise seen from the tip of ``normal`` (right-handed about ``normal``),
@@ -69,7 +76,7 @@ def vortex_ring(radius=1.0, center=(0.0, 0.0, 0.0), normal=(0.0, 0.0, 1.0), n: i
     return c + R * (np.cos(t)[:, None] * u + np.sin(t)[:, None] * v)
 
 
-def hopf_link(radius=1.0, n: int = 128) -> list[np.ndarray]:
+def hopf_link(radius: float = 1.0, n: int = 128) -> list[np.ndarray]:
     """Two rings of the given radius forming a Hopf link with linking number +1.
 
     The first lies in the plane ``z = 0`` around the origin (right-handed about +z); the second
@@ -88,7 +95,7 @@ def hopf_link(radius=1.0, n: int = 128) -> list[np.ndarray]:
     return [a, b]
 
 
-def torus_knot(p: int = 2, q: int = 3, major=1.0, minor=0.4, n: int = 256) -> np.ndarray:
+def torus_knot(p: int = 2, q: int = 3, major: float = 1.0, minor: float = 0.4, n: int = 256) -> np.ndarray:
     """The ``(p, q)`` torus knot on the torus with radii ``major > minor``.
 
     ``x(t) = ((R + r cos qt) cos pt, (R + r cos qt) sin pt, r sin qt)``, ``t ∈ [0, 2π)``: it winds
@@ -115,6 +122,6 @@ def torus_knot(p: int = 2, q: int = 3, major=1.0, minor=0.4, n: int = 256) -> np
     return np.stack([rho * np.cos(p * t), rho * np.sin(p * t), r * np.sin(q * t)], axis=1)
 
 
-def trefoil(major=1.0, minor=0.4, n: int = 256) -> np.ndarray:
+def trefoil(major: float = 1.0, minor: float = 0.4, n: int = 256) -> np.ndarray:
     """The trefoil knot as the ``(2, 3)`` torus knot (see :func:`torus_knot`)."""
     return torus_knot(2, 3, major, minor, n)

@@ -27,9 +27,16 @@ Examples
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["segment_velocity", "FilamentField", "uniform_flow", "superpose"]
 
@@ -54,7 +61,15 @@ def _polyline(curve, closed: bool, i: int) -> np.ndarray:
     return C
 
 
-def segment_velocity(x, q1, q2, circulation=1.0, core_radius: float = 0.0, *, chunk: int = _CHUNK) -> np.ndarray:
+def segment_velocity(
+    x: ArrayLike,
+    q1: ArrayLike,
+    q2: ArrayLike,
+    circulation: float | ArrayLike = 1.0,
+    core_radius: float = 0.0,
+    *,
+    chunk: int = _CHUNK,
+) -> np.ndarray:
     """Summed velocity at points ``x`` of straight vortex segments ``q1[s] → q2[s]`` (see module docstring).
 
     Parameters
@@ -128,7 +143,13 @@ class FilamentField:
     [[-0.99, 0.0, 0.0]]
     """
 
-    def __init__(self, curves, circulation=1.0, core_radius: float = 0.0, closed=True):
+    def __init__(
+        self,
+        curves: Sequence[ArrayLike],
+        circulation: float | ArrayLike = 1.0,
+        core_radius: float = 0.0,
+        closed: bool | Sequence[bool] = True,
+    ):
         curves = list(curves) if not isinstance(curves, np.ndarray) or curves.ndim == 3 else [curves]
         if not curves:
             raise ShapeError("give at least one curve")
@@ -153,14 +174,15 @@ class FilamentField:
         self.core_radius = a
         self._q1, self._q2, self._g = np.concatenate(q1), np.concatenate(q2), np.concatenate(g)
 
-    def __call__(self, x) -> np.ndarray:
+    def __call__(self, x: ArrayLike) -> np.ndarray:
+        """The velocity at the points ``x`` (shape ``(..., 3)``)."""
         return segment_velocity(x, self._q1, self._q2, self._g, self.core_radius)
 
     def __repr__(self) -> str:
         return f"FilamentField({len(self.curves)} curves, {self._q1.shape[0]} segments, core_radius={self.core_radius})"
 
 
-def uniform_flow(u):
+def uniform_flow(u: ArrayLike) -> Callable[[ArrayLike], np.ndarray]:
     """The constant field ``v(x) = u``.
 
     Examples
@@ -178,7 +200,9 @@ def uniform_flow(u):
     return field
 
 
-def superpose(*fields, weights=None):
+def superpose(
+    *fields: Callable[[ArrayLike], np.ndarray], weights: ArrayLike | None = None
+) -> Callable[[ArrayLike], np.ndarray]:
     """The field ``x ↦ Σ_k weights[k] · fields[k](x)``.
 
     Examples

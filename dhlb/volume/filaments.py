@@ -55,6 +55,7 @@ from __future__ import annotations
 import itertools
 import warnings
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -71,6 +72,11 @@ from dhlb.errors import (
     SectionZeroError,
     ShapeError,
 )
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from dhlb.bundles.hermitian import HermitianLineBundle
 
 __all__ = ["Filament", "FilamentSet", "extract_filaments", "face_zeros"]
 
@@ -181,7 +187,14 @@ def _check_inputs(bundle, section, points):
     return X, P, z
 
 
-def face_zeros(bundle, section, points, faces=None, *, placement: str = "balanced"):
+def face_zeros(
+    bundle: HermitianLineBundle,
+    section: ArrayLike,
+    points: ArrayLike,
+    faces: ArrayLike | None = None,
+    *,
+    placement: str = "balanced",
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Zero of the linear interpolant of the section on triangles, in a local gauge of each triangle.
 
     Parameters
@@ -309,7 +322,9 @@ def _order_chains(succ: np.ndarray):
     return order, lab, closed
 
 
-def extract_filaments(bundle, section, points, *, placement: str = "balanced") -> FilamentSet:
+def extract_filaments(
+    bundle: HermitianLineBundle, section: ArrayLike, points: ArrayLike, *, placement: str = "balanced"
+) -> FilamentSet:
     """The filaments (zero set) of a section over a tetrahedral mesh; see the module docstring.
 
     Parameters

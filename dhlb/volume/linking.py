@@ -27,9 +27,16 @@ Examples
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dhlb.errors import CurveIntersectionError, InvalidParameterError, NonFiniteError, ShapeError
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["gauss_linking_integral", "linking_number", "linking_matrix", "hausdorff_distance",
            "polyline_distance"]
@@ -62,7 +69,7 @@ def _triangle_solid_angle(a, b, c) -> np.ndarray:
     return 2.0 * np.arctan2(num, den)
 
 
-def gauss_linking_integral(a, b) -> float:
+def gauss_linking_integral(a: ArrayLike, b: ArrayLike) -> float:
     """The Gauss integral ``1/4π ∮∮ (γ₁ − γ₂)·(γ₁' × γ₂') / |γ₁ − γ₂|³`` of closed polylines.
 
     Exact (up to rounding) for disjoint polylines, where it is an integer; see the module docstring.
@@ -85,7 +92,7 @@ def gauss_linking_integral(a, b) -> float:
     return total / (4 * np.pi)
 
 
-def polyline_distance(x, curve, *, closed: bool = True) -> np.ndarray:
+def polyline_distance(x: ArrayLike, curve: ArrayLike, *, closed: bool = True) -> np.ndarray:
     """Euclidean distance from each point of ``x`` (m, 3) to the polyline ``curve`` (exact).
 
     Examples
@@ -122,7 +129,7 @@ def _check_int_result(value: float, A: np.ndarray, B: np.ndarray, atol: float) -
     return n
 
 
-def linking_number(a, b, *, atol: float = 1e-6) -> int:
+def linking_number(a: ArrayLike, b: ArrayLike, *, atol: float = 1e-6) -> int:
     """The linking number of two disjoint closed polylines (each ``(n, 3)``, first point not repeated).
 
     Reversing either curve changes the sign; ``Lk(a, b) = Lk(b, a)``.
@@ -144,7 +151,7 @@ def linking_number(a, b, *, atol: float = 1e-6) -> int:
     return _check_int_result(gauss_linking_integral(A, B), A, B, atol)
 
 
-def linking_matrix(curves, *, atol: float = 1e-6) -> np.ndarray:
+def linking_matrix(curves: Sequence[ArrayLike], *, atol: float = 1e-6) -> np.ndarray:
     """Symmetric integer matrix of pairwise linking numbers (zero diagonal)."""
     Cs = [_curve(c, f"curve #{i}") for i, c in enumerate(curves)]
     k = len(Cs)
@@ -164,7 +171,9 @@ def _samples(C: np.ndarray, closed: bool, spacing: float) -> np.ndarray:
     return pts if closed else np.concatenate([pts, C[-1:]])
 
 
-def hausdorff_distance(a, b, *, closed=(True, True), spacing: float | None = None) -> float:
+def hausdorff_distance(
+    a: ArrayLike, b: ArrayLike, *, closed: tuple[bool, bool] = (True, True), spacing: float | None = None
+) -> float:
     """Hausdorff distance between two polylines, to within ``spacing / 2``.
 
     Both curves are sampled with points at most ``spacing`` apart along each segment (vertices

@@ -21,7 +21,7 @@ Examples
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -37,6 +37,11 @@ from dhlb.examples import cube_nd, tet_mesh
 from dhlb.examples._util import check_int
 from dhlb.topology.complex import SimplicialComplex
 from dhlb.topology.manifold import interior_pairs, manifold_report
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["TetMesh", "signed_volumes", "check_tet_mesh", "box_tet_mesh", "ball_tet_mesh"]
 
@@ -80,7 +85,7 @@ class TetMesh(NamedTuple):
         return _boundary_faces(self.tets)
 
 
-def signed_volumes(points, tets) -> np.ndarray:
+def signed_volumes(points: ArrayLike, tets: ArrayLike) -> np.ndarray:
     """``det(p_1 − p_0, p_2 − p_0, p_3 − p_0) / 6`` for every row ``(p_0, p_1, p_2, p_3)`` of ``tets``.
 
     Examples
@@ -112,7 +117,7 @@ def _name_tet(r: int, T_input: np.ndarray) -> str:
     return f"tetrahedron #{r} (vertices {tuple(int(v) for v in T_input[r])})"
 
 
-def check_tet_mesh(V, T, *, orientation: str = "fix", rtol: float = DEFAULT_RTOL) -> TetMesh:
+def check_tet_mesh(V: ArrayLike, T: ArrayLike, *, orientation: str = "fix", rtol: float = DEFAULT_RTOL) -> TetMesh:
     """Validate a tetrahedral mesh and orient every tetrahedron positively.
 
     Parameters
@@ -256,7 +261,9 @@ def _vec3(value, name: str) -> np.ndarray:
     return arr
 
 
-def box_tet_mesh(m=4, lower=(0.0, 0.0, 0.0), upper=(1.0, 1.0, 1.0)) -> TetMesh:
+def box_tet_mesh(
+    m: int | Sequence[int] = 4, lower: ArrayLike = (0.0, 0.0, 0.0), upper: ArrayLike = (1.0, 1.0, 1.0)
+) -> TetMesh:
     """Freudenthal–Kuhn tetrahedral mesh of the box ``[lower, upper]`` with ``m`` cells per axis.
 
     The grid of :func:`dhlb.examples.cube_nd` (six tetrahedra per cell, all sharing the cell's
@@ -290,7 +297,7 @@ def box_tet_mesh(m=4, lower=(0.0, 0.0, 0.0), upper=(1.0, 1.0, 1.0)) -> TetMesh:
 _CORE_RATIO = 0.4  # half-side of the core cube / radius (corner at 0.69 R); best min quality in a scan
 
 
-def ball_tet_mesh(n=4, radius=1.0, center=(0.0, 0.0, 0.0)) -> TetMesh:
+def ball_tet_mesh(n: int = 4, radius: float = 1.0, center: ArrayLike = (0.0, 0.0, 0.0)) -> TetMesh:
     """Deterministic tetrahedral mesh of a ball: a Kuhn-triangulated core cube inside a graded shell.
 
     The core is the cube ``center + [−0.4 R, 0.4 R]³`` with ``n`` cells per axis

@@ -70,7 +70,7 @@ def _backend():
         from importlib.metadata import version
 
         ver = version("pytetwild")
-    except Exception:  # noqa: BLE001 - metadata missing: still try to import
+    except Exception:
         ver = "unknown"
     try:
         ext = importlib.import_module("pytetwild.PyfTetWildWrapper")  # runs pytetwild/__init__

@@ -30,9 +30,19 @@ Examples
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from numpy.typing import ArrayLike
+
+    from dhlb.bundles.hermitian import HermitianLineBundle
+    from dhlb.topology.complex import SimplicialComplex
 
 __all__ = ["DEFAULT_ORDER", "gauss_legendre", "edge_circulation", "velocity_bundle"]
 
@@ -87,7 +97,13 @@ def _eval_field(velocity, x: np.ndarray) -> np.ndarray:
     return u
 
 
-def edge_circulation(points, edges, velocity, *, order: int = DEFAULT_ORDER) -> np.ndarray:
+def edge_circulation(
+    points: ArrayLike,
+    edges: ArrayLike,
+    velocity: Callable[[np.ndarray], np.ndarray] | ArrayLike,
+    *,
+    order: int = DEFAULT_ORDER,
+) -> np.ndarray:
     """Line integrals ``ω_e = ∫_e v · dl`` along the edges ``e = (i, j)``, oriented from ``i`` to ``j``.
 
     Parameters
@@ -155,7 +171,14 @@ def _check_hbar(hbar) -> float:
     return h
 
 
-def velocity_bundle(X, points, velocity, hbar, *, order: int = DEFAULT_ORDER):
+def velocity_bundle(
+    X: SimplicialComplex,
+    points: ArrayLike,
+    velocity: Callable[[np.ndarray], np.ndarray] | ArrayLike,
+    hbar: float,
+    *,
+    order: int = DEFAULT_ORDER,
+) -> HermitianLineBundle:
     """The hermitian line bundle ``r = exp(iω/ħ)``, ``Ω = dω/ħ`` of a velocity field on a complex.
 
     Parameters

@@ -50,6 +50,7 @@ import json
 import time
 import warnings
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -58,6 +59,14 @@ from dhlb.volume.filaments import extract_filaments
 from dhlb.volume.linking import gauss_linking_integral
 from dhlb.volume.meshes import TetMesh, check_tet_mesh
 from dhlb.volume.velocity import DEFAULT_ORDER, _check_hbar, velocity_bundle
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+    from typing import Any
+
+    from numpy.typing import ArrayLike
+
+    from dhlb.volume.filaments import Filament
 
 __all__ = ["VortexResult", "filament_linking_numbers", "vortex_filaments"]
 
@@ -125,8 +134,11 @@ class VortexResult:
                 f"{self.timings['total']:.3g} s)")
 
     def to_dict(self) -> dict:
-        """A JSON-ready dict: ``filaments`` (``[{"points": [[x, y, z], …], "closed": bool}]``),
-        ``linking_numbers``, ``linking_index``, ``timings``, ``eigenvalue``, ``statistics``."""
+        """A JSON-ready dict.
+
+        Keys ``filaments`` (``[{"points": [[x, y, z], …], "closed": bool}]``), ``linking_numbers``,
+        ``linking_index``, ``timings``, ``eigenvalue``, ``statistics``.
+        """
         return {
             "filaments": [{"points": f.points.tolist(), "closed": bool(f.closed)} for f in self.filaments],
             "linking_numbers": self.linking_numbers.tolist(),
@@ -136,12 +148,14 @@ class VortexResult:
             "statistics": self.statistics,
         }
 
-    def to_json(self, **kwargs) -> str:
+    def to_json(self, **kwargs: Any) -> str:
         """:meth:`to_dict` as a JSON string (``kwargs`` go to :func:`json.dumps`)."""
         return json.dumps(self.to_dict(), **kwargs)
 
 
-def filament_linking_numbers(filaments, *, atol: float = _LINK_ATOL):
+def filament_linking_numbers(
+    filaments: Sequence[Filament], *, atol: float = _LINK_ATOL
+) -> tuple[np.ndarray, np.ndarray, float]:
     """Gauss linking numbers among the closed filaments.
 
     Returns ``(L, index, defect)``: the symmetric integer matrix, the positions of the closed
@@ -192,8 +206,9 @@ def _per_vertex_velocity(velocity, n_rows: int, rows: np.ndarray) -> np.ndarray:
     bad = ~np.isfinite(arr).all(axis=1)
     if np.any(bad):
         i = int(np.argmax(bad))
+        more = f"; {int(bad.sum())} vertices are affected" if bad.sum() > 1 else ""
         raise NonFiniteError(f"the velocity at vertex {int(rows[i])} (row {int(rows[i])} of V) is not finite: "
-                             f"{arr[i].tolist()}" + (f"; {int(bad.sum())} vertices are affected" if bad.sum() > 1 else ""))
+                             f"{arr[i].tolist()}{more}")
     return arr
 
 
@@ -213,8 +228,18 @@ def _warn_flux(X, points, Om) -> int:
     return nbig
 
 
-def vortex_filaments(V, T, velocity, hbar, *, order: int = DEFAULT_ORDER, backend=None, tol: float = DEFAULT_TOL,
-                     placement: str = "balanced", orientation: str = "fix") -> VortexResult:
+def vortex_filaments(
+    V: ArrayLike | TetMesh,
+    T: ArrayLike | None,
+    velocity: Callable[[np.ndarray], np.ndarray] | ArrayLike,
+    hbar: float,
+    *,
+    order: int = DEFAULT_ORDER,
+    backend: Any = None,
+    tol: float = DEFAULT_TOL,
+    placement: str = "balanced",
+    orientation: str = "fix",
+) -> VortexResult:
     """Vortex filaments of a velocity field on a tetrahedral mesh (see the module docstring).
 
     Parameters
