@@ -149,14 +149,14 @@ def test_auto_selection_rules(torus_problem, monkeypatch):
 
 def test_bad_backend_name_lists_available(monkeypatch):
     A, M = sp.identity(3, format="csr"), sp.identity(3, format="csr")
-    with pytest.raises(InvalidParameterError, match="unknown backend 'lapack'.*superlu") as info:
+    with pytest.raises(InvalidParameterError, match=r"unknown backend 'lapack'.*superlu") as info:
         smallest_eigenpairs(A, M, k=1, backend="lapack")
     for name in B.available_backends():
         assert repr(name) in str(info.value)
     with pytest.raises(InvalidParameterError, match="unknown backend"):
         solve(A, M, 0.5, np.ones(3), backend="mumps")
     monkeypatch.setattr(B, "available_backends", lambda: ["superlu"])         # registered, not installed
-    with pytest.raises(InvalidParameterError, match="'cholmod' is not installed.*scikit-sparse"):
+    with pytest.raises(InvalidParameterError, match=r"'cholmod' is not installed.*scikit-sparse"):
         smallest_eigenpairs(A, M, k=1, backend="cholmod")
     with pytest.raises(TypeError, match="factorize"):
         smallest_eigenpairs(A, M, k=1, backend=object())
@@ -221,3 +221,26 @@ def test_real_embedding_is_symmetric_and_equivalent():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         np.testing.assert_allclose(B.get_backend("cholespy").factorize(sp.csc_matrix(K)).solve(K @ x), x, rtol=1e-10)
+
+
+def test_pattern_dimension_tells_surfaces_with_blocks_from_tet_meshes(torus_problem):
+    """nnz per row is ~14 both for a surface with 2 × 2 blocks (real embedding) and for P1 on
+    tets; the ball-growth dimension separates them, and auto selection uses it."""
+    from dhlb.fem.backends_cholesky import real_embedding
+    from dhlb.geometry import EuclideanComplex
+    from dhlb.volume import box_tet_mesh
+
+    A, _ = torus_problem
+    n = A.shape[0]
+    perm = np.empty(2 * n, dtype=int)
+    perm[0::2], perm[1::2] = np.arange(n), np.arange(n, 2 * n)      # interleave (Re, Im) per vertex
+    E = real_embedding(A).tocsr()[perm][:, perm]
+    assert E.nnz / E.shape[0] >= 10 and A.nnz / n < 10
+    assert B.pattern_dimension(A.tocsr()) < 2.2 and B.pattern_dimension(E) < 2.2
+    mesh = box_tet_mesh(16)
+    S = EuclideanComplex(mesh.complex, points=mesh.points).stiffness_matrix().tocsr()
+    assert S.nnz / S.shape[0] >= 10 and B.pattern_dimension(S) >= 2.2
+    direct = "cholmod" if "cholmod" in B.available_backends() else "superlu"
+    three_d = "amg-lobpcg" if "amg-lobpcg" in B.available_backends() else direct
+    assert B.select_backend(50_000, 700_000, dimension=2.0) == direct
+    assert B.select_backend(50_000, 700_000, dimension=lambda: 2.6) == three_d

@@ -48,6 +48,7 @@ def check_eigenpairs(res, A, M, k, tol):
     A, M = np.asarray(sp.csr_matrix(A).toarray()), np.asarray(sp.csr_matrix(M).toarray())
     U, lam = res.eigenvectors, res.eigenvalues
     assert isinstance(res, EigenResult) and res.converged and res.backend == "superlu"
+    assert res.method in ("lanczos", "subspace", "lanczos+subspace")
     assert U.shape == (A.shape[0], k) and lam.shape == (k,)
     assert np.all(np.diff(lam) >= 0)
     np.testing.assert_allclose(U.conj().T @ M @ U, np.eye(k), atol=1e-10)
@@ -69,7 +70,7 @@ def test_against_dense_eigh_with_degenerate_eigenvalues(complex_):
     res = smallest_eigenpairs(sp.csr_matrix(A), sp.csr_matrix(M), k=k)
     check_eigenpairs(res, A, M, k, 1e-10)
     np.testing.assert_allclose(res.eigenvalues, spectrum[:k], atol=1e-12)
-    w, V = sla.eigh(A, M)
+    _, V = sla.eigh(A, M)
     for cluster in (slice(0, 2), slice(2, 5)):       # compare eigenspaces via M-projectors
         P_ref = V[:, cluster] @ V[:, cluster].conj().T @ M
         U = res.eigenvectors[:, cluster]
@@ -77,10 +78,11 @@ def test_against_dense_eigh_with_degenerate_eigenvalues(complex_):
     assert np.iscomplexobj(res.eigenvectors) == complex_
 
 
-@settings(max_examples=25, deadline=None)
-@given(st.integers(12, 40), st.integers(1, 6), st.booleans(), st.integers(0, 10**6),
+@settings(max_examples=40, deadline=None)
+@given(st.integers(12, 120), st.integers(1, 6), st.booleans(), st.integers(0, 10**6),
        st.lists(st.integers(1, 3), min_size=1, max_size=4))
 def test_random_pencils_match_eigh(n, k, complex_, seed, mult):
+    """Small n: subspace iteration; larger n: block Lanczos (block k sees multiplicities up to k)."""
     rng = np.random.default_rng(seed)
     low = np.repeat(np.sort(rng.uniform(0, 1, len(mult))), mult)   # clusters of equal eigenvalues
     spectrum = np.sort(np.r_[low, rng.uniform(2, 20, n - len(low))])[:n]
@@ -88,6 +90,8 @@ def test_random_pencils_match_eigh(n, k, complex_, seed, mult):
     res = smallest_eigenpairs(A, M, k=k)
     check_eigenpairs(res, A, M, k, 1e-10)
     np.testing.assert_allclose(res.eigenvalues, sla.eigh(A, M, eigvals_only=True)[:k], atol=1e-10)
+    assert res.method == ("lanczos" if n > max(20, 3 * k + (1 if k == 1 else k)) + (1 if k == 1 else k)
+                          else "subspace")
 
 
 def test_path_graph_spectrum():
@@ -153,8 +157,13 @@ def test_sigma_selects_nearest_and_v0_speeds_up():
     assert res2.shift == 4.0 - default_shift(D, sp.identity(10, format="csr"))
     cold = smallest_eigenpairs(A, sp.identity(n), k=1)
     warm = smallest_eigenpairs(A, sp.identity(n), k=1, v0=cold.eigenvectors[:, 0])
-    assert warm.iterations == 2 <= cold.iterations
+    assert warm.method == cold.method == "lanczos"
+    assert warm.iterations == 1 < cold.iterations      # an exact eigenvector: its Krylov space is invariant
     assert warm.eigenvalues[0] == pytest.approx(0.0, abs=1e-13)
+    sub_cold = smallest_eigenpairs(A, sp.identity(n), k=1, block_size=9)
+    sub_warm = smallest_eigenpairs(A, sp.identity(n), k=1, v0=cold.eigenvectors[:, 0], block_size=9)
+    assert sub_cold.method == sub_warm.method == "subspace"
+    assert sub_warm.iterations == 2 <= sub_cold.iterations   # subspace iteration also tests the eigenvalue change
 
 
 # ---------------------------------------------------------------------- convergence criterion
@@ -165,8 +174,10 @@ def test_residual_criterion_and_convergence_error():
         smallest_eigenpairs(A, Mm, k=4, maxiter=1)
     part = info.value.result
     assert not part.converged and part.iterations == 1 and part.residuals.shape == (4,)
+    assert part.method == "lanczos" and part.block_size == 4
     loose = smallest_eigenpairs(A, Mm, k=4, tol=1e-4)
     tight = smallest_eigenpairs(A, Mm, k=4, tol=1e-13)
+    assert loose.method == tight.method == "lanczos"
     assert loose.iterations < tight.iterations
     assert np.all(loose.residuals <= 1e-4) and np.all(tight.residuals <= 1e-13)
     exact = 2 - 2 * np.cos(np.pi * np.arange(4) / n)
@@ -277,3 +288,104 @@ def test_block_size_option_and_cluster_message():
         _se(A, M, k=3, block_size=2)
     with pytest.raises(_CE, match="raise block_size"):
         _se(A, M, k=2, block_size=3, maxiter=3)
+
+
+# ---------------------------------------------------------------------- Lanczos and its fallback
+class CountingBackend:
+    """SuperLU, counting the right-hand sides it solves."""
+
+    name = "counting"
+
+    def __init__(self):
+        from dhlb.fem.backends import SuperLUBackend
+        self.inner, self.blocks, self.columns = SuperLUBackend(), 0, 0
+
+    def factorize(self, K, *, positive_definite=False):
+        fac = self.inner.factorize(K, positive_definite=positive_definite)
+        outer = self
+
+        class Counted:
+            name = "counting"
+
+            def solve(self, B):
+                outer.blocks += 1
+                outer.columns += 1 if np.ndim(B) == 1 else np.shape(B)[1]
+                return fac.solve(B)
+
+        return Counted()
+
+
+@pytest.mark.parametrize("k", [1, 3])
+def test_iterations_count_block_solves_and_lanczos_matches_subspace(k):
+    """Torus grid (spectrum known exactly, eigenvalue 4 of multiplicity 4): Lanczos with block k
+    and the subspace iteration give the same eigenvalues; `iterations` counts block solves."""
+    m = 16
+    cyc = sp.diags([-np.ones(m - 1), 2 * np.ones(m), -np.ones(m - 1)], [-1, 0, 1], format="lil")
+    cyc[0, m - 1] = cyc[m - 1, 0] = -1
+    I = sp.identity(m)
+    A = (sp.kron(cyc.tocsr(), I) + sp.kron(I, cyc.tocsr())).tocsr()
+    lam1 = 2 - 2 * np.cos(2 * np.pi * np.arange(m) / m)
+    exact = np.sort(np.add.outer(lam1, lam1).ravel())[:k]
+    be = CountingBackend()
+    lan = smallest_eigenpairs(A, sp.identity(m * m), k=k, backend=be)
+    assert lan.method == "lanczos" and lan.block_size == (1 if k == 1 else k)
+    assert be.blocks == lan.iterations and be.columns == lan.iterations * lan.block_size
+    sub = smallest_eigenpairs(A, sp.identity(m * m), k=k, block_size=max(2 * k, k + 8))
+    assert sub.method == "subspace"
+    for res in (lan, sub):
+        np.testing.assert_allclose(res.eigenvalues, exact, atol=1e-12)
+        assert res.converged and np.all(res.residuals <= 1e-10)
+        np.testing.assert_allclose(backward_errors(A, sp.identity(m * m), res.eigenvalues, res.eigenvectors),
+                                   res.residuals, rtol=1e-6, atol=4 * np.finfo(float).eps)
+    assert lan.iterations * lan.block_size < sub.iterations * sub.block_size      # fewer right-hand sides
+
+
+def test_lanczos_falls_back_to_subspace_iteration():
+    """A tight cluster (4 eigenvalues within 3e-7) right above λ₁ with k = 2: with maxiter = 20
+    Lanczos (block 2) does not resolve it within its 10 steps and the subspace iteration (block 10
+    > cluster), warm-started from its Ritz vectors, finishes; with maxiter = 40 Lanczos finishes
+    itself. Both answers are checked to the backward error."""
+    d = np.concatenate([[0.0], 1.0 + 1e-7 * np.arange(4), 5.0 + np.arange(80)])
+    A, M = sp.diags(d).tocsr(), sp.identity(d.size, format="csr")
+    mixed = smallest_eigenpairs(A, M, k=2, maxiter=20)
+    assert mixed.method == "lanczos+subspace" and 10 < mixed.iterations <= 20 and mixed.block_size == 10
+    pure = smallest_eigenpairs(A, M, k=2, maxiter=40)
+    assert pure.method == "lanczos" and pure.iterations <= 20
+    for res in (mixed, pure):
+        np.testing.assert_allclose(res.eigenvalues, d[:2], atol=1e-9)
+        assert res.converged and np.all(res.residuals <= 1e-10)
+        np.testing.assert_allclose(backward_errors(A, M, res.eigenvalues, res.eigenvectors), res.residuals,
+                                   rtol=1e-6, atol=4 * np.finfo(float).eps)
+    with pytest.raises(ConvergenceError) as info:
+        smallest_eigenpairs(A, M, k=2, maxiter=2, tol=1e-15)
+    assert info.value.result.method == "lanczos+subspace" and info.value.result.iterations == 2
+
+
+def test_lanczos_finds_every_copy_of_a_multiple_eigenvalue():
+    """Exact multiplicities (3 and 2) at the bottom: block Lanczos with block k returns all copies."""
+    d = np.r_[0.25, 0.25, 0.25, 0.5, 0.5, np.linspace(1, 9, 95)]
+    rng = np.random.default_rng(7)
+    Q, _ = np.linalg.qr(rng.normal(size=(100, 100)))
+    A = Q @ np.diag(d) @ Q.T
+    A = sp.csr_matrix(0.5 * (A + A.T))
+    res = smallest_eigenpairs(A, sp.identity(100, format="csr"), k=5)
+    assert res.method == "lanczos"
+    np.testing.assert_allclose(res.eigenvalues, d[:5], atol=1e-12)
+
+
+# ---------------------------------------------------------------------- positive definite solves
+@pytest.mark.parametrize("backend", ["superlu", None])
+def test_solve_positive_definite_checks_lambda(backend):
+    n = 40
+    A, M = path_laplacian(n), sp.identity(n, format="csr")
+    lam1 = 2 - 2 * np.cos(np.pi / n)                      # smallest nonzero eigenvalue; λ₀ = 0
+    b = np.linspace(1, 2, n)
+    x = solve(A, M, -0.1, b, backend=backend, positive_definite=True)
+    np.testing.assert_allclose((A + 0.1 * M) @ x, b, atol=1e-12)
+    for lam in (0.5 * lam1, 1.0):                         # above λ₀ = 0: indefinite
+        with pytest.raises(InvalidOperatorError, match=f"not positive definite for λ = {lam:.10g}"):
+            solve(A, M, lam, b, backend=backend, positive_definite=True)
+        xi = solve(A, M, lam, b, backend=backend)         # the indefinite solve still works
+        np.testing.assert_allclose((A - lam * M) @ xi, b, atol=1e-9)
+    with pytest.raises(InvalidOperatorError, match="λ = 0"):
+        solve(A, M, 0.0, b, backend=backend, positive_definite=True)   # singular: not PD either

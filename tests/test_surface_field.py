@@ -350,3 +350,12 @@ def test_indices_do_not_depend_on_the_frames(seed, n, s):
     assert a.input_face_index().tolist() == b.input_face_index().tolist()
     # |u| is gauge invariant: the same field up to a global phase
     assert np.allclose(np.abs(a.u[perm]), np.abs(b.u), rtol=1e-6, atol=1e-9)
+
+
+def test_aligned_field_refuses_lambda_above_the_smallest_eigenvalue():
+    from dhlb.errors import InvalidOperatorError
+
+    V, F = grid(6, 6)
+    lam1 = direction_field(V, F, n=4, s=0.0).eigenvalue          # a flat square: λ₁ = 0 (parallel fields)
+    with pytest.raises(InvalidOperatorError, match="below the smallest eigenvalue"):
+        direction_field(V, F, n=4, align="boundary", lam=lam1 + 1.0)

@@ -133,7 +133,10 @@ class CholespyBackend:
     name = "cholespy"
 
     def factorize(self, K, *, positive_definite: bool = False):
-        """Factorize ``K`` (its real embedding if complex); raises :class:`InvalidOperatorError` if asserted PD and it is not."""
+        """Factorize ``K`` (its real embedding if complex).
+
+        Raises :class:`InvalidOperatorError` if asserted positive definite and it is not.
+        """
         import cholespy
 
         K = canonical_csc(K)

@@ -179,7 +179,8 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
             qn = float(np.sqrt(max((q.conj() @ (Mc @ q)).real, 0.0)))
             if qn == 0.0:
                 raise InvalidParameterError("the guidance vanishes on a connected component; give guidance there")
-            ut = solve(Ac, Mc, lam, Mc @ (q / qn), backend=backend)     # Appendix A assumes ‖φ‖_M = 1
+            # Appendix A assumes ‖φ‖_M = 1; λ_t must lie below the smallest eigenvalue: A − λ_t M is PD
+            ut = solve(Ac, Mc, lam, Mc @ (q / qn), backend=backend, positive_definite=True)
             norm = float(np.sqrt(max((ut.conj() @ (Mc @ ut)).real, 0.0)))
             uc = ut / norm
             ts.append(1.0 / (1.0 + norm))
