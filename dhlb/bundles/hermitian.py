@@ -98,6 +98,15 @@ class HermitianLineBundle:
         ``exp(iΩ_t) ≠ r_ij r_jk r_ki`` (names the triangle and the mismatch).
     NotClosedError
         ``dΩ ≠ 0`` on a tetrahedron (names it).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)])
+    >>> L = HermitianLineBundle(X, np.ones(6), [0, 0, 0, 2 * np.pi])
+    >>> L.degree(), L.is_isomorphic(HermitianLineBundle.trivial(X)), L.tensor(L.dual()).degree()
+    (-1, False, 0)
     """
 
     def __init__(self, X: SimplicialComplex, connection: ArrayLike, curvature: ArrayLike, *, atol: float = 1e-8):

@@ -68,6 +68,15 @@ def rotation_form(L: HermitianLineBundle, section: ArrayLike) -> np.ndarray:
     ------
     SectionZeroError
         if the section vanishes at some vertex (named).
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> from dhlb.bundles import HermitianLineBundle
+    >>> X = SimplicialComplex([(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)])
+    >>> z = np.exp(1j * np.array([0.0, 2.0, 4.0, 0.0]))
+    >>> rotation_form(HermitianLineBundle.trivial(X), z).round(6).tolist()
+    [2.0, -2.283185, 0.0, 2.0, -2.0, 2.283185]
     """
     z = _section(L, section)
     E = L.X.simplices(1)
@@ -80,6 +89,15 @@ def index_form(L: HermitianLineBundle, section: ArrayLike) -> np.ndarray:
 
     The values are integers by Theorem 11; they are checked to tolerance (a failure would
     mean that the bundle's curvature and connection disagree).
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> from dhlb.bundles import HermitianLineBundle
+    >>> X = SimplicialComplex([(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)])
+    >>> L = HermitianLineBundle(X, np.ones(6), [0, 0, 0, 2 * np.pi])
+    >>> index_form(L, np.ones(4)).tolist()
+    [0, 0, 0, 1]
     """
     xi = rotation_form(L, section)
     val = (coboundary(L.X, 1, xi)[0] + L.curvature) / (2 * np.pi)
@@ -100,6 +118,15 @@ def index_sum(L: HermitianLineBundle, section: ArrayLike, cycle: ArrayLike | Non
 
     ``C`` defaults to the fundamental cycle ``X.orientation()`` of a closed oriented surface.
     Poincaré–Hopf: this equals ``(1/2π) ∫_C Ω`` (the degree, for the fundamental cycle).
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> from dhlb.bundles import HermitianLineBundle
+    >>> X = SimplicialComplex([(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)])
+    >>> L = HermitianLineBundle(X, np.ones(6), [0, 0, 0, 2 * np.pi])
+    >>> index_sum(L, np.ones(4)), L.degree(), index_sum(L, np.ones(4), [-1, 1, -1, 1])
+    (-1, -1, 1)
     """
     ind = index_form(L, section)
     if cycle is None:

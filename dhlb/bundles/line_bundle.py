@@ -58,6 +58,14 @@ class LineBundleClass:
     X : SimplicialComplex
     values : (m,) array, one F* value per non-tree edge of ``spanning_forest(X)``
     field : ``"R"``, ``"C"`` or ``("GF", p)``
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])
+    >>> c = LineBundleClass(X, [-1.0], "R")                         # the Möbius band
+    >>> c.bundle().is_trivial(), (c * c).is_trivial(), float(c.evaluate([1, -1, 1]))
+    (False, True, -1.0)
     """
 
     def __init__(self, X: SimplicialComplex, values: ArrayLike, field: str | tuple[str, int] = "C", atol: float = 1e-9):
@@ -152,14 +160,30 @@ class LineBundleClass:
 
 
 def line_bundle_class(L: VectorBundle) -> LineBundleClass:
-    """The class of a rank-1 bundle in Hom(ker ∂₁, F*) (Theorem 6: abelianized monodromy)."""
+    """The class of a rank-1 bundle in Hom(ker ∂₁, F*) (Theorem 6: abelianized monodromy).
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])
+    >>> line_bundle_class(VectorBundle(X, [2.0, 1.0, 1.0])).values.tolist()
+    [2.0]
+    """
     if L.rank != 1:
         raise InvalidConnectionError(f"line_bundle_class needs a line bundle (rank 1), got rank {L.rank}")
     return LineBundleClass(L.X, L.monodromy_representation()[:, 0, 0], L.field, L.atol)
 
 
 def connection_form(L: VectorBundle) -> np.ndarray:
-    """A connection form of a line bundle (Definition 6): ``ω_ij = η_ij`` in the given frames."""
+    """A connection form of a line bundle (Definition 6): ``ω_ij = η_ij`` in the given frames.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])
+    >>> connection_form(VectorBundle(X, [2.0, 1.0, 1.0])).tolist()
+    [2.0, 1.0, 1.0]
+    """
     if L.rank != 1:
         raise InvalidConnectionError(f"connection forms are for line bundles (rank 1), got rank {L.rank}")
     return L.transports[:, 0, 0].copy()
@@ -168,7 +192,15 @@ def connection_form(L: VectorBundle) -> np.ndarray:
 def form_class(
     X: SimplicialComplex, omega: ArrayLike, field: str | tuple[str, int] = "C", atol: float = 1e-9
 ) -> LineBundleClass:
-    """The class of an F*-valued 1-form ``ω`` (per canonical edge) in Hom(ker ∂₁, F*)."""
+    """The class of an F*-valued 1-form ``ω`` (per canonical edge) in Hom(ker ∂₁, F*).
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])           # cycle = (0,1) + (1,2) − (0,2)
+    >>> form_class(X, [2.0, 4.0, 1.0], "R").values.tolist()
+    [0.5]
+    """
     return line_bundle_class(VectorBundle(X, np.asarray(omega).reshape(-1), field, atol=atol))
 
 
@@ -181,6 +213,13 @@ def integrate_exact_form(
     ------
     NotExactError
         naming a fundamental cycle (by its non-tree edge) on which ``ω`` is not 1.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])           # edges (0,1), (0,2), (1,2)
+    >>> integrate_exact_form(X, [2.0, 6.0, 3.0], "R").tolist()
+    [1.0, 2.0, 6.0]
     """
     L = VectorBundle(X, np.asarray(omega).reshape(-1), field, atol=atol)
     c = line_bundle_class(L)

@@ -70,6 +70,13 @@ def gauge(E: VectorBundle, g: ArrayLike) -> VectorBundle:
     ------
     InvalidConnectionError
         if some ``g_i`` is singular (names the vertex).
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])             # edges (0,1), (0,2), (1,2)
+    >>> gauge(VectorBundle.trivial(X, 1), np.array([1.0, 2.0, 4.0])).transports.ravel().tolist()
+    [2.0, 4.0, 2.0]
     """
     ops = E.ops
     G = _vertex_matrices(E, g, "the gauge transformation")
@@ -98,7 +105,16 @@ def _check_pair(E: VectorBundle, F: VectorBundle, same_rank: bool = False) -> No
 
 
 def direct_sum(E: VectorBundle, F: VectorBundle) -> VectorBundle:
-    """``E ⊕ F`` with the block-diagonal connection ``η ⊕ θ``."""
+    """``E ⊕ F`` with the block-diagonal connection ``η ⊕ θ``.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])
+    >>> S = direct_sum(VectorBundle(X, [2.0, 1.0, 1.0]), VectorBundle.trivial(X, 2))
+    >>> S.rank, S.monodromy([0, 1, 2, 0]).diagonal().tolist()
+    (3, [2.0, 1.0, 1.0])
+    """
     _check_pair(E, F)
     n1, a, b = E.X.n_simplices(1), E.rank, F.rank
     eta = np.zeros((n1, a + b, a + b), E.ops.dtype)
@@ -114,7 +130,16 @@ def _kron(A: np.ndarray, B: np.ndarray) -> np.ndarray:
 
 
 def tensor(E: VectorBundle, F: VectorBundle) -> VectorBundle:
-    """``E ⊗ F`` with ``(η ⊗ θ)_ij = η_ij ⊗ θ_ij`` (Kronecker product, row-major)."""
+    """``E ⊗ F`` with ``(η ⊗ θ)_ij = η_ij ⊗ θ_ij`` (Kronecker product, row-major).
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])
+    >>> E = VectorBundle(X, [2.0, 1.0, 1.0])
+    >>> tensor(E, E).transports.ravel().tolist(), tensor(E, VectorBundle.trivial(X, 3)).rank
+    ([4.0, 1.0, 1.0], 3)
+    """
     _check_pair(E, F)
     eta = _kron(E.transports, F.transports)
     if E.ops.exact:
@@ -123,17 +148,43 @@ def tensor(E: VectorBundle, F: VectorBundle) -> VectorBundle:
 
 
 def dual(E: VectorBundle) -> VectorBundle:
-    """``E*`` with the contragredient connection ``(η_ij⁻¹)ᵀ`` (complex-linear dual)."""
+    """``E*`` with the contragredient connection ``(η_ij⁻¹)ᵀ`` (complex-linear dual).
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])
+    >>> dual(VectorBundle(X, [2.0, 1.0, 1.0])).transports.ravel().tolist()
+    [0.5, 1.0, 1.0]
+    """
     return VectorBundle(E.X, np.swapaxes(E.inverse_transports, 1, 2), E.field, metric=E.metric, atol=E.atol)
 
 
 def hom(E: VectorBundle, F: VectorBundle) -> VectorBundle:
-    """``Hom(E, F) = F ⊗ E*``; its parallel sections, reshaped to (K_F, K_E), are the morphisms."""
+    """``Hom(E, F) = F ⊗ E*``; its parallel sections, reshaped to (K_F, K_E), are the morphisms.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])
+    >>> E = VectorBundle(X, [2.0, 1.0, 1.0])
+    >>> hom(E, E).is_trivial(), hom(E, VectorBundle.trivial(X, 1)).is_trivial()
+    (True, False)
+    """
     return tensor(F, dual(E))
 
 
 def is_morphism(E: VectorBundle, F: VectorBundle, f: ArrayLike) -> bool:
-    """True if ``f`` (shape (n_0, K_F, K_E)) makes every edge diagram commute: ``f_j η_ij = θ_ij f_i``."""
+    """True if ``f`` (shape (n_0, K_F, K_E)) makes every edge diagram commute: ``f_j η_ij = θ_ij f_i``.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])
+    >>> E, I = VectorBundle(X, [2.0, 1.0, 1.0]), VectorBundle.trivial(X, 1)
+    >>> is_morphism(E, E, np.full((3, 1, 1), 5.0)), is_morphism(E, I, np.ones((3, 1, 1)))
+    (True, False)
+    """
     _check_pair(E, F)
     ops = E.ops
     f = ops.asarray(np.asarray(f), "the morphism")
@@ -192,6 +243,16 @@ def find_isomorphism(
     ------
     InvalidConnectionError
         if the bundles have different complexes, fields or ranks.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])
+    >>> E = VectorBundle(X, [2.0, 1.0, 1.0])                        # monodromy 2 around the circle
+    >>> F = E.gauge(np.array([1.0, 3.0, -1.0]))
+    >>> f = find_isomorphism(E, F)
+    >>> f.shape, is_morphism(E, F, f), find_isomorphism(E, E.dual()) is None
+    ((3, 1, 1), True, True)
     """
     _check_pair(E, F, same_rank=True)
     ops = E.ops
@@ -245,5 +306,14 @@ def _no_isomorphism(ops, ME, MF, E: VectorBundle, F: VectorBundle):
 
 
 def is_isomorphic(E: VectorBundle, F: VectorBundle, **kwargs: Any) -> bool:
-    """True if :func:`find_isomorphism` finds an isomorphism."""
+    """True if :func:`find_isomorphism` finds an isomorphism.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])
+    >>> E = VectorBundle(X, [-1.0, 1.0, 1.0])                       # monodromy -1: a Möbius band
+    >>> is_isomorphic(E, E.gauge(np.array([1.0, 3.0, -1.0]))), is_isomorphic(E, VectorBundle.trivial(X, 1))
+    (True, False)
+    """
     return find_isomorphism(E, F, **kwargs) is not None

@@ -61,6 +61,13 @@ class VectorBundle:
     InvalidConnectionError
         wrong shape, a singular transport, or (``metric=True``) a non-unitary one; the
         message names the edge.
+
+    Examples
+    --------
+    >>> from dhlb.examples import torus
+    >>> E = VectorBundle.trivial(torus(), 2)
+    >>> E.rank, E.is_flat(), E.is_trivial(), E.parallel_sections().shape
+    (2, True, True, (7, 2, 2))
     """
 
     def __init__(

@@ -62,6 +62,16 @@ def integer_cycle_basis(X: SimplicialComplex) -> sp.csc_matrix:
     For complexes without 3-simplices this is a Z-basis of ker ∂₂.  With 3-simplices it is
     the list of H₂ generators (free and torsion); together with the tetrahedron boundaries
     they generate ker ∂₂.
+
+    Examples
+    --------
+    >>> from dhlb.examples import projective_plane, torus
+    >>> from dhlb.topology import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)])
+    >>> integer_cycle_basis(X).toarray().ravel().tolist()
+    [1, -1, 1, -1]
+    >>> integer_cycle_basis(torus()).shape, integer_cycle_basis(projective_plane()).shape
+    ((14, 1), (10, 0))
     """
     S = surface_cycles(X)
     if S is not None:
@@ -208,6 +218,15 @@ class BundlesWithCurvature:
         H₁ generators (free first, then torsion), from :func:`dhlb.topology.homology.homology`.
     cocycles : (n_1, b1 + t) float
         Their dual S¹ cocycles (from :func:`dhlb.topology.homology.cohomology` with ``"S1"``).
+
+    Examples
+    --------
+    >>> from dhlb.examples import projective_plane
+    >>> X = projective_plane()
+    >>> F = BundlesWithCurvature(X, np.zeros(X.n_simplices(2)))
+    >>> L = F.bundle(torsion=[1])                                   # holonomy π on the generator of H₁
+    >>> F.torsion_orders, F.coordinates(L)[1], L.is_isomorphic(F.base)
+    ((2,), (1,), False)
     """
 
     def __init__(self, X: SimplicialComplex, Omega: ArrayLike, *, atol: float = 1e-8):
@@ -267,7 +286,16 @@ class BundlesWithCurvature:
 
 
 def bundles_with_curvature(X: SimplicialComplex, Omega: ArrayLike, *, atol: float = 1e-8) -> BundlesWithCurvature:
-    """The H¹(X; S¹)-parametrized family of bundles with curvature Ω (Remark 7)."""
+    """The H¹(X; S¹)-parametrized family of bundles with curvature Ω (Remark 7).
+
+    Examples
+    --------
+    >>> from dhlb.examples import torus
+    >>> X = torus()
+    >>> F = bundles_with_curvature(X, np.zeros(X.n_simplices(2)))
+    >>> F.b1, F.torsion_orders, F.base.degree()
+    (2, (), 0)
+    """
     return BundlesWithCurvature(X, Omega, atol=atol)
 
 
@@ -276,5 +304,11 @@ def flat_line_bundles(X: SimplicialComplex, free_angles: ArrayLike | None = None
 
     Over RP² there are exactly two (holonomy 0 and π); over the torus the list has one
     element for each choice of the two free angles.
+
+    Examples
+    --------
+    >>> from dhlb.examples import projective_plane, torus
+    >>> len(flat_line_bundles(projective_plane())), len(flat_line_bundles(torus(), [np.pi / 2, 0.0]))
+    (2, 1)
     """
     return BundlesWithCurvature(X, np.zeros(X.n_simplices(2)), atol=atol).enumerate_torsion(free_angles)

@@ -39,6 +39,13 @@ class MeshComplex(NamedTuple):
         ``-1`` otherwise (:meth:`SimplicialComplex.orientation_of`). The input row order is the
         orientation the user meant; ``o = np.zeros(n_k, int); o[index] = orientation`` gives it
         per simplex.
+
+    Examples
+    --------
+    >>> from dhlb.examples import surface
+    >>> mc = surface([[0, 1, 2], [1, 3, 2]], [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]])
+    >>> mc.complex.counts, mc.index.tolist(), mc.orientation.tolist(), mc.points.shape
+    ((4, 5, 2), [0, 1], [1, -1], (4, 3))
     """
 
     complex: SimplicialComplex

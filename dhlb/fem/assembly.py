@@ -204,7 +204,16 @@ def bundle_matrices(
 
 
 def lumped_mass(geometry: EuclideanComplex) -> np.ndarray:
-    """The lumped mass ``Σ_{σ ∋ i} vol(σ)/(n+1)`` per vertex, as a vector."""
+    """The lumped mass ``Σ_{σ ∋ i} vol(σ)/(n+1)`` per vertex, as a vector.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> from dhlb.geometry import EuclideanComplex
+    >>> G = EuclideanComplex(SimplicialComplex([(0, 1, 2)]), [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+    >>> lumped_mass(G).round(6).tolist()
+    [0.166667, 0.166667, 0.166667]
+    """
     X = geometry.complex
     n = X.dim
     vol = np.asarray(geometry.volumes(n), dtype=float)

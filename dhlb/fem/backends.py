@@ -240,7 +240,13 @@ def register_backend(name: str, factory, requires=()) -> None:
 
 
 def available_backends() -> list[str]:
-    """Names of the backends whose dependencies are importable, in registry order."""
+    """Names of the backends whose dependencies are importable, in registry order.
+
+    Examples
+    --------
+    >>> "superlu" in available_backends()                           # always available (scipy)
+    True
+    """
     return [n for n, (_, req) in _REGISTRY.items() if all(_importable(r) for r in req)]
 
 

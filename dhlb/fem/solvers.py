@@ -117,6 +117,14 @@ class EigenResult:
     shift : float, the shift ``σ`` that was factorized (``A − σM``)
     block_size : int, number of vectors iterated (each iteration solves that many right-hand sides)
     method : str, ``"lanczos"``, ``"subspace"``, ``"lanczos+subspace"`` (fallback) or ``"lobpcg"``
+
+    Examples
+    --------
+    >>> import scipy.sparse as sp
+    >>> A = sp.csr_matrix([[2.0, -1.0], [-1.0, 2.0]])                # eigenvalues 1 and 3
+    >>> r = smallest_eigenpairs(A, sp.identity(2, format="csr"), 1)
+    >>> r.converged, round(float(r.eigenvalues[0]), 6), r.eigenvectors.shape
+    (True, 1.0, (2, 1))
     """
 
     eigenvalues: np.ndarray

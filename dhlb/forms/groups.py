@@ -280,6 +280,12 @@ def get_group(group: str | Group) -> Group:
     ------
     InvalidCochainError
         For an unknown name.
+
+    Examples
+    --------
+    >>> g = get_group("circle")
+    >>> g.name, get_group("CSTAR").name, get_group(g) is g
+    ('S1', 'C*', True)
     """
     if isinstance(group, Group):
         return group

@@ -61,6 +61,16 @@ class SolveResult:
         ``|log(dα/β)|``).
     exact : bool
         True if the residual is within the tolerance, i.e. β = dα.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])           # edges (0,1), (0,2), (1,2)
+    >>> res = solve_d(Cochain(X, 1, [1.0, 3.0, 2.0]))
+    >>> res.exact, round(res.residual, 6), res.solution.values.round(6).tolist()
+    (True, 0.0, [0.0, 1.0, 3.0])
+    >>> solve_d(Cochain(X, 1, [1.0, 0.0, 0.0])).exact
+    False
     """
 
     solution: Cochain

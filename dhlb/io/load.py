@@ -41,6 +41,13 @@ class MeshData:
     cells : dict {k: (m_k, k+1) int64 array}
         The cells of each dimension in the file, in file order: 0-based rows of ``points`` for
         meshes, the vertex labels as written for a simplex list.
+
+    Examples
+    --------
+    >>> from dhlb.io import example_path, load
+    >>> data = load(example_path("torus.obj"))
+    >>> data.format, data.kind, data.dim, data.points.shape, data.top_cells.shape
+    ('obj', 'surface', 2, (288, 3), (576, 3))
     """
 
     path: str

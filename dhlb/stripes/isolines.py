@@ -57,6 +57,20 @@ class Isolines:
     segments : (S, 2) int64 rows of ``points``
     polylines : tuple of int64 arrays (rows of ``points``, in order; a closed one repeats its first point)
     closed : (L,) bool
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
+    >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+    >>> tex = texture_coordinates(form, np.exp(0.5j * np.pi * np.array(V)[:, 0]))   # ψ = exp(i ν x), ν = 2π/4
+    >>> from dhlb.stripes import isolines
+    >>> iso = isolines(tex, level=np.pi / 4)              # α = ν x = π/4: the segment x = 1/2
+    >>> iso.points.shape, iso.segments.tolist(), iso.closed.tolist()
+    ((3, 3), [[0, 2], [1, 2]], [False])
     """
 
     level: float
@@ -191,7 +205,17 @@ def isolines(texture: StripeTexture, level: float = 0.0, *, refine: int = 8, tol
 
     Examples
     --------
-    See the module docstring.
+    >>> import numpy as np
+    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
+    >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+    >>> tex = texture_coordinates(form, np.exp(0.5j * np.pi * np.array(V)[:, 0]))   # ψ = exp(i ν x), ν = 2π/4
+    >>> from dhlb.stripes import isolines
+    >>> iso = isolines(tex, level=np.pi / 4)
+    >>> len(iso.polylines), iso.points[iso.polylines[0]][:, 0].round(12).tolist()   # the line x = 1/2
+    (1, [0.5, 0.5, 0.5])
     """
     c = float(level)
     if not np.isfinite(c):

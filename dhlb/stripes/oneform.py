@@ -104,6 +104,18 @@ class DoubleCover:
     n_base_vertices : int
     face_lifts : (m, 3) int64
     points : (2N, 3) float, the position of each cover vertex (that of the vertex below it)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
+    >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+    >>> dc = form.double_cover
+    >>> dc.n_base_vertices, dc.complex.n_simplices(0), dc.lift([1j, 1, 2, 3]).tolist()[3:5]
+    (4, 8, [(3+0j), -1j])
     """
 
     complex: SimplicialComplex
@@ -176,6 +188,17 @@ class StripeForm:
     Build it with :func:`stripe_form`. Per canonical edge of ``mesh.complex.simplices(1)``:
     :attr:`omega`, :attr:`edge_sign`; per face of ``mesh.faces`` (mesh orientation):
     :attr:`is_branch`, :attr:`corner_sheet`, :meth:`lift_halfedges`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
+    >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+    >>> form.n, form.edge_sign.tolist(), form.is_branch.tolist(), round(float(form.omega[0] / np.pi), 6)
+    (1, [1, 1, 1, 1, 1], [False, False], 0.5)
     """
 
     def __init__(self, tangent: TangentBundle, directions: np.ndarray, angles: np.ndarray, frequency: np.ndarray,
@@ -399,6 +422,17 @@ def stripe_form(
     DhlbWarning
         On edges with ``|ω̂| > π`` the per-vertex values ``arg ψ`` alias; the texture coordinates
         (:func:`dhlb.stripes.texture_coordinates`, frequency adjustment of §4.3) stay correct.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
+    >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+    >>> ((form.omega / np.pi).round(6) + 0.0).tolist()    # ν ⟨e, X⟩ on the edges 01 02 12 13 23, ν = 2π/4
+    [0.5, 0.0, -0.5, 0.0, 0.5]
     """
     if isinstance(surface, TangentBundle):
         tb = surface if surface.n == 1 else TangentBundle(surface.mesh, 1)

@@ -66,7 +66,22 @@ _INTERPOLATION = (
 def stripes_sidecar(
     texture: StripeTexture, *, obj_name: str | None = None, obj_face_of: ArrayLike | None = None
 ) -> dict:
-    """The JSON-serializable description of zero and branch faces (see the module docstring)."""
+    """The JSON-serializable description of zero and branch faces (see the module docstring).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
+    >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+    >>> tex = texture_coordinates(form, np.exp(0.5j * np.pi * np.array(V)[:, 0]))   # ψ = exp(i ν x), ν = 2π/4
+    >>> from dhlb.stripes import stripes_sidecar
+    >>> side = stripes_sidecar(tex, obj_name="square.obj")
+    >>> side["format"], side["n"], side["n_faces"], side["zeros"]["faces"], side["branch"]["faces"]
+    ('dhlb-stripes', 1, 2, [], [])
+    """
     mesh = texture.mesh
     zf, bf = texture.zero_faces, texture.branch_faces
     out = {
@@ -123,6 +138,23 @@ def write_stripes_obj(
     Returns
     -------
     (obj_path, json_path or None)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
+    >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+    >>> tex = texture_coordinates(form, np.exp(0.5j * np.pi * np.array(V)[:, 0]))   # ψ = exp(i ν x), ν = 2π/4
+    >>> import os, pathlib, tempfile
+    >>> from dhlb.stripes import write_stripes_obj
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     obj, side = write_stripes_obj(os.path.join(d, "square.obj"), tex)
+    ...     lines = pathlib.Path(obj).read_text().splitlines()
+    >>> os.path.basename(side), sum(s.startswith("vt ") for s in lines), lines[-1]
+    ('square.json', 6, 'f 2/4 4/5 3/6')
     """
     if isinstance(expand, bool) or not isinstance(expand, (int, np.integer)) or expand < 0:
         raise InvalidParameterError(f"expand must be an integer >= 0, got {expand!r}")

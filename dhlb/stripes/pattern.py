@@ -81,6 +81,15 @@ class StripePattern:
         Seconds: ``setup`` (mesh, form, matrices), ``solve``, ``texture``, ``total``.
     orthogonal : StripePattern or None
         The pattern of the directions turned by 90° (``orthogonal=True``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.stripes import stripe_pattern
+    >>> V, F = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], [[0, 1, 2], [1, 3, 2]]
+    >>> res = stripe_pattern(V, F, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)    # stripes across x
+    >>> res.n, res.psi.shape, bool(abs(res.eigenvalue) < 1e-9), res.zero_faces.size, res.energy
+    (1, (4,), True, 0, 'cotan')
     """
 
     form: StripeForm
@@ -310,6 +319,16 @@ def stripe_pattern(
     -----
     DhlbWarning
         Stripes narrower than the mesh resolves (the frequency adjustment keeps α correct).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.stripes import stripe_pattern
+    >>> V, F = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], [[0, 1, 2], [1, 3, 2]]
+    >>> res = stripe_pattern(V, F, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)    # stripes across x
+    >>> alpha = res.texture.evaluate(0, [[1, 0, 0], [0, 1, 0]])    # from x = 0 to x = 1: Δα = 2π/4
+    >>> round(float(alpha[1] - alpha[0]) / np.pi, 6)
+    0.5
     """
     t0 = time.perf_counter()
     if energy not in ENERGIES:

@@ -72,6 +72,13 @@ def larg(n: int | ArrayLike, bary: ArrayLike) -> np.ndarray:
     ``τ = (t_{c+1} − t_{c+2}) / (1 − 3 t_{c+2})``: linear along the boundary (0, 2πn/3, 4πn/3 at
     the corners, 2πn back at the first), constant on rays from the barycenter m, and a continuous
     map to the circle away from m. At m it is NaN (0 where n = 0).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.stripes import larg
+    >>> (larg(1, [[1, 0, 0], [0, 1, 0], [0, 0, 1], [0.5, 0.5, 0]]) / (np.pi / 3)).round(12).tolist()
+    [0.0, 2.0, 4.0, 1.0]
     """
     t = np.asarray(bary, np.float64).reshape(-1, 3)
     n = np.broadcast_to(np.asarray(n, np.float64), (len(t),))
@@ -89,6 +96,19 @@ class Subdivision:
     Regular faces without zero: the face itself (exact). Branch faces: the three cones (exact).
     Zero faces: each cone on a ``refine × refine`` grid in (distance from m, ray) coordinates, with
     the barycenter blown up (the nodes at m carry the limit values along their rays).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
+    >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+    >>> tex = texture_coordinates(form, np.exp(0.5j * np.pi * np.array(V)[:, 0]))   # ψ = exp(i ν x), ν = 2π/4
+    >>> sub = tex.subdivision()        # no zero, no branch face: the two faces themselves
+    >>> sub.face.tolist(), sub.bary.shape, sub.alpha.shape
+    ([0, 1], (2, 3, 3), (2, 3))
     """
 
     face: np.ndarray  # (T,) int64
@@ -108,6 +128,18 @@ class StripeTexture:
     zero_index : (m,) int64 n_ijk (0 on branch faces)
     is_branch : (m,) bool
     branch_faces : (b,) int64;  branch_alpha : (b, 2) (β_m, β_l)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
+    >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+    >>> tex = texture_coordinates(form, np.exp(0.5j * np.pi * np.array(V)[:, 0]))   # ψ = exp(i ν x), ν = 2π/4
+    >>> tex.zero_index.tolist(), tex.branch_faces.tolist(), ((tex.corner_alpha / (np.pi / 2)).round(6) + 0.0).tolist()
+    ([0, 0], [], [[0.0, 1.0, 0.0], [1.0, 1.0, 0.0]])
     """
 
     def __init__(self, form: StripeForm, psi: np.ndarray):
@@ -265,6 +297,18 @@ def texture_coordinates(form: StripeForm, psi: ArrayLike) -> StripeTexture:
         wrong length, NaN or infinity (naming the vertex).
     SectionZeroError
         ψ vanishes at a vertex (its phase is undefined there; naming the vertex).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
+    >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+    >>> tex = texture_coordinates(form, np.exp(0.5j * np.pi * np.array(V)[:, 0]))   # ψ = exp(i ν x), ν = 2π/4
+    >>> round(float(tex.evaluate(0, [[0.2, 0.5, 0.3]])[0] / (np.pi / 2)), 6)        # α = ν x at x = 0.5
+    0.5
     """
     mesh = form.mesh
     arr = np.asarray(psi)

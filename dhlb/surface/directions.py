@@ -50,6 +50,16 @@ class Singularities:
     index : (k,) int64, index in the mesh orientation (+1: red, −1: blue)
     barycentric : (k, 3) float64, position in the face, w.r.t. ``mesh.faces[faces]``
     points : (k, 3) float64, position in space
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import field_indices, tangent_bundle
+    >>> V = [[0, 0, 1], [0, 0, -1], [1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0]]
+    >>> F = [[0, 2, 4], [0, 4, 3], [0, 3, 5], [0, 5, 2], [1, 4, 2], [1, 3, 4], [1, 5, 3], [1, 2, 5]]
+    >>> sing = field_indices(tangent_bundle(V, F), np.exp(0.3j * np.arange(6))).singularities
+    >>> sing.faces.tolist(), sing.index.tolist(), sing.points.shape
+    ([0, 7], [1, 1], (2, 3))
     """
 
     faces: np.ndarray
@@ -65,6 +75,16 @@ class FieldIndices:
 
     ``poincare_hopf = (total_curvature + boundary_rotation) / 2π`` equals ``total`` (up to rounding);
     on a closed mesh ``boundary_rotation = 0`` and ``total = n χ``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import field_indices, tangent_bundle
+    >>> V = [[0, 0, 1], [0, 0, -1], [1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0]]
+    >>> F = [[0, 2, 4], [0, 4, 3], [0, 3, 5], [0, 5, 2], [1, 4, 2], [1, 3, 4], [1, 5, 3], [1, 2, 5]]
+    >>> fi = field_indices(tangent_bundle(V, F, n=1), np.exp(0.3j * np.arange(6)))
+    >>> fi.total, round(fi.poincare_hopf, 6), round(fi.boundary_rotation, 6)    # χ(S²) = 2
+    (2, 2.0, 0.0)
     """
 
     face_index: np.ndarray
@@ -76,7 +96,15 @@ class FieldIndices:
 
 
 def section_values(tb: TangentBundle, u: ArrayLike) -> np.ndarray:
-    """Validate a section: one finite complex value per compact vertex (or per row of the input V)."""
+    """Validate a section: one finite complex value per compact vertex (or per row of the input V).
+
+    Examples
+    --------
+    >>> from dhlb.surface import section_values, tangent_bundle
+    >>> tb = tangent_bundle([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
+    >>> section_values(tb, [1, 1j, -1]).tolist()
+    [(1+0j), 1j, (-1+0j)]
+    """
     arr = np.asarray(u)
     if arr.ndim != 1:
         raise ShapeError(f"a section has one complex value per vertex, got shape {arr.shape}")
@@ -158,6 +186,16 @@ def field_indices(tb: TangentBundle, u: ArrayLike) -> FieldIndices:
     ------
     SectionZeroError
         ``u`` vanishes at a vertex (the index is defined for nowhere-vanishing sections).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import field_indices, tangent_bundle
+    >>> V = [[0, 0, 1], [0, 0, -1], [1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0]]
+    >>> F = [[0, 2, 4], [0, 4, 3], [0, 3, 5], [0, 5, 2], [1, 4, 2], [1, 3, 4], [1, 5, 3], [1, 2, 5]]
+    >>> fi = field_indices(tangent_bundle(V, F, n=1), np.exp(0.3j * np.arange(6)))
+    >>> fi.total, fi.face_index.tolist()                  # Poincaré–Hopf on the octahedron: χ = 2
+    (2, [1, 0, 0, 0, 0, 0, 0, 1])
     """
     z = section_values(tb, u)
     m = tb.mesh

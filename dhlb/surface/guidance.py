@@ -43,6 +43,14 @@ class Guidance:
 
     ``values`` (N,) complex in the power representation, ``kind``, and ``empty`` (True if it
     vanishes everywhere; ``reason`` says why).
+
+    Examples
+    --------
+    >>> from dhlb.surface import tangent_bundle
+    >>> from dhlb.surface.guidance import boundary_guidance
+    >>> g = boundary_guidance(tangent_bundle([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]]))
+    >>> g.kind, g.empty, g.values.shape
+    ('boundary', False, (3,))
     """
 
     values: np.ndarray
@@ -63,6 +71,17 @@ def dihedral_angles(tb: TangentBundle) -> np.ndarray:
 
     β_e is the angle from the normal of one face to the normal of the other, positive where the
     surface bends away from its normals (convex edges of an outward-oriented closed surface).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import tangent_bundle
+    >>> from dhlb.surface.guidance import dihedral_angles
+    >>> V = [[0, 0, 1], [0, 0, -1], [1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0]]
+    >>> F = [[0, 2, 4], [0, 4, 3], [0, 3, 5], [0, 5, 2], [1, 4, 2], [1, 3, 4], [1, 5, 3], [1, 2, 5]]
+    >>> beta = dihedral_angles(tangent_bundle(V, F))    # every edge convex: π − arccos(−1/3)
+    >>> beta.shape, bool(np.allclose(beta, np.pi - np.arccos(-1 / 3)))
+    ((12,), True)
     """
     fa, P = tb._fans, tb.mesh.points
     c = tb._edge_corner

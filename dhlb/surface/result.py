@@ -32,6 +32,15 @@ class DirectionField:
     component_eigenvalues : tuple of float, one per connected component (smoothest field)
     solver : dict, backend, iterations, residual, converged
     timings : dict, seconds per phase (setup, solve, indices, total)
+
+    Examples
+    --------
+    >>> from dhlb.surface import direction_field
+    >>> V = [[0, 0, 1], [0, 0, -1], [1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0]]
+    >>> F = [[0, 2, 4], [0, 4, 3], [0, 3, 5], [0, 5, 2], [1, 4, 2], [1, 3, 4], [1, 5, 3], [1, 2, 5]]
+    >>> res = direction_field(V, F, n=1)
+    >>> res.n, res.u.shape, res.directions.shape, res.indices.total
+    (1, (6,), (6, 1, 3), 2)
     """
 
     n: int

@@ -79,6 +79,15 @@ class TangentBundle:
     ``mesh.complex``) are documented at each property. ``bundle`` is the
     :class:`~dhlb.bundles.HermitianLineBundle` and ``geometry`` the
     :class:`~dhlb.geometry.EuclideanComplex` the finite-element engine takes.
+
+    Examples
+    --------
+    >>> from dhlb.surface import TangentBundle, validate_surface
+    >>> V = [[0, 0, 1], [0, 0, -1], [1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0]]
+    >>> F = [[0, 2, 4], [0, 4, 3], [0, 3, 5], [0, 5, 2], [1, 4, 2], [1, 3, 4], [1, 5, 3], [1, 2, 5]]
+    >>> tb = TangentBundle(validate_surface(V, F), n=4)    # cross fields on the octahedron
+    >>> tb.n, tb.scale.round(12).tolist()                 # s_i = 2π / (4 · π/3)
+    (4, [1.5, 1.5, 1.5, 1.5, 1.5, 1.5])
     """
 
     def __init__(self, mesh: SurfaceMesh, n: int = 1):

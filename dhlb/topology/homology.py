@@ -82,6 +82,13 @@ class HomologyGroup:
     generators : ndarray, shape (n_k, rank + len(torsion))
         Integer cycles: the free generators first, then the torsion generators (in the order of
         ``torsion``).  Column ``j`` is a chain over ``X.simplices(k)``.
+
+    Examples
+    --------
+    >>> from dhlb.examples import projective_plane
+    >>> H1 = homology(projective_plane())[1]
+    >>> str(H1), H1.rank, H1.torsion, H1.generators.shape
+    ('Z/2', 0, (2,), (15, 1))
     """
 
     degree: int
@@ -115,6 +122,13 @@ class CohomologyGroup:
         is ``{θ·ε : θ ∈ (R/2πZ)^rank}``), then the finite part as angles in ``(−π, π]``.
     n_hom : int
         The first ``n_hom`` cocycles represent ``Hom(H_k, G)``, the others ``Ext(H_{k-1}, G)``.
+
+    Examples
+    --------
+    >>> from dhlb.examples import projective_plane
+    >>> X = projective_plane()
+    >>> [str(h) for h in cohomology(X)], [str(h) for h in cohomology(X, "S1")]
+    (['Z', '0', 'Z/2'], ['S¹', 'Z/2', '0'])
     """
 
     degree: int

@@ -82,6 +82,13 @@ class ManifoldReport:
 
     The checks run in order (purity, branching (n−1)-faces, then links of increasing dimension)
     and ``offenses`` holds the simplices failing the first check that fails.
+
+    Examples
+    --------
+    >>> from dhlb.examples import torus
+    >>> rep = manifold_report(torus())
+    >>> rep.is_manifold, rep.has_boundary, rep.n_strong_components, rep.first() is None
+    (True, False, 1, True)
     """
 
     dim: int
@@ -262,6 +269,16 @@ def require_manifold(X: SimplicialComplex) -> ManifoldReport:
     """Return the report of a manifold, raise :class:`NonManifoldError` naming an offending simplex.
 
     The error has attributes ``simplex`` (input labels), ``k`` and ``report``.
+
+    Examples
+    --------
+    >>> require_manifold(SimplicialComplex([(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)])).is_manifold
+    True
+    >>> try:
+    ...     require_manifold(SimplicialComplex([(0, 1, 2), (0, 3, 4)]))   # two triangles pinched at 0
+    ... except NonManifoldError as err:
+    ...     print(err.simplex, err.k)
+    (0,) 0
     """
     rep = manifold_report(X)
     if not rep.is_manifold:

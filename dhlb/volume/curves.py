@@ -123,5 +123,13 @@ def torus_knot(p: int = 2, q: int = 3, major: float = 1.0, minor: float = 0.4, n
 
 
 def trefoil(major: float = 1.0, minor: float = 0.4, n: int = 256) -> np.ndarray:
-    """The trefoil knot as the ``(2, 3)`` torus knot (see :func:`torus_knot`)."""
+    """The trefoil knot as the ``(2, 3)`` torus knot (see :func:`torus_knot`).
+
+    Examples
+    --------
+    >>> from dhlb.volume import linking_number, trefoil, vortex_ring
+    >>> knot = trefoil(n=64)
+    >>> knot.shape, linking_number(knot, vortex_ring(0.2, center=(10, 0, 0)))   # a far-away ring: unlinked
+    ((64, 3), 0)
+    """
     return torus_knot(2, 3, major, minor, n)

@@ -95,6 +95,18 @@ class Filament:
         True for a loop (the last point connects to the first).
     faces : (m,) int64
         Row in ``X.simplices(2)`` of the triangle each point lies on.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.volume import box_tet_mesh, extract_filaments, uniform_flow, velocity_bundle
+    >>> mesh = box_tet_mesh(4, lower=-1, upper=1)
+    >>> L = velocity_bundle(mesh.complex, mesh.points, uniform_flow([0.0, 0.0, 0.0]), 1.0)   # trivial bundle
+    >>> x, y, _ = mesh.points.T
+    >>> psi = (x - 0.1) + 1j * (y - 0.2)                  # zero set: the vertical line (0.1, 0.2, t)
+    >>> fil = extract_filaments(L, psi, mesh.points)[0]
+    >>> fil.closed, round(fil.length, 6), bool(np.allclose(fil.points[:, :2], [0.1, 0.2]))
+    (False, 2.0, True)
     """
 
     points: np.ndarray
@@ -129,6 +141,18 @@ class FilamentSet:
         Crossed triangles whose interpolated zero fell outside the triangle and was clamped.
     degenerate_faces : (d,) int64
         Crossed triangles whose transported values are collinear in C (point put at the centroid).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.volume import box_tet_mesh, extract_filaments, uniform_flow, velocity_bundle
+    >>> mesh = box_tet_mesh(4, lower=-1, upper=1)
+    >>> L = velocity_bundle(mesh.complex, mesh.points, uniform_flow([0.0, 0.0, 0.0]), 1.0)   # trivial bundle
+    >>> x, y, _ = mesh.points.T
+    >>> psi = (x - 0.1) + 1j * (y - 0.2)                  # zero set: the vertical line (0.1, 0.2, t)
+    >>> fs = extract_filaments(L, psi, mesh.points)
+    >>> len(fs), int(np.abs(fs.index).sum()), fs.ambiguous_tets.size, fs.clamped_faces.size
+    (1, 13, 0, 0)
     """
 
     filaments: tuple
@@ -225,6 +249,19 @@ def face_zeros(
         The unclamped zero lay outside the triangle (by more than 1e-9).
     degenerate : (c,) bool
         The values ``w`` are collinear in C; the centroid is returned.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.volume import box_tet_mesh, face_zeros, uniform_flow, velocity_bundle
+    >>> mesh = box_tet_mesh(4, lower=-1, upper=1)
+    >>> L = velocity_bundle(mesh.complex, mesh.points, uniform_flow([0.0, 0.0, 0.0]), 1.0)   # trivial bundle
+    >>> x, y, _ = mesh.points.T
+    >>> psi = (x - 0.1) + 1j * (y - 0.2)                  # zero set: the vertical line (0.1, 0.2, t)
+    >>> crossed = np.nonzero(extract_filaments(L, psi, mesh.points).index)[0]
+    >>> pos, bary, clamped, degenerate = face_zeros(L, psi, mesh.points, crossed)
+    >>> bool(np.allclose(pos[:, :2], [0.1, 0.2])), bool(clamped.any()), bool(degenerate.any())
+    (True, False, False)
     """
     if placement not in ("balanced", "vertex"):
         raise InvalidParameterError(f"placement must be 'balanced' or 'vertex', got {placement!r}")
@@ -361,6 +398,18 @@ def extract_filaments(
     -----
     DhlbWarning
         Some tetrahedra are crossed more than once (``ambiguous_tets``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.volume import box_tet_mesh, extract_filaments, uniform_flow, velocity_bundle
+    >>> mesh = box_tet_mesh(4, lower=-1, upper=1)
+    >>> L = velocity_bundle(mesh.complex, mesh.points, uniform_flow([0.0, 0.0, 0.0]), 1.0)   # trivial bundle
+    >>> x, y, _ = mesh.points.T
+    >>> psi = (x - 0.1) + 1j * (y - 0.2)                  # zero set: the vertical line (0.1, 0.2, t)
+    >>> fs = extract_filaments(L, psi, mesh.points)
+    >>> len(fs), fs[0].closed, fs[0].points[[0, -1], 2].round(6).tolist()    # from boundary to boundary
+    (1, False, [-1.0, 1.0])
     """
     from dhlb.bundles.index import index_form, rotation_form
 

@@ -152,7 +152,14 @@ def linking_number(a: ArrayLike, b: ArrayLike, *, atol: float = 1e-6) -> int:
 
 
 def linking_matrix(curves: Sequence[ArrayLike], *, atol: float = 1e-6) -> np.ndarray:
-    """Symmetric integer matrix of pairwise linking numbers (zero diagonal)."""
+    """Symmetric integer matrix of pairwise linking numbers (zero diagonal).
+
+    Examples
+    --------
+    >>> from dhlb.volume import hopf_link, linking_matrix
+    >>> linking_matrix(hopf_link(n=32)).tolist()
+    [[0, 1], [1, 0]]
+    """
     Cs = [_curve(c, f"curve #{i}") for i, c in enumerate(curves)]
     k = len(Cs)
     L = np.zeros((k, k), np.int64)

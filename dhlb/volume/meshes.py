@@ -66,6 +66,13 @@ class TetMesh(NamedTuple):
         Row of each tetrahedron in ``complex.simplices(3)``.
     flipped : (m,) bool
         Which input tetrahedra were negatively oriented.
+
+    Examples
+    --------
+    >>> from dhlb.volume import box_tet_mesh
+    >>> mesh = box_tet_mesh(2)                            # the unit cube, 2 × 2 × 2 cells
+    >>> mesh.tets.shape, mesh.complex.counts, round(float(mesh.volumes.sum()), 6), mesh.boundary_faces.shape
+    ((48, 4), (27, 98, 120, 48), 1.0, (48, 3))
     """
 
     points: np.ndarray
@@ -155,6 +162,13 @@ def check_tet_mesh(V: ArrayLike, T: ArrayLike, *, orientation: str = "fix", rtol
     -----
     UnreferencedVertexWarning
         Vertices used by no tetrahedron are dropped (``complex.vertex_labels`` keeps the map).
+
+    Examples
+    --------
+    >>> from dhlb.volume import check_tet_mesh
+    >>> mesh = check_tet_mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], [[1, 0, 2, 3]])   # inverted
+    >>> mesh.tets.tolist(), mesh.flipped.tolist(), mesh.volumes.round(6).tolist()
+    ([[1, 0, 3, 2]], [True], [0.166667])
     """
     if orientation not in ("fix", "require"):
         raise InvalidParameterError(f"orientation must be 'fix' or 'require', got {orientation!r}")

@@ -130,6 +130,12 @@ def edge_circulation(
     NonFiniteError
         NaN/inf in positions or per-vertex vectors (the vertex is named), or returned by the
         callable (the edge and the sample point are named).
+
+    Examples
+    --------
+    >>> from dhlb.volume import edge_circulation, uniform_flow
+    >>> edge_circulation([[0, 0, 0], [1, 2, 0]], [[0, 1]], uniform_flow([1.0, 1.0, 0.0])).round(12).tolist()
+    [3.0]
     """
     P = _as_points(points)
     E = _as_edges(edges, P.shape[0])

@@ -113,6 +113,13 @@ class VortexResult:
         The full extraction result (index form, ambiguous tetrahedra, ties, clamped faces).
     matrices : tuple (A, M)
         The Dirichlet and mass matrices (complex Hermitian CSR).
+
+    Examples
+    --------
+    >>> from dhlb.volume import box_tet_mesh, uniform_flow, vortex_filaments
+    >>> res = vortex_filaments(box_tet_mesh(4), None, uniform_flow([0.3, 0.0, 0.0]), hbar=1.0)   # a gradient
+    >>> len(res.filaments), bool(abs(res.eigenvalue) < 1e-10), res.statistics["n_tets"], res.linking_numbers.shape
+    (0, True, 384, (0, 0))
     """
 
     filaments: list
@@ -293,6 +300,16 @@ def vortex_filaments(
         Some triangle has ``|Ω| > π`` (the worst one is named).
     DhlbWarning
         Tetrahedra crossed by more than one filament; touching filaments (linking number guessed).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.volume import FilamentField, box_tet_mesh, vortex_filaments, vortex_ring
+    >>> ring = vortex_ring(0.8, center=(0.01, 0.02, 0.03), n=32)
+    >>> v = FilamentField([ring], 2 * np.pi, core_radius=0.2)    # circulation 2πħ: one filament
+    >>> res = vortex_filaments(box_tet_mesh(6, lower=-1.5, upper=1.5), None, v, hbar=1.0)
+    >>> len(res.filaments), res.filaments[0].closed
+    (1, True)
     """
     from dhlb.fem import bundle_matrices, smallest_eigenpairs
     from dhlb.geometry import EuclideanComplex
