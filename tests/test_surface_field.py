@@ -359,3 +359,12 @@ def test_aligned_field_refuses_lambda_above_the_smallest_eigenvalue():
     lam1 = direction_field(V, F, n=4, s=0.0).eigenvalue          # a flat square: λ₁ = 0 (parallel fields)
     with pytest.raises(InvalidOperatorError, match="below the smallest eigenvalue"):
         direction_field(V, F, n=4, align="boundary", lam=lam1 + 1.0)
+
+
+def test_aligned_field_reports_the_backend_it_used():
+    from dhlb.fem import available_backends
+
+    V, F = grid(5, 5)
+    res = direction_field(V, F, n=4, align="boundary", lam=-1.0)
+    assert res.solver["backend"] in available_backends()
+    assert direction_field(V, F, n=4, align="boundary", lam=-1.0, backend="superlu").solver["backend"] == "superlu"

@@ -138,21 +138,12 @@ def direction_vectors(tb: TangentBundle, u: ArrayLike) -> np.ndarray:
     return vec
 
 
-def _half_edge_transport(tb: TangentBundle, a, b) -> np.ndarray:
-    """r_ab for half-edges a → b (conj of the canonical r_ba when a > b)."""
-    N = tb.mesh.n_vertices
-    E = tb.mesh.complex.simplices(1)
-    lo, hi = np.minimum(a, b), np.maximum(a, b)
-    r = tb.bundle.connection[np.searchsorted(E[:, 0] * N + E[:, 1], lo * N + hi)]
-    return np.where(a < b, r, np.conj(r))
-
-
 def _zeros_from_base(tb: TangentBundle, z, Fc) -> np.ndarray:
     """Barycentric zero of the linear interpolation of z with the frames transported to ``Fc[:, 0]``."""
     a, b, c = Fc[:, 0], Fc[:, 1], Fc[:, 2]
     ua = z[a]
-    ub = np.conj(_half_edge_transport(tb, a, b)) * z[b]
-    uc = np.conj(_half_edge_transport(tb, a, c)) * z[c]
+    ub = np.conj(tb.half_edge_transport(a, b)) * z[b]
+    uc = np.conj(tb.half_edge_transport(a, c)) * z[c]
     p, q = ub - ua, uc - ua
     det = p.real * q.imag - p.imag * q.real
     ok = np.abs(det) > 1e-14 * (np.abs(p) * np.abs(q) + 1e-300)

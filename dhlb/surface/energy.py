@@ -101,12 +101,7 @@ def boundary_form(tb: TangentBundle) -> sp.csr_matrix:
     if bd.size == 0:
         return sp.csr_matrix((N, N), dtype=np.complex128)
     j, k = bd[:, 0], bd[:, 1]
-    lo, hi = np.minimum(j, k), np.maximum(j, k)
-    E = m.complex.simplices(1)
-    e = np.searchsorted(E[:, 0] * N + E[:, 1], lo * N + hi)
-    r = np.exp(1j * tb.transport_angles[e])
-    r_jk = np.where(j < k, r, r.conj())
-    c = -0.5j * r_jk.conj()                      # B[j, k]; B[k, j] = conj(c)
+    c = -0.5j * tb.half_edge_transport(j, k).conj()                      # B[j, k]; B[k, j] = conj(c)
     rows = np.concatenate([j, k])
     cols = np.concatenate([k, j])
     return sp.csr_matrix((np.concatenate([c, c.conj()]), (rows, cols)), shape=(N, N))

@@ -37,6 +37,7 @@ import warnings
 import numpy as np
 
 from dhlb.errors import DhlbWarning, InvalidParameterError, ShapeError
+from dhlb.fem.backends import get_backend
 from dhlb.fem.solvers import smallest_eigenpairs, solve
 from dhlb.surface.directions import direction_vectors, field_indices
 from dhlb.surface.energy import _tangent, check_s, energy_matrices
@@ -184,8 +185,8 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
             norm = float(np.sqrt(max((ut.conj() @ (Mc @ ut)).real, 0.0)))
             uc = ut / norm
             ts.append(1.0 / (1.0 + norm))
-            stats.append({"backend": getattr(backend, "name", backend or "default"), "iterations": 0,
-                          "residual": None, "converged": True})
+            used = get_backend(backend, n=Ac.shape[0], nnz=Ac.nnz, eigen=False).name   # what solve() used
+            stats.append({"backend": used, "iterations": 0, "residual": None, "converged": True})
         share = np.asarray(tb.geometry.volumes(2))[_faces_of(tb, idx)].sum() / area if len(comps) > 1 else 1.0
         u[idx] = uc * np.sqrt(share)
     t2 = time.perf_counter()

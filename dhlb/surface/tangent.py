@@ -264,6 +264,25 @@ class TangentBundle:
         return AngleMap(np.concatenate([verts, np.arange(N)]), np.concatenate([theta, np.full(N, TWO_PI)]),
                         np.concatenate([psi, np.full(N, TWO_PI)]), N)
 
+    def half_edge_transport(self, a: ArrayLike, b: ArrayLike) -> np.ndarray:
+        """``r_ab`` for the half-edges ``a → b`` (``conj(r_ba)`` of the canonical edge when ``a > b``).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from dhlb.surface import tangent_bundle
+        >>> tb = tangent_bundle([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], n=2)
+        >>> r01, r10 = tb.half_edge_transport([0, 1], [1, 0])
+        >>> bool(np.isclose(r01 * r10, 1.0))
+        True
+        """
+        a, b = np.asarray(a, np.int64), np.asarray(b, np.int64)
+        N = self.mesh.n_vertices
+        E = self.mesh.complex.simplices(1)
+        lo, hi = np.minimum(a, b), np.maximum(a, b)
+        r = self.bundle.connection[np.searchsorted(E[:, 0] * N + E[:, 1], lo * N + hi)]
+        return np.where(a < b, r, np.conj(r))
+
     def angles_to_vectors(self, vertices: ArrayLike, angles: ArrayLike) -> np.ndarray:
         """Unit 3D tangent vectors at ``vertices`` with the given rescaled angles (broadcast).
 
