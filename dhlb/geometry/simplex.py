@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhlb.errors import DegenerateSimplexError, InvalidMetricError, NonFiniteError, ShapeError
+from dhlb.geometry._small import eigvalsh_small, factor_from_edges, gradients_from_factor
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -130,6 +131,9 @@ class SimplexStack:
         if d < n:
             raise ShapeError(f"{n}-simplices need an ambient dimension d >= {n}, got d = {d}")
         E = np.swapaxes(P[:, 1:, :] - P[:, :1, :], 1, 2)  # (m, d, n): columns are edge vectors
+        if 1 <= n <= 2:  # closed forms (dhlb.geometry._small)
+            R, g = factor_from_edges(E)
+            return cls(g, factor=R, points=P, rtol=rtol)
         R = np.linalg.qr(E, mode="r") if n > 0 else np.zeros((m, 0, 0))
         R = R[:, :n, :n]
         g = np.swapaxes(E, 1, 2) @ E
@@ -170,6 +174,11 @@ class SimplexStack:
         """Eigenvalues of ``g`` ascending, shape ``(m, n)`` (absolute accuracy ``~ eps λ_max``)."""
         if self.n == 0:
             return np.zeros((self.m, 0))
+        if self.n <= 2:
+            det = None
+            if self._factor_given is not None:
+                det = np.prod(np.diagonal(self._factor_given, axis1=1, axis2=2), axis=1) ** 2
+            return eigvalsh_small(self._g, det)
         return np.linalg.eigvalsh(self._g)
 
     @cached_property
@@ -300,8 +309,14 @@ class SimplexStack:
         m, n = self.m, self.n
         if n == 0:
             return np.zeros((m, 0, 1))
-        Z = np.full((m, n, n), np.nan)
         ok = self.positive_definite
+        if n <= 2:
+            if ok.all():
+                return gradients_from_factor(self.factor)
+            Y = np.full((m, n, n + 1), np.nan)
+            Y[ok] = gradients_from_factor(self.factor[ok])
+            return Y
+        Z = np.full((m, n, n), np.nan)
         if np.any(ok):
             Rt = np.swapaxes(self.factor[ok], 1, 2)
             Z[ok] = np.linalg.solve(Rt, np.broadcast_to(np.eye(n), Rt.shape))
@@ -311,6 +326,11 @@ class SimplexStack:
     def barycentric_gradient_gram(self) -> np.ndarray:
         """``G_ij = <∇λ_i, ∇λ_j>`` ``(m, n+1, n+1)``, symmetric positive semidefinite, rows sum to 0."""
         Y = self.barycentric_gradients
+        if 1 <= self.n <= 2:  # symmetric by construction
+            G = Y[:, 0, :, None] * Y[:, 0, None, :]
+            for k in range(1, self.n):
+                G += Y[:, k, :, None] * Y[:, k, None, :]
+            return G
         G = np.swapaxes(Y, 1, 2) @ Y
         return 0.5 * (G + np.swapaxes(G, 1, 2))
 
