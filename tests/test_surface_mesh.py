@@ -207,3 +207,38 @@ def test_messages_use_input_face_rows_after_dropping_components():
     with pytest.warns(DhlbWarning):
         mesh = validate_surface(V, F, components="largest", reorient=True)
     assert mesh.face_rows[mesh.flipped].tolist() == [12]
+
+
+@pytest.mark.parametrize("case", ["sphere", "grid-unused", "largest", "reoriented", "bunny-7k"])
+def test_halfedge_tables_agree_with_the_complex(case):
+    """The one-sort half-edge tables (twins, edge rows, triangle rows) equal the complex's own look-ups."""
+    kw = {}
+    if case == "sphere":
+        V, F = icosphere(2)
+    elif case == "grid-unused":
+        V, F = grid(5)
+        V = np.vstack([V, [[9.0, 9.0, 9.0]]])[::-1].copy()  # an unused vertex, and labels reversed
+        F = len(V) - 1 - F[:, ::-1]
+    elif case == "largest":
+        V1, F1 = icosphere(1)
+        V2, F2 = grid(4)
+        V, F = np.vstack([V2, V1]), np.vstack([F2, F1 + len(V2)])
+        kw = {"components": "largest"}
+    elif case == "reoriented":
+        V, F = icosphere(1)
+        F = F.copy()
+        F[::3] = F[::3, ::-1]
+        kw = {"reorient": True}
+    else:
+        V, F = read_surface(os.path.join(DATA, "bunny-7k.obj"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        m = validate_surface(V, F, **kw)
+    X, L = m.complex, m.vertex_labels
+    np.testing.assert_array_equal(m.triangle_of_face, X.index(2, L[m.faces]))
+    h = np.stack([m.faces, np.roll(m.faces, -1, axis=1)], axis=-1).reshape(-1, 2)
+    np.testing.assert_array_equal(m.halfedge_edge, X.index(1, L[h]))
+    tw = m.halfedge_twin
+    inner = tw >= 0
+    np.testing.assert_array_equal(h[tw[inner]], h[inner][:, ::-1])
+    assert (~inner).sum() == len(m.boundary_halfedges)

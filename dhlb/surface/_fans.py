@@ -16,7 +16,7 @@ import numpy as np
 
 from dhlb.errors import NonManifoldError
 
-__all__ = ["Fans", "vertex_fans", "AngleMap"]
+__all__ = ["AngleMap", "Fans", "halfedge_pairs", "vertex_fans"]
 
 TWO_PI = 2.0 * np.pi
 
@@ -39,22 +39,61 @@ class Fans:
     last: np.ndarray  # (N,) last corner of each fan
 
 
-def _lookup(keys_sorted, order, query) -> np.ndarray:
-    pos = np.minimum(np.searchsorted(keys_sorted, query), len(keys_sorted) - 1)
-    return np.where(keys_sorted[pos] == query, order[pos], -1)
+def halfedge_pairs(F: np.ndarray, n_vertices: int) -> tuple[np.ndarray, np.ndarray, int]:
+    """Twins and edges of the half-edges ``h = 3 f + k`` (``F[f, k] → F[f, k+1]``) by one sort.
+
+    Returns ``(twin, edge, n_edges)``: ``twin[h]`` the opposite half-edge (``-1`` on the
+    boundary) and ``edge[h]`` the row of the undirected edge in lexicographic order (the order of
+    ``SimplicialComplex.simplices(1)`` when the vertices are numbered ``0 .. n-1``). Raises
+    :class:`~dhlb.errors.NonManifoldError` for an edge with three or more faces or two faces
+    traversing it in the same direction.
+
+    Examples
+    --------
+    >>> twin, edge, ne = halfedge_pairs(np.array([[0, 1, 2], [2, 1, 3]]), 4)
+    >>> twin.tolist(), edge.tolist(), ne
+    ([-1, 3, -1, 1, -1, -1], [0, 2, 1, 2, 3, 4], 5)
+    """
+    N = max(int(n_vertices), 1)
+    a = F.ravel()
+    b = np.roll(F, -1, axis=1).ravel()
+    key = np.minimum(a, b) * N + np.maximum(a, b)
+    order = np.argsort(key)
+    sk = key[order]
+    same = sk[1:] == sk[:-1]
+    if same.size > 1 and np.any(same[1:] & same[:-1]):
+        i = int(np.argmax(same[1:] & same[:-1]))
+        raise NonManifoldError(f"the edge ({int(a[order[i]])}, {int(b[order[i]])}) (compact numbers) lies in three "
+                               "or more faces; validate the mesh with dhlb.surface.validate_surface")
+    new = np.r_[True, ~same]
+    edge = np.empty(a.size, np.int64)
+    edge[order] = np.cumsum(new) - 1
+    twin = np.full(a.size, -1, np.int64)
+    i = np.nonzero(same)[0]
+    h0, h1 = order[i], order[i + 1]
+    if np.any(a[h0] == a[h1]):
+        j = int(np.argmax(a[h0] == a[h1]))
+        raise NonManifoldError(f"two faces traverse the edge ({int(a[h0[j]])}, {int(b[h0[j]])}) (compact numbers) in "
+                               "the same direction (inconsistent orientation); validate the mesh with "
+                               "dhlb.surface.validate_surface")
+    twin[h0], twin[h1] = h1, h0
+    return twin, edge, int(new.sum())
 
 
-def vertex_fans(F: np.ndarray, n_vertices: int, alpha: np.ndarray) -> Fans:
-    """Fans of the consistently oriented manifold mesh F with corner angles ``alpha`` (m, 3)."""
+def vertex_fans(F: np.ndarray, n_vertices: int, alpha: np.ndarray, pairs=None) -> Fans:
+    """Fans of the consistently oriented manifold mesh F with corner angles ``alpha`` (m, 3).
+
+    ``pairs`` is the output of :func:`halfedge_pairs` if already computed.
+    """
     N = int(n_vertices)
     v = F.ravel()
     a = np.roll(F, -1, axis=1).ravel()
     b = np.roll(F, -2, axis=1).ravel()
-    key = v * N + a
-    order = np.argsort(key, kind="stable")
-    skey = key[order]
-    succ = _lookup(skey, order, v * N + b)
-    twin = _lookup(skey, order, a * N + v)
+    twin = (pairs if pairs is not None else halfedge_pairs(F, N))[0]
+    # corner c = half-edge c (its first edge); its second edge v → b reverses the half-edge b → v of the
+    # same face, whose twin is the first edge of the next corner counterclockwise
+    prev = 3 * (np.arange(v.size) // 3) + (np.arange(v.size) + 2) % 3
+    succ = twin[prev]
     nc = v.size
     pred = np.full(nc, -1, np.int64)
     has = succ >= 0

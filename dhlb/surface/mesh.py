@@ -37,22 +37,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import (
-    DegenerateSimplexError,
-    DhlbWarning,
-    EmptyComplexError,
-    InconsistentOrientationError,
-    InvalidParameterError,
-    InvalidSimplexError,
-    NonFiniteError,
-    NonManifoldError,
-    NonOrientableError,
-    ShapeError,
-    UnreferencedVertexWarning,
-)
-from dhlb.geometry.simplex import SimplexStack
+from dhlb.errors import DhlbWarning, InvalidParameterError, NonManifoldError, ShapeError, UnreferencedVertexWarning
+from dhlb.surface import _mesh_checks as checks
+from dhlb.surface._fans import Fans, halfedge_pairs, vertex_fans
 from dhlb.topology.complex import SimplicialComplex
-from dhlb.topology.manifold import interior_pairs, is_consistently_oriented, manifold_report
 
 if TYPE_CHECKING:
     from typing import Any
@@ -60,122 +48,6 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
 __all__ = ["SurfaceMesh", "validate_surface"]
-
-
-def _face(F, r) -> str:
-    return f"face {int(r)} (vertices {', '.join(str(int(v)) for v in F[r])})"
-
-
-def _parse(V, F) -> tuple[np.ndarray, np.ndarray]:
-    try:
-        P = np.asarray(V, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise ShapeError("V must be a numeric array of shape (n, 3) (or (n, 2) for a planar mesh)") from None
-    if P.ndim != 2 or P.shape[1] not in (2, 3):
-        raise ShapeError(f"V must have shape (n, 3) (or (n, 2) for a planar mesh), got {P.shape}")
-    if P.shape[1] == 2:
-        P = np.column_stack([P, np.zeros(len(P))])
-    T = np.asarray(F)
-    if T.dtype == object or not (np.issubdtype(T.dtype, np.integer) or np.issubdtype(T.dtype, np.floating)):
-        raise InvalidSimplexError(f"F must be an integer array of shape (m, 3), got dtype {T.dtype}")
-    if T.ndim != 2 or T.shape[1] != 3:
-        raise InvalidSimplexError(f"F must have shape (m, 3) (one triangle per row), got {T.shape}")
-    if T.shape[0] == 0:
-        raise EmptyComplexError("F has no faces; a surface mesh needs at least one triangle")
-    if np.issubdtype(T.dtype, np.floating):
-        bad = ~np.isfinite(T).all(axis=1) | np.any(T != np.round(T), axis=1)
-        if np.any(bad):
-            r = int(np.argmax(bad))
-            raise InvalidSimplexError(f"face {r} has non-integer vertex indices {T[r].tolist()}")
-    T = T.astype(np.int64)
-    bad = np.any((T < 0) | (T >= len(P)), axis=1)
-    if np.any(bad):
-        r = int(np.argmax(bad))
-        raise InvalidSimplexError(f"{_face(T, r)} refers to a vertex outside V (rows 0 .. {len(P) - 1})")
-    return P, T
-
-
-def _check_faces(P, T) -> None:
-    srt = np.sort(T, axis=1)
-    rep = np.any(srt[:, 1:] == srt[:, :-1], axis=1)
-    if np.any(rep):
-        r = int(np.argmax(rep))
-        raise DegenerateSimplexError(f"{_face(T, r)} repeats a vertex; remove it (it has zero area)")
-    _, first, inv = np.unique(srt, axis=0, return_index=True, return_inverse=True)
-    dup = np.nonzero(first[inv.ravel()] != np.arange(len(T)))[0]
-    if dup.size:
-        r2 = int(dup[0])
-        r1 = int(first[inv.ravel()[r2]])
-        same = SimplicialComplex.orientation_of(T[[r1, r2]])
-        how = "with the same orientation" if same[0] == same[1] else "with opposite orientations (a doubled sheet)"
-        raise InvalidSimplexError(f"faces {r1} and {r2} are the same triangle {tuple(int(v) for v in srt[r2])} "
-                                  f"{how}; remove one of them")
-
-
-def _check_geometry(P, T, rows) -> None:
-    used = np.unique(T)
-    bad = ~np.isfinite(P[used]).all(axis=1)
-    if np.any(bad):
-        v = int(used[np.argmax(bad)])
-        raise NonFiniteError(f"vertex {v} has a NaN or infinite coordinate {P[v].tolist()} "
-                             f"({int(bad.sum())} used vertices affected); give finite coordinates")
-    st = SimplexStack.from_points(P[T])
-    deg = np.nonzero(~st.positive_definite)[0]
-    if deg.size:
-        r = int(deg[0])
-        raise DegenerateSimplexError(
-            f"{deg.size} face(s) have zero area, first face {int(rows[r])} (vertices "
-            f"{', '.join(str(int(v)) for v in T[r])}) with area {st.volumes[r]:.3g}; "
-            "remove or repair them (collinear vertices)")
-
-
-def _check_manifold(X, T, rows) -> None:
-    _, _, _, counts = interior_pairs(X)
-    if np.any(counts > 2):
-        e = int(np.argmax(counts > 2))
-        a, b = (int(v) for v in X.vertex_labels[X.simplices(1)[e]])
-        at = rows[np.isin(T, [a]).any(axis=1) & np.isin(T, [b]).any(axis=1)]
-        raise NonManifoldError(f"non-manifold edge ({a}, {b}): it lies in {int(counts[e])} faces "
-                               f"(rows {', '.join(str(int(r)) for r in at[:6])}); a surface allows at most 2. "
-                               "Split or remove faces there")
-    rep = manifold_report(X, limit=1)
-    if not rep.is_manifold:
-        o = rep.first()
-        if o.k == 0:
-            v = o.simplex[0]
-            raise NonManifoldError(f"non-manifold vertex {v}: its faces form more than one fan (e.g. two "
-                                   "surfaces touching at a point); split the vertex")
-        raise NonManifoldError(f"not a surface: {o}")
-
-
-def _orient(X, T, rows, reorient: bool) -> np.ndarray:
-    """Flip mask making the faces consistently oriented (all False if they already are)."""
-    ok, edge = is_consistently_oriented(X, T)
-    if ok:
-        return np.zeros(len(T), bool)
-    try:
-        o = X.orientation()
-    except NonOrientableError as err:
-        at = getattr(err, "simplex", edge)
-        raise NonOrientableError(
-            f"the surface is not orientable: it contains a Möbius band (carrying an orientation of the faces "
-            f"around it comes back reversed, e.g. at edge {at}). Direction fields are sections of the tangent "
-            "bundle of an oriented surface; n-direction fields on non-orientable surfaces (a twisted bundle) "
-            "are future work") from None
-    if not reorient:
-        a, b = edge
-        at = rows[np.isin(T, [a]).any(axis=1) & np.isin(T, [b]).any(axis=1)]
-        raise InconsistentOrientationError(
-            f"faces {int(at[0])} and {int(at[1])} traverse their common edge {edge} in the same direction: "
-            "the faces are not consistently oriented. Pass reorient=True to flip faces into a consistent "
-            "orientation (the majority orientation of each component is kept)")
-    tri = X.index(2, T)
-    want = o[tri] * SimplicialComplex.orientation_of(T)  # +1 where the face agrees with o
-    _, comp = X.connected_components()
-    c = comp[np.searchsorted(X.vertex_labels, T[:, 0])]
-    votes = np.bincount(c, weights=want, minlength=int(c.max()) + 1)
-    sign = np.where(votes >= 0, 1, -1)
-    return want * sign[c] < 0
 
 
 class SurfaceMesh:
@@ -242,9 +114,48 @@ class SurfaceMesh:
         return self.complex.vertex_labels
 
     @cached_property
+    def corner_angles(self) -> np.ndarray:
+        """``(m, 3)`` Euclidean angle at each corner of each (oriented) face."""
+        Q = self.points[self.faces]
+        E = np.roll(Q, -1, axis=1) - Q  # E[:, p]: the edge from corner p to corner p + 1
+        twice_area = np.linalg.norm(np.cross(E[:, 0], E[:, 1]), axis=-1)  # |e1 × e2| at every corner
+        dot = -np.einsum("fpk,fpk->fp", E, np.roll(E, 1, axis=1))  # <E[p], -E[p - 1]>
+        return np.arctan2(np.broadcast_to(twice_area[:, None], dot.shape), dot)
+
+    @cached_property
+    def halfedge_twin(self) -> np.ndarray:
+        """``(3m,)`` the opposite of half-edge ``3f + k`` (``faces[f, k] → faces[f, k+1]``), ``-1`` on the boundary."""
+        return self._pairs[0]
+
+    @cached_property
+    def halfedge_edge(self) -> np.ndarray:
+        """``(3m,)`` the row in ``complex.simplices(1)`` of the edge of half-edge ``3f + k``."""
+        return self._pairs[1]
+
+    @cached_property
+    def _pairs(self):
+        return halfedge_pairs(self.faces, self.n_vertices)
+
+    @cached_property
+    def fans(self) -> Fans:
+        """The corner fans around the vertices (:mod:`dhlb.surface._fans`); raises if a vertex has several."""
+        return vertex_fans(self.faces, self.n_vertices, self.corner_angles, self._pairs)
+
+    @cached_property
     def triangle_of_face(self) -> np.ndarray:
-        """Row of each face in ``complex.simplices(2)``."""
-        return self.complex.index(2, self.vertex_labels[self.faces])
+        """Row of each face in ``complex.simplices(2)``.
+
+        The triangles of the complex are sorted by ``(row of the edge (s0, s1), s2)`` for their
+        sorted vertices ``s0 < s1 < s2`` (``dhlb.topology._keys``); the edge ``(s0, s1)`` of a face
+        is its half-edge that does not touch ``s2``, so one sort of these keys gives the rows.
+        """
+        F, m = self.faces, self.n_faces
+        top = np.argmax(F, axis=1)
+        prefix = self.halfedge_edge[3 * np.arange(m) + (top + 1) % 3]
+        order = np.argsort(prefix * self.n_vertices + F[np.arange(m), top])
+        out = np.empty(m, np.int64)
+        out[order] = np.arange(m)
+        return out
 
     @cached_property
     def face_sign(self) -> np.ndarray:
@@ -277,10 +188,7 @@ class SurfaceMesh:
     def boundary_halfedges(self) -> np.ndarray:
         """``(b, 2)`` boundary edges ``(a, b)`` as traversed by their face (the induced boundary orientation)."""
         h = np.stack([self.faces, np.roll(self.faces, -1, axis=1)], axis=-1).reshape(-1, 2)
-        N = self.n_vertices
-        keys = h[:, 0] * N + h[:, 1]
-        twin = np.isin(h[:, 1] * N + h[:, 0], keys)
-        out = h[~twin]
+        out = h[self.halfedge_twin < 0]
         return out[np.lexsort((out[:, 1], out[:, 0]))]
 
     @cached_property
@@ -365,8 +273,8 @@ def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, comp
     """
     if components not in ("all", "largest"):
         raise InvalidParameterError(f"components must be 'all' or 'largest', got {components!r}")
-    P, T = _parse(V, F)
-    _check_faces(P, T)
+    P, T = checks.parse(V, F)
+    checks.check_faces(P, T)
     rows = np.arange(len(T), dtype=np.int64)
     T0 = T
     X = SimplicialComplex(T)
@@ -379,14 +287,25 @@ def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, comp
                           f"{int((~keep).sum())} faces dropped", DhlbWarning, stacklevel=2)
             T, rows = T[keep], rows[keep]
             X = SimplicialComplex(T)
-    _check_geometry(P, T, rows)
-    unused = np.setdiff1d(np.arange(len(P)), np.unique(T0))  # not counting dropped components
+    checks.check_geometry(P, T, rows)
+    unused = np.nonzero(np.bincount(T0.ravel(), minlength=len(P)) == 0)[0]  # not counting dropped components
     if unused.size:
         warnings.warn(f"{unused.size} vertices of V are used by no face and were dropped (first: "
                       f"{', '.join(str(int(v)) for v in unused[:5])}); mesh.vertex_labels maps compact "
                       "vertices to rows of V", UnreferencedVertexWarning, stacklevel=2)
-    _check_manifold(X, T, rows)
-    flip = _orient(X, T, rows, reorient)
-    T = np.where(flip[:, None], T[:, [0, 2, 1]], T)
-    faces = np.searchsorted(X.vertex_labels, T)
-    return SurfaceMesh(np.ascontiguousarray(P[X.vertex_labels]), faces, X, rows, flip, len(P))
+    fast = checks.fast_topology(T, len(P))
+    if fast:
+        flip = np.zeros(len(T), bool)
+    else:
+        checks.check_manifold(X, T, rows)
+        flip = checks.orient(X, T, rows, reorient)
+        T = np.where(flip[:, None], T[:, [0, 2, 1]], T)
+    compact = np.full(len(P), -1, np.int64)
+    compact[X.vertex_labels] = np.arange(X.vertex_labels.size)
+    mesh = SurfaceMesh(np.ascontiguousarray(P[X.vertex_labels]), compact[T], X, rows, flip, len(P))
+    try:
+        _ = mesh.fans  # one fan per vertex (cached: the tangent bundle uses it)
+    except NonManifoldError:
+        checks.check_manifold(X, T, rows)  # names the vertex in input numbers
+        raise
+    return mesh

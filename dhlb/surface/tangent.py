@@ -50,7 +50,7 @@ import numpy as np
 from dhlb.bundles.hermitian import HermitianLineBundle
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.geometry.euclidean import EuclideanComplex
-from dhlb.surface._fans import TWO_PI, AngleMap, vertex_fans
+from dhlb.surface._fans import TWO_PI, AngleMap
 from dhlb.surface.mesh import SurfaceMesh, validate_surface
 
 if TYPE_CHECKING:
@@ -99,13 +99,10 @@ class TangentBundle:
         self.n = int(n)
 
     # ------------------------------------------------------------------ per corner / per face
-    @cached_property
+    @property
     def corner_angles(self) -> np.ndarray:
         """``(m, 3)`` Euclidean angle at each corner of each (oriented) face."""
-        P, F = self.mesh.points, self.mesh.faces
-        e1 = P[np.roll(F, -1, axis=1)] - P[F]
-        e2 = P[np.roll(F, -2, axis=1)] - P[F]
-        return np.arctan2(np.linalg.norm(np.cross(e1, e2), axis=-1), np.einsum("fpk,fpk->fp", e1, e2))
+        return self.mesh.corner_angles
 
     @cached_property
     def face_normals(self) -> np.ndarray:
@@ -113,9 +110,9 @@ class TangentBundle:
         P, F = self.mesh.points, self.mesh.faces
         return _unit(np.cross(P[F[:, 1]] - P[F[:, 0]], P[F[:, 2]] - P[F[:, 0]]))[0]
 
-    @cached_property
+    @property
     def _fans(self):
-        return vertex_fans(self.mesh.faces, self.mesh.n_vertices, self.corner_angles)
+        return self.mesh.fans
 
     @cached_property
     def face_curvature(self) -> np.ndarray:
@@ -191,13 +188,9 @@ class TangentBundle:
     @cached_property
     def _edge_corner(self) -> np.ndarray:
         """For each canonical edge, one corner whose first edge lies on it."""
-        X, fa = self.mesh.complex, self._fans
-        N = self.mesh.n_vertices
-        E = X.simplices(1)
-        lo, hi = np.minimum(fa.vertex, fa.first), np.maximum(fa.vertex, fa.first)
-        e = np.searchsorted(E[:, 0] * N + E[:, 1], lo * N + hi)
-        out = np.full(E.shape[0], fa.vertex.size, np.int64)
-        np.minimum.at(out, e, np.arange(fa.vertex.size, dtype=np.int64))
+        he = self.mesh.halfedge_edge
+        out = np.full(self.mesh.complex.n_simplices(1), he.size, np.int64)
+        np.minimum.at(out, he, np.arange(he.size, dtype=np.int64))
         return out
 
     @cached_property

@@ -36,6 +36,19 @@ class VertexAdjacency(NamedTuple):
     lower: np.ndarray
 
 
+def _compact_labels(blocks: dict) -> tuple[np.ndarray, dict]:
+    """The sorted vertex labels in use and the blocks renumbered ``0 .. n-1`` (a table look-up when dense)."""
+    flat = np.concatenate([b.ravel() for b in blocks.values()])
+    lo, hi = int(flat.min()), int(flat.max())
+    if lo >= 0 and hi < 4 * flat.size + 1024:  # dense labels: counting instead of sorting
+        used = np.bincount(flat, minlength=hi + 1) > 0
+        labels = np.nonzero(used)[0].astype(flat.dtype)
+        lut = np.cumsum(used) - 1
+        return labels, {k: lut[b].astype(np.int64) for k, b in blocks.items()}
+    labels = np.unique(flat)
+    return labels, {k: np.searchsorted(labels, b).astype(np.int64) for k, b in blocks.items()}
+
+
 class SimplicialComplex:
     """A finite abstract simplicial complex, closed under taking faces.
 
@@ -71,12 +84,11 @@ class SimplicialComplex:
 
     def __init__(self, simplices: Iterable[Sequence[int]] | ArrayLike):
         blocks = parse_simplices(simplices)
-        labels = np.unique(np.concatenate([b.ravel() for b in blocks.values()]))
+        labels, blocks = _compact_labels(blocks)
         self._labels = labels
         self._labels.setflags(write=False)
         n = labels.size
         self._n = n
-        blocks = {k: np.searchsorted(labels, b).astype(np.int64) for k, b in blocks.items()}
         self._dim = max(blocks)
         self._rows: list[np.ndarray] = [np.arange(n, dtype=np.int64).reshape(-1, 1)]
         self._key_list: list[np.ndarray] = [np.arange(n, dtype=np.int64)]
@@ -91,9 +103,11 @@ class SimplicialComplex:
                 for cols in _keys.combination_columns(m + 1, k + 1):
                     cands.append(block[:, cols])
             cand = np.concatenate(cands) if len(cands) > 1 else cands[0]
-            keys = self._key_of(k, cand)
-            ukeys, first = np.unique(keys, return_index=True)
-            rows = cand[first]
+            ukeys = np.sort(self._key_of(k, cand))  # (np.unique hashes, which is slower here)
+            ukeys = ukeys[np.r_[True, ukeys[1:] != ukeys[:-1]]]
+            rows = np.empty((ukeys.size, k + 1), np.int64)  # decode the keys: prefix row * n + last vertex
+            prefix, rows[:, k] = np.divmod(ukeys, n)
+            rows[:, :k] = prefix[:, None] if k == 1 else self._rows[k - 1][prefix]
             rows.setflags(write=False)
             self._rows.append(rows)
             self._key_list.append(ukeys)
