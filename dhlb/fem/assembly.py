@@ -74,16 +74,23 @@ def _scatter_entries(X, off: np.ndarray, diag: np.ndarray) -> sp.csr_matrix:
     """As :func:`_scatter` for Hermitian local matrices in a compact layout.
 
     The layout is that of :func:`dhlb.fem._fast_local.fast_local_entries` (``off[p] = K_s[b, a]``
-    for local edge ``p = (a, b)``).
+    for local edge ``p = (a, b)``, shape ``(n_edges_local, n_top)``; ``diag`` ``(n + 1, n_top)``).
+    The entries are summed per canonical edge ``e = (v_a < v_b)`` (the lower entry ``K[v_b, v_a]``;
+    the upper one is its conjugate) and per vertex, then placed on the adjacency pattern.
     """
     n = X.dim
-    P = X.top_entry_positions
-    pairs = _keys.combination_columns(n + 1, 2)
-    low = P[:, pairs[:, 1], pairs[:, 0]].T.ravel()  # (E, m) -> entries (v_b, v_a)
-    up = P[:, pairs[:, 0], pairs[:, 1]].T.ravel()
-    dia = P[:, np.arange(n + 1), np.arange(n + 1)].T.ravel()
+    adj = X.vertex_adjacency
+    edges = subfaces(X, n, 1).T.ravel()  # (E, m) layout, like `off`
     off = off.ravel()
-    return _csr(X, [low, up, dia], [off.real, off.real, diag.ravel()], [off.imag, -off.imag, None])
+    n1 = X.n_simplices(1)
+    low = np.bincount(edges, weights=off.real, minlength=n1).astype(complex)
+    if np.iscomplexobj(off):
+        low.imag = np.bincount(edges, weights=off.imag, minlength=n1)
+    data = np.empty(adj.indices.size, complex)
+    data[adj.lower] = low
+    data[adj.upper] = low.conj()
+    data[adj.diagonal] = np.bincount(X.simplices(n).T.ravel(), weights=diag.ravel(), minlength=X.n_vertices)
+    return sp.csr_matrix((data, adj.indices.copy(), adj.indptr.copy()), shape=(X.n_vertices, X.n_vertices))
 
 
 def _csr(X, positions, real_parts, imag_parts) -> sp.csr_matrix:
