@@ -146,8 +146,9 @@ class AngleMap:
 
     def __init__(self, vertex, theta, psi, n_vertices: int):
         N = int(n_vertices)
-        order = np.lexsort((theta, vertex))
-        vertex, theta, psi = vertex[order], theta[order], psi[order]
+        if not (np.all(vertex[1:] >= vertex[:-1]) and np.all((theta[1:] >= theta[:-1]) | (vertex[1:] != vertex[:-1]))):
+            order = np.lexsort((theta, vertex))
+            vertex, theta, psi = vertex[order], theta[order], psi[order]
         nxt_same = np.r_[vertex[1:] == vertex[:-1], False]
         ok_step = (theta[1:] > theta[:-1]) & (psi[1:] > psi[:-1])
         bad = np.zeros(N, bool)
@@ -159,6 +160,7 @@ class AngleMap:
         self.fallback = bad
         keep = ~bad[vertex]
         self._v, self._t, self._p = vertex[keep], theta[keep], psi[keep]
+        self._offsets = np.searchsorted(self._v, np.arange(N + 1))
 
     def _apply(self, vertex, x, src, dst) -> np.ndarray:
         vertex = np.asarray(vertex, np.int64)
@@ -169,16 +171,16 @@ class AngleMap:
         if not np.any(use) or self._v.size == 0:
             return out
         qv, qx = vertex[use], x[use]
-        B = self._v.size
-        allv = np.concatenate([self._v, qv])
-        allx = np.concatenate([src, qx])
-        kind = np.concatenate([np.zeros(B, np.int8), np.ones(qv.size, np.int8)])
-        order = np.lexsort((kind, allx, allv))
-        idx = np.where(order < B, order, -1)
-        lastb = np.maximum.accumulate(idx)
-        k = np.empty(qv.size, np.int64)
-        k[order[order >= B] - B] = lastb[order >= B]
-        x0, x1, y0, y1 = src[k], src[k + 1], dst[k], dst[k + 1]
+        lo, hi = self._offsets[qv], self._offsets[qv + 1] - 1  # src[lo] = 0 <= x < src[hi] = 2π
+        while True:  # bisection inside each vertex's breakpoints (sorted, strictly increasing)
+            wide = np.nonzero(hi - lo > 1)[0]
+            if wide.size == 0:
+                break
+            mid = (lo[wide] + hi[wide]) // 2
+            go = src[mid] <= qx[wide]
+            lo[wide] = np.where(go, mid, lo[wide])
+            hi[wide] = np.where(go, hi[wide], mid)
+        x0, x1, y0, y1 = src[lo], src[lo + 1], dst[lo], dst[lo + 1]
         out[use] = y0 + (qx - x0) * (y1 - y0) / (x1 - x0)
         return out
 

@@ -151,8 +151,8 @@ class TangentBundle:
     def normals(self) -> np.ndarray:
         """``(N, 3)`` unit vertex normals, the corner-angle-weighted mean of the face normals."""
         w = (self.corner_angles[..., None] * self.face_normals[:, None, :]).reshape(-1, 3)
-        N = np.zeros((self.mesh.n_vertices, 3))
-        np.add.at(N, self.mesh.faces.ravel(), w)
+        idx, nv = self.mesh.faces.ravel(), self.mesh.n_vertices
+        N = np.stack([np.bincount(idx, weights=w[:, k], minlength=nv) for k in range(3)], axis=1)
         N, nrm = _unit(N)
         weak = nrm <= 1e-12 * np.max(nrm)
         if np.any(weak):  # cancelling fan normals: use the face of the reference corner
@@ -188,9 +188,10 @@ class TangentBundle:
     @cached_property
     def _edge_corner(self) -> np.ndarray:
         """For each canonical edge, one corner whose first edge lies on it."""
-        he = self.mesh.halfedge_edge
-        out = np.full(self.mesh.complex.n_simplices(1), he.size, np.int64)
-        np.minimum.at(out, he, np.arange(he.size, dtype=np.int64))
+        he, tw = self.mesh.halfedge_edge, self.mesh.halfedge_twin
+        h = np.arange(he.size, dtype=np.int64)
+        out = np.empty(self.mesh.complex.n_simplices(1), np.int64)
+        out[he] = np.where(tw >= 0, np.minimum(h, tw), h)  # both half-edges of an edge write the same value
         return out
 
     @cached_property
@@ -248,14 +249,22 @@ class TangentBundle:
         N = self.mesh.n_vertices
         ang = self.corner_edge_angles.reshape(-1, 2)
         bnd = np.nonzero(fa.boundary)[0]
+        # breakpoints in fan order, placed directly (no sort): per vertex its corners' first edges by
+        # rank, the last boundary edge at a boundary vertex, and the closing 2π
+        size = fa.count + fa.boundary + 1
+        off = np.zeros(N + 1, np.int64)
+        np.cumsum(size, out=off[1:])
+        pos = np.concatenate([off[fa.vertex] + fa.rank, off[bnd] + fa.count[bnd], off[1:] - 1])
         verts = np.concatenate([fa.vertex, bnd])
         ends = np.concatenate([fa.first, fa.second[fa.last[bnd]]])
-        theta = np.concatenate([ang[:, 0], ang[fa.last[bnd], 1]])
         d = P[ends] - P[verts]
         psi = np.mod(np.arctan2(np.sum(d * T[verts, 1], 1), np.sum(d * T[verts, 0], 1)), TWO_PI)
         psi[: fa.vertex.size][fa.rank == 0] = 0.0
-        return AngleMap(np.concatenate([verts, np.arange(N)]), np.concatenate([theta, np.full(N, TWO_PI)]),
-                        np.concatenate([psi, np.full(N, TWO_PI)]), N)
+        vv, th, ps = np.empty(off[-1], np.int64), np.empty(off[-1]), np.empty(off[-1])
+        vv[pos] = np.concatenate([verts, np.arange(N)])
+        th[pos] = np.concatenate([ang[:, 0], ang[fa.last[bnd], 1], np.full(N, TWO_PI)])
+        ps[pos] = np.concatenate([psi, np.full(N, TWO_PI)])
+        return AngleMap(vv, th, ps, N)
 
     def half_edge_transport(self, a: ArrayLike, b: ArrayLike) -> np.ndarray:
         """``r_ab`` for the half-edges ``a → b`` (``conj(r_ba)`` of the canonical edge when ``a > b``).
