@@ -25,7 +25,6 @@ import scipy.sparse as sp
 from dhlb.errors import NonFiniteError, ShapeError
 from dhlb.fem._fast_local import fast_local_entries, fast_local_matrices
 from dhlb.fem._local_matrices import local_mass_matrices, local_matrices
-from dhlb.topology import _keys
 from dhlb.topology.structure import subfaces
 
 if TYPE_CHECKING:

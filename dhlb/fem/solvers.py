@@ -54,14 +54,12 @@ Convergence test (for each of the ``k`` wanted pairs)
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
-import scipy.linalg as sla
 import scipy.sparse as sp
 
 from dhlb.errors import (
-    ConvergenceError,
     InvalidOperatorError,
     InvalidParameterError,
     NonFiniteError,
@@ -72,8 +70,15 @@ from dhlb.fem._checks import eta as _eta
 from dhlb.fem._checks import fix_phase as _fix_phase
 from dhlb.fem._checks import norm1 as _norm1
 from dhlb.fem._checks import validate_pair as _validate_pair
+from dhlb.fem._eigen_steps import (
+    EigenResult,
+    _iterate_lobpcg,
+    _not_converged,
+    _not_psd,
+    _rayleigh_ritz,
+    _subspace_iteration,
+)
 from dhlb.fem._krylov import lanczos
-from dhlb.fem._krylov import m_orthonormalize as _m_orthonormalize
 from dhlb.fem.backends import SuperLUBackend, blas_guard, get_backend, pattern_dimension
 
 __all__ = ["EigenResult", "SuperLUBackend", "backward_errors", "default_shift", "smallest_eigenpairs", "solve"]
@@ -99,43 +104,6 @@ def default_shift(A: sp.csr_matrix, M: sp.csr_matrix) -> float:
     s = 1.0 / np.sqrt(M.diagonal().real)
     rho = float(abs(sp.diags(s) @ A @ sp.diags(s)).sum(axis=1).max())
     return float(np.sqrt(_EPS) * (rho if rho > 0 else 1.0))
-
-
-# ---------------------------------------------------------------------- results
-@dataclass(frozen=True)
-class EigenResult:
-    """Result of :func:`smallest_eigenpairs`.
-
-    Attributes
-    ----------
-    eigenvalues : (k,) float, ascending
-    eigenvectors : (n, k) array, columns M-orthonormal (``Uᴴ M U = I``)
-    iterations : int
-    residuals : (k,) float, normwise backward errors ``η`` (see module docstring)
-    converged : bool
-    backend : str, name of the factorization backend
-    shift : float, the shift ``σ`` that was factorized (``A − σM``)
-    block_size : int, number of vectors iterated (each iteration solves that many right-hand sides)
-    method : str, ``"lanczos"``, ``"subspace"``, ``"lanczos+subspace"`` (fallback) or ``"lobpcg"``
-
-    Examples
-    --------
-    >>> import scipy.sparse as sp
-    >>> A = sp.csr_matrix([[2.0, -1.0], [-1.0, 2.0]])                # eigenvalues 1 and 3
-    >>> r = smallest_eigenpairs(A, sp.identity(2, format="csr"), 1)
-    >>> r.converged, round(float(r.eigenvalues[0]), 6), r.eigenvectors.shape
-    (True, 1.0, (2, 1))
-    """
-
-    eigenvalues: np.ndarray
-    eigenvectors: np.ndarray
-    iterations: int
-    residuals: np.ndarray
-    converged: bool
-    backend: str
-    shift: float
-    block_size: int = 0
-    method: str = "subspace"
 
 
 def backward_errors(A, M, eigenvalues, eigenvectors) -> np.ndarray:
@@ -313,87 +281,6 @@ def _factorize_shifted(be, A, M, shift, eps_shift, default):
         return be.factorize((A - shift * M).tocsc()), shift
     except InvalidOperatorError:  # σ is exactly an eigenvalue: step off it
         return be.factorize((A - (shift - eps_shift) * M).tocsc()), shift - eps_shift
-
-
-def _rayleigh_ritz(A, M, W, k, shift, normA, normM):
-    """Ritz pairs of span ``W`` ordered by distance to ``shift``: ``(U, MU, λ_k, U_k, η_k)``."""
-    W = W / np.linalg.norm(W, axis=0)
-    Q, MQ = _m_orthonormalize(W, M)
-    AQ = A @ Q
-    Qh = Q.conj().T
-    Ap, Mp = Qh @ AQ, Qh @ MQ
-    Ap, Mp = 0.5 * (Ap + Ap.conj().T), 0.5 * (Mp + Mp.conj().T)
-    try:
-        theta, C = sla.eigh(Ap, Mp)
-    except np.linalg.LinAlgError as err:
-        raise InvalidOperatorError(f"M is not positive definite (projected mass not PD: {err})") from err
-    order = np.argsort(np.abs(theta - shift), kind="stable")
-    theta, C = theta[order], C[:, order]
-    U, MU = Q @ C, MQ @ C
-    sel = np.argsort(theta[:k], kind="stable")
-    lam, Uk = theta[:k][sel], U[:, :k][:, sel]
-    R = AQ @ C[:, :k][:, sel] - MU[:, :k][:, sel] * lam[None, :]  # only the k wanted residuals
-    return U, MU, lam, Uk, _eta(R, lam, Uk, normA, normM)
-
-
-def _not_psd(lam0, shift):
-    return InvalidOperatorError(f"A is not positive semidefinite: found the eigenvalue {lam0:.6g} "
-                                f"< -ε = {shift:.3g}; pass sigma= to search near a chosen value")
-
-
-def _not_converged(res, maxiter, tol, p):
-    err = ConvergenceError(f"smallest_eigenpairs: not converged after {maxiter} iterations "
-                           f"(largest backward error {res.residuals.max():.3g} > tol = {tol:.3g}); for a "
-                           f"clustered spectrum raise block_size (now {p}) above the cluster size, else increase "
-                           "maxiter, loosen tol, or pass a better v0")
-    err.result = res
-    return err
-
-
-def _subspace_iteration(fac, be, A, M, U, k, shift, default, tol, maxiter, its0=0, method="subspace"):
-    name, p = getattr(fac, "name", be.name), U.shape[1]
-    normA, normM = _norm1(A), _norm1(M)
-    MU = M @ U
-    lam_old = lam = eta = Uk = None
-    for it in range(1, maxiter + 1):
-        W = fac.solve(MU)
-        if not np.all(np.isfinite(W)):
-            raise InvalidOperatorError("the shifted solve produced non-finite values; A - σM is numerically singular")
-        U, MU, lam, Uk, eta = _rayleigh_ritz(A, M, W, k, shift, normA, normM)
-        ok = eta <= tol
-        if lam_old is not None:
-            ok &= np.abs(lam - lam_old) * normM <= tol * (normA + np.abs(lam) * normM)
-        else:
-            ok &= False
-        if default and lam[0] < shift:
-            raise _not_psd(lam[0], shift)
-        if np.all(ok):
-            return EigenResult(lam, _fix_phase(Uk), its0 + it, eta, True, name, shift, p, method)
-        lam_old = lam
-    raise _not_converged(EigenResult(lam, _fix_phase(Uk), its0 + maxiter, eta, False, name, shift, p, method),
-                         its0 + maxiter, tol, p)
-
-
-def _iterate_lobpcg(be, A, M, U, k, eps_shift, tol, maxiter):
-    """Iterative backend: its block method in chunks (25, 50, 100, ... iterations).
-
-    Each chunk is followed by Rayleigh–Ritz and the backward-error test of the ``k`` wanted pairs
-    (the extra block vectors need not converge), restarting from the current block.
-    """
-    normA, normM = _norm1(A), _norm1(M)
-    p, its, chunk = U.shape[1], 0, 25
-    while its < maxiter:
-        X, used = be.eigensolve(A, M, U, shift=eps_shift, tol=tol, maxiter=min(chunk, maxiter - its))
-        its, chunk = its + used, 2 * chunk
-        if not np.all(np.isfinite(X)):
-            raise InvalidOperatorError(f"{be.name} produced non-finite vectors (A or M numerically singular)")
-        U, _, lam, Uk, eta = _rayleigh_ritz(A, M, X, k, -np.inf, normA, normM)
-        if lam[0] < -eps_shift:
-            raise _not_psd(lam[0], -eps_shift)
-        if np.all(eta <= tol):
-            return EigenResult(lam, _fix_phase(Uk), its, eta, True, be.name, -eps_shift, p, "lobpcg")
-    raise _not_converged(EigenResult(lam, _fix_phase(Uk), its, eta, False, be.name, -eps_shift, p, "lobpcg"),
-                         maxiter, tol, p)
 
 
 def solve(A, M, lam, b, *, backend=None, positive_definite: bool = False) -> np.ndarray:
