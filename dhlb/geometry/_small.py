@@ -50,18 +50,24 @@ def factor_from_edges(E: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     ([[3.0, 1.0], [0.0, 2.0]], [[9.0, 3.0], [3.0, 5.0]])
     """
     m, d, n = E.shape
-    e1 = E[:, :, 0]
+    e1 = np.ascontiguousarray(E[:, :, 0])
     n11 = np.einsum("md,md->m", e1, e1)
     r11 = np.sqrt(n11)
     if n == 1:
         return r11.reshape(m, 1, 1), n11.reshape(m, 1, 1)
-    e2 = E[:, :, 1]
+    e2 = np.ascontiguousarray(E[:, :, 1])
     n12 = np.einsum("md,md->m", e1, e2)
     n22 = np.einsum("md,md->m", e2, e2)
-    wedge2 = np.zeros(m)
-    for i in range(d):
-        for j in range(i + 1, d):
-            wedge2 += (e1[:, i] * e2[:, j] - e1[:, j] * e2[:, i]) ** 2
+    if d == 3:
+        c = np.cross(e1, e2)
+        wedge2 = np.einsum("md,md->m", c, c)
+    elif d == 2:
+        wedge2 = (e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]) ** 2
+    else:
+        wedge2 = np.zeros(m)
+        for i in range(d):
+            for j in range(i + 1, d):
+                wedge2 += (e1[:, i] * e2[:, j] - e1[:, j] * e2[:, i]) ** 2
     safe = np.where(r11 > 0, r11, 1.0)
     R = np.zeros((m, 2, 2))
     R[:, 0, 0] = r11

@@ -258,7 +258,8 @@ class TangentBundle:
         verts = np.concatenate([fa.vertex, bnd])
         ends = np.concatenate([fa.first, fa.second[fa.last[bnd]]])
         d = P[ends] - P[verts]
-        psi = np.mod(np.arctan2(np.sum(d * T[verts, 1], 1), np.sum(d * T[verts, 0], 1)), TWO_PI)
+        T1, T2 = np.ascontiguousarray(T[:, 0]), np.ascontiguousarray(T[:, 1])
+        psi = np.mod(np.arctan2(np.einsum("ij,ij->i", d, T2[verts]), np.einsum("ij,ij->i", d, T1[verts])), TWO_PI)
         psi[: fa.vertex.size][fa.rank == 0] = 0.0
         vv, th, ps = np.empty(off[-1], np.int64), np.empty(off[-1]), np.empty(off[-1])
         vv[pos] = np.concatenate([verts, np.arange(N)])
@@ -298,8 +299,8 @@ class TangentBundle:
         """
         v, th = np.broadcast_arrays(np.asarray(vertices, np.int64), np.asarray(angles, np.float64))
         psi = self.angle_map.to_polar(v.ravel(), th.ravel()).reshape(v.shape)
-        T = self.frames[v]
-        return np.cos(psi)[..., None] * T[..., 0, :] + np.sin(psi)[..., None] * T[..., 1, :]
+        T1, T2 = np.ascontiguousarray(self.frames[:, 0]), np.ascontiguousarray(self.frames[:, 1])
+        return np.cos(psi)[..., None] * T1[v] + np.sin(psi)[..., None] * T2[v]
 
     def vectors_to_angles(self, vectors: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """Rescaled angle and length of the tangential part of one 3D vector per vertex.
