@@ -1,6 +1,8 @@
-"""Integral homology and cohomology (Z, R, Z/m, S¹) against hand-made complexes and theorems."""
+"""Integral homology against hand-made complexes and theorems: generators, torsion orders, Künneth.
 
-from math import gcd
+Cohomology (Z, R, Z/m, S¹ coefficients) is tested in ``test_cohomology.py``; the complexes are in
+``tests/homology_complexes.py``.
+"""
 
 import numpy as np
 import pytest
@@ -16,77 +18,12 @@ from dhlb.topology.homology import (
     HomologyGroup,
     betti_numbers,
     cohomology,
-    cohomology_from_boundaries,
     homology,
     homology_from_boundaries,
 )
 from dhlb.topology.intlinalg import integer_kernel_basis, smith_normal_form, solve_integer
+from tests.homology_complexes import CIRCLE, EXPECTED, KLEIN, RP2, SPHERE, TORUS7, boundaries, obj
 from tests.strategies import balls, closed_manifolds, closed_surfaces, complexes
-
-
-# ----------------------------------------------------------------------------- explicit complexes
-def polygon_word(word, n=3):
-    """A triangle-free polygon whose sides, read around the boundary, are the letters of ``word``
-    (``'a'`` or ``'A'`` = a⁻¹), every side glued to one loop ``a`` cut into ``n`` edges.  The disc is
-    an annulus of fresh vertices ``q`` plus a cone from a centre, so the result is simplicial."""
-    loop = list(range(n))
-    boundary = []
-    for letter in word:
-        boundary += loop if letter == "a" else [loop[0]] + loop[:0:-1]
-    L = len(boundary)
-    q = [n + t for t in range(L)]
-    centre = n + L
-    tris = []
-    for t in range(L):
-        p0, p1 = boundary[t], boundary[(t + 1) % L]
-        tris += [(p0, p1, q[t]), (p1, q[(t + 1) % L], q[t]), (centre, q[t], q[(t + 1) % L])]
-    return tris
-
-
-CIRCLE = [(0, 1), (1, 2), (0, 2)]
-SPHERE = [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)]
-TORUS7 = [(i, (i + 1) % 7, (i + 3) % 7) for i in range(7)] + [(i, (i + 2) % 7, (i + 3) % 7) for i in range(7)]
-RP2 = [(0, 1, 2), (0, 2, 3), (0, 3, 4), (0, 4, 5), (0, 1, 5), (1, 2, 4), (2, 3, 5), (1, 3, 4), (1, 3, 5), (2, 4, 5)]
-# Klein bottle: 3×3 grid of squares (vertex (i, j) = 3i + j), the j-direction glued with a flip i -> -i
-KLEIN = []
-for _i in range(3):
-    for _j in range(3):
-        def _lab(i, j):
-            return ((-i if j >= 3 else i) % 3) * 3 + j % 3
-        _a, _b, _c, _d = _lab(_i, _j), _lab(_i + 1, _j), _lab(_i + 1, _j + 1), _lab(_i, _j + 1)
-        KLEIN += [(_a, _b, _c), (_a, _c, _d)]
-DUNCE_HAT = polygon_word("aaA")
-PSEUDO_PROJECTIVE_3 = polygon_word("aaa")  # H_1 = Z/3
-S3 = [tuple(c) for c in __import__("itertools").combinations(range(5), 4)]
-
-EXPECTED = {
-    "point": ([(0,)], [(1, ())]),
-    "two points": ([(0,), (1,)], [(2, ())]),
-    "circle": (CIRCLE, [(1, ()), (1, ())]),
-    "S2": (SPHERE, [(1, ()), (0, ()), (1, ())]),
-    "torus": (TORUS7, [(1, ()), (2, ()), (1, ())]),
-    "RP2": (RP2, [(1, ()), (0, (2,)), (0, ())]),
-    "Klein bottle": (KLEIN, [(1, ()), (1, (2,)), (0, ())]),
-    "dunce hat": (DUNCE_HAT, [(1, ()), (0, ()), (0, ())]),
-    "Z/3 Moore space": (PSEUDO_PROJECTIVE_3, [(1, ()), (0, (3,)), (0, ())]),
-    "S3": (S3, [(1, ()), (0, ()), (0, ()), (1, ())]),
-    "torus ∨ circle ⊔ point": (TORUS7 + [(0, 7), (7, 8), (0, 8), (9,)], [(2, ()), (3, ()), (1, ())]),
-}
-
-
-def obj(A):
-    return np.asarray(A.toarray() if sp.issparse(A) else A, dtype=object)
-
-
-def boundaries(X):
-    return [X.boundary(k) for k in range(X.dim + 1)]
-
-
-def coboundary(X, k):
-    """d_k = ∂_{k+1}ᵀ (zero map above the top dimension)."""
-    if k + 1 <= X.dim:
-        return obj(X.boundary(k + 1).T)
-    return np.zeros((0, X.n_simplices(k)), dtype=object)
 
 
 # ----------------------------------------------------------------------------- generator checks
@@ -216,110 +153,6 @@ def test_kunneth_rp2_times_circle():
         check_homology_group(X, k, h)
 
 
-# ----------------------------------------------------------------------------- cohomology
-def rank_mod_p(A, p):
-    M = [[int(x) % p for x in row] for row in obj(A)]
-    r, cols = 0, len(M[0]) if M else 0
-    for c in range(cols):
-        piv = next((i for i in range(r, len(M)) if M[i][c]), None)
-        if piv is None:
-            continue
-        M[r], M[piv] = M[piv], M[r]
-        inv = pow(M[r][c], -1, p)
-        M[r] = [x * inv % p for x in M[r]]
-        for i in range(len(M)):
-            if i != r and M[i][c]:
-                f = M[i][c]
-                M[i] = [(x - f * y) % p for x, y in zip(M[i], M[r])]
-        r += 1
-    return r
-
-
-@pytest.mark.parametrize("name", ["circle", "S2", "torus", "RP2", "Klein bottle", "dunce hat",
-                                  "Z/3 Moore space", "torus ∨ circle ⊔ point"])
-def test_integral_cohomology_universal_coefficients(name):
-    X = SimplicialComplex(EXPECTED[name][0])
-    H = homology(X)
-    C = cohomology(X, "Z")
-    for k, c in enumerate(C):
-        # H^k = Hom(H_k, Z) ⊕ Ext(H_{k-1}, Z) = Z^{b_k} ⊕ T_{k-1}
-        assert c.rank == H[k].rank and c.torsion == (H[k - 1].torsion if k else ())
-        W = obj(c.cocycles)
-        assert W.shape == (X.n_simplices(k), c.rank + len(c.torsion)) and c.n_hom == c.rank
-        assert not coboundary(X, k).dot(W).any()  # cocycles
-        # the free cocycles are the dual basis of the free cycles (Kronecker pairing)
-        pair = W[:, :c.rank].T.dot(obj(H[k].generators))
-        assert np.array_equal(pair, np.concatenate([np.eye(c.rank, dtype=object),
-                                                    np.zeros((c.rank, len(H[k].torsion)), dtype=object)], 1))
-        # torsion cocycle of order d: d τ exact, (d/p) τ not
-        dprev = coboundary(X, k - 1) if k else np.zeros((X.n_simplices(0), 0), dtype=object)
-        for j, d in enumerate(c.torsion):
-            tau = W[:, c.rank + j]
-            assert solve_integer(dprev, d * tau) is not None
-            for p in sympy.primefactors(d):
-                assert solve_integer(dprev, (d // p) * tau) is None
-    assert [str(c) for c in cohomology(SimplicialComplex(RP2), "Z")] == ["Z", "0", "Z/2"]
-
-
-@pytest.mark.parametrize("name", ["RP2", "Klein bottle", "torus", "Z/3 Moore space", "dunce hat", "S3"])
-@pytest.mark.parametrize("m", [2, 3, 4, 6])
-def test_cohomology_mod_m(name, m):
-    X = SimplicialComplex(EXPECTED[name][0])
-    H = homology(X)
-    C = cohomology(X, ("Z", m))
-    for k, c in enumerate(C):
-        expected = [m] * H[k].rank + [gcd(d, m) for d in H[k].torsion if gcd(d, m) > 1]
-        n_hom = len(expected)
-        expected += [gcd(d, m) for d in (H[k - 1].torsion if k else ()) if gcd(d, m) > 1]
-        assert c.torsion == tuple(expected) and c.n_hom == n_hom and c.rank == 0
-        assert c.coefficients == f"Z/{m}"
-        W = obj(c.cocycles)
-        assert W.shape == (X.n_simplices(k), len(expected)) and ((W >= 0) & (W < m)).all()
-        assert not (coboundary(X, k).dot(W) % m).any()  # cocycles mod m
-        if sympy.isprime(m):  # dimension over the field F_p from ranks mod p
-            n = X.n_simplices(k)
-            rk = rank_mod_p(X.boundary(k).toarray(), m) if k else 0
-            rk1 = rank_mod_p(X.boundary(k + 1).toarray(), m) if k < X.dim else 0
-            assert len(c.torsion) == n - rk - rk1
-    assert cohomology(X, f"Z/{m}")[0].torsion == C[0].torsion
-
-
-@pytest.mark.parametrize("name", ["RP2", "Klein bottle", "torus", "Z/3 Moore space", "circle"])
-def test_cohomology_real_and_circle(name):
-    X = SimplicialComplex(EXPECTED[name][0])
-    H = homology(X)
-    R = cohomology(X, "R")
-    S = cohomology(X, "S1")
-    for k in range(X.dim + 1):
-        assert R[k].rank == H[k].rank and R[k].cocycles.dtype == float
-        assert np.allclose(coboundary(X, k).astype(float) @ R[k].cocycles, 0)
-        # H^k(X; S¹) = Hom(H_k, S¹) = (S¹)^{b_k} × torsion of H_k
-        s = S[k]
-        assert s.rank == H[k].rank and s.torsion == H[k].torsion
-        angles = s.cocycles[:, s.rank:]
-        assert np.all((angles > -np.pi - 1e-12) & (angles <= np.pi + 1e-12))
-        dtheta = coboundary(X, k).astype(float) @ s.cocycles
-        assert np.allclose(np.exp(1j * dtheta), 1)  # flat: S¹-cocycles
-        # finite part: holonomy 2π/d on its torsion generator, 0 on the other generators
-        vals = H[k].generators.T.astype(float) @ angles
-        expected = np.zeros_like(vals)
-        for j, d in enumerate(s.torsion):
-            expected[H[k].rank + j, j] = 2 * np.pi / d
-        assert np.allclose(np.exp(1j * vals), np.exp(1j * expected))
-
-
-def test_rp2_flat_bundle_has_holonomy_pi():
-    X = SimplicialComplex(RP2)
-    H1 = cohomology(X, "S1")[1]
-    assert str(H1) == "Z/2" and H1.rank == 0 and H1.torsion == (2,)
-    z = homology(X)[1].generators[:, 0]
-    theta = H1.cocycles[:, 0]
-    assert set(np.round(np.abs(theta), 12)) <= {0.0, round(np.pi, 12)}
-    assert np.isclose(np.cos(z @ theta), -1.0)
-    assert str(cohomology(SimplicialComplex(TORUS7), "S1")[1]) == "(S¹)^2"
-    assert str(cohomology(SimplicialComplex(KLEIN), "S1")[1]) == "S¹ × Z/2"
-
-
 # ----------------------------------------------------------------------------- larger sparse cases
 def grid_torus_with_crosscap(N):
     """N×N grid torus with one square replaced by an annulus to a 6-vertex RP² minus a triangle."""
@@ -396,7 +229,3 @@ def test_bad_input():
         homology_from_boundaries([])
     with pytest.raises(InvalidMatrixError):
         homology_from_boundaries([B[0], B[1] * 0.5])
-    for bad in ["Q", ("Z", 1), ("Z", 2.0), "Z/x", ("R", 2)]:
-        with pytest.raises(InvalidMatrixError, match="coefficients"):
-            cohomology(X, bad)
-    assert [str(c) for c in cohomology_from_boundaries(B, "Z/2")] == ["Z/2", "0", "Z/2"]

@@ -26,17 +26,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhlb.bundles import paths
+from dhlb.bundles._hermitian_checks import checked_connection, checked_curvature, from_cochain
+from dhlb.bundles._hermitian_checks import real_vector as _real_vector  # also imported by weil.py
 from dhlb.bundles._util import coboundary, simplex_name, wrap_angle
 from dhlb.bundles.vector_bundle import VectorBundle
-from dhlb.errors import (
-    CurvatureMismatchError,
-    IntegralityError,
-    InvalidConnectionError,
-    NonFiniteError,
-    NonManifoldError,
-    NonOrientableError,
-    NotClosedError,
-)
+from dhlb.errors import IntegralityError, InvalidConnectionError, NonManifoldError, NonOrientableError, NotClosedError
 
 if TYPE_CHECKING:
     from typing import Any
@@ -48,33 +42,6 @@ if TYPE_CHECKING:
     from dhlb.topology.complex import SimplicialComplex
 
 __all__ = ["HermitianLineBundle"]
-
-
-def _real_vector(values, n: int, what: str) -> np.ndarray:
-    arr = np.asarray(values)
-    if np.iscomplexobj(arr):
-        if np.any(arr.imag != 0):
-            raise InvalidConnectionError(f"{what} must be real")
-        arr = arr.real
-    try:
-        arr = arr.astype(np.float64).reshape(-1)
-    except (TypeError, ValueError):
-        raise InvalidConnectionError(f"{what} must be a real array of length {n}") from None
-    if arr.size != n:
-        raise InvalidConnectionError(f"{what} must have length {n}, got {arr.size}")
-    if not np.all(np.isfinite(arr)):
-        raise NonFiniteError(f"{what} contains NaN or infinity (entry {int(np.argmin(np.isfinite(arr)))})")
-    return arr
-
-
-def _from_cochain(value, k: int):
-    """Accept a :class:`dhlb.forms.Cochain` (S¹ angles become unit complex numbers)."""
-    if hasattr(value, "values") and hasattr(value, "group") and hasattr(value, "k"):
-        if value.k != k:
-            raise InvalidConnectionError(f"expected a {k}-form, got a {value.k}-form")
-        vals = np.asarray(value.values)
-        return np.exp(1j * vals) if (k == 1 and value.group == "S1") else vals
-    return value
 
 
 class HermitianLineBundle:
@@ -112,48 +79,9 @@ class HermitianLineBundle:
     def __init__(self, X: SimplicialComplex, connection: ArrayLike, curvature: ArrayLike, *, atol: float = 1e-8):
         self._X = X
         self._atol = float(atol)
-        n1, n2 = X.n_simplices(1), X.n_simplices(2)
-        connection, curvature = _from_cochain(connection, 1), _from_cochain(curvature, 2)
-        r = np.asarray(connection)
-        try:
-            r = r.astype(np.complex128).reshape(-1)
-        except (TypeError, ValueError):
-            raise InvalidConnectionError(f"the connection must be a complex array of length n_1 = {n1}") from None
-        if r.size != n1:
-            raise InvalidConnectionError(
-                f"the connection needs one unit complex number per edge: length n_1 = {n1}, got {r.size}"
-            )
-        if not np.all(np.isfinite(r)):
-            bad_edge = simplex_name(X, 1, int(np.argmin(np.isfinite(r))))
-            raise NonFiniteError(f"the connection contains NaN or infinity (edge {bad_edge})")
-        dev = np.abs(np.abs(r) - 1.0)
-        if np.any(dev > atol):
-            e = int(np.argmax(dev))
-            raise InvalidConnectionError(
-                f"the connection on edge {simplex_name(X, 1, e)} is not unitary: |r| = {abs(r[e]):.6g}; "
-                "a hermitian connection needs |r_ij| = 1"
-            )
-        r = r / np.abs(r)
-        Om = _real_vector(curvature, n2, "the curvature")
-        if n2:
-            f = X.faces(2)
-            hol = np.angle(r[f[:, 2]] * r[f[:, 0]] * np.conj(r[f[:, 1]]))
-            mis = wrap_angle(Om - hol)
-            badc = np.abs(mis) > atol * np.maximum(1.0, np.abs(Om))
-            if np.any(badc):
-                t = int(np.argmax(badc))
-                raise CurvatureMismatchError(
-                    f"triangle {simplex_name(X, 2, t)}: exp(iΩ) does not match the holonomy r_ij r_jk r_ki of "
-                    f"the connection: Ω = {Om[t]:.6g}, holonomy angle = {hol[t]:.6g}, mismatch = {mis[t]:.3g} (mod 2π)"
-                )
-        if X.dim >= 3 and X.n_simplices(3):
-            dOm, scale = coboundary(X, 2, Om)
-            badd = np.abs(dOm) > atol * np.maximum(1.0, scale)
-            if np.any(badd):
-                s = int(np.argmax(badd))
-                raise NotClosedError(
-                    f"the curvature is not closed: dΩ = {dOm[s]:.6g} on the tetrahedron {simplex_name(X, 3, s)}"
-                )
+        connection, curvature = from_cochain(connection, 1), from_cochain(curvature, 2)
+        r = checked_connection(X, connection, atol)
+        Om = checked_curvature(X, r, curvature, atol)
         r.setflags(write=False)
         Om.setflags(write=False)
         self._r = r

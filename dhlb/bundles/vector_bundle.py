@@ -28,6 +28,7 @@ import numpy as np
 
 from dhlb.bundles import paths
 from dhlb.bundles._util import simplex_name
+from dhlb.bundles._vector_bundle_checks import checked_transports
 from dhlb.bundles.fields import field_ops
 from dhlb.errors import InvalidConnectionError, NotAPathError
 
@@ -82,35 +83,7 @@ class VectorBundle:
         self._X = X
         self._ops = field_ops(field, atol)
         self._atol = float(atol)
-        n1 = X.n_simplices(1)
-        try:
-            arr = np.asarray(transports)
-        except (TypeError, ValueError):
-            raise InvalidConnectionError("transports must be a rectangular array of shape (n_1, K, K)") from None
-        if arr.ndim == 1 and arr.shape[0] == n1:
-            arr = arr.reshape(n1, 1, 1)
-        if arr.ndim != 3 or arr.shape[0] != n1 or arr.shape[1] != arr.shape[2] or arr.shape[1] == 0:
-            raise InvalidConnectionError(
-                f"transports must have shape (n_1, K, K) = ({n1}, K, K) with K >= 1 (one matrix per "
-                f"canonical edge of X.simplices(1)), got shape {np.shape(transports)}"
-            )
-        arr = self._ops.asarray(arr, "transports")
-        inv, bad = self._ops.inv(arr)
-        if np.any(bad):
-            e = int(np.argmax(bad))
-            raise InvalidConnectionError(f"the transport on edge {simplex_name(X, 1, e)} (row {e}) is not invertible")
-        if metric:
-            if self._ops.exact:
-                raise InvalidConnectionError("metric=True (orthogonal/unitary transports) needs field 'R' or 'C'")
-            defect = self._ops.unitary_defect(arr) if n1 else np.zeros(0)
-            badm = defect > atol * 10
-            if np.any(badm):
-                e = int(np.argmax(badm))
-                kind = "orthogonal" if self._ops.name == "R" else "unitary"
-                raise InvalidConnectionError(
-                    f"the transport on edge {simplex_name(X, 1, e)} (row {e}) is not {kind}: "
-                    f"max |ηᴴη − I| = {defect[e]:.3g} > {atol * 10:.3g}"
-                )
+        arr, inv = checked_transports(X, transports, self._ops, metric, atol)
         arr.setflags(write=False)
         inv.setflags(write=False)
         self._eta = arr

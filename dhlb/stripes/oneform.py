@@ -54,23 +54,16 @@ from __future__ import annotations
 
 import numbers
 import warnings
-from dataclasses import dataclass
 from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.sparse as sp
 
 from dhlb.bundles.hermitian import HermitianLineBundle
 from dhlb.bundles.vector_bundle import VectorBundle
-from dhlb.errors import (
-    DhlbWarning,
-    InvalidConnectionError,
-    InvalidParameterError,
-    NonFiniteError,
-    SectionZeroError,
-    ShapeError,
-)
+from dhlb.errors import DhlbWarning, InvalidConnectionError, InvalidParameterError
+from dhlb.stripes._double_cover import DoubleCover
+from dhlb.stripes._oneform_input import checked_directions, edge_name, per_vertex_positive
 from dhlb.surface.mesh import SurfaceMesh
 from dhlb.surface.tangent import TangentBundle
 from dhlb.topology.complex import SimplicialComplex
@@ -81,105 +74,6 @@ if TYPE_CHECKING:
 __all__ = ["StripeForm", "DoubleCover", "stripe_form"]
 
 TWO_PI = 2.0 * np.pi
-
-
-@dataclass(frozen=True)
-class DoubleCover:
-    """The double cover K̃ of the non-branch part and its hermitian line bundle (§3.3).
-
-    Vertex ``i`` of the base is covered by ``i`` (sheet 1, the field ``X_i``) and ``N + i``
-    (sheet 2, ``−X_i``). ``face_lifts[f]`` is the sheet-1 lift ``(p, q, r)`` of ``mesh.faces[f]``
-    walked from its first corner (for a branch face the walk ends on ``τ(p) = p ± N``, and the
-    face has no lift in K̃).
-
-    The conjugate-symmetric functions are the real subspace ``ψ̃ = P x`` of :meth:`embedding`
-    (``x`` interleaved ``(Re ψ_0, Im ψ_0, Re ψ_1, …)``); a Hermitian form H on K̃ restricts to the
-    real symmetric ``Re(Pᴴ H P)`` (:meth:`restrict`), e.g. a Dirichlet and a mass matrix of
-    ``bundle`` over the geometry ``points`` give the real 2N × 2N eigenproblem of §4.1–§4.2.
-
-    Attributes
-    ----------
-    complex : SimplicialComplex on the vertices ``0 .. 2N−1`` (regular faces lifted twice, all edges)
-    bundle : HermitianLineBundle, connection ``e^{iω̃}`` and curvature ``dω̃``
-    n_base_vertices : int
-    face_lifts : (m, 3) int64
-    points : (2N, 3) float, the position of each cover vertex (that of the vertex below it)
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from dhlb.surface import validate_surface
-    >>> from dhlb.stripes import stripe_form, texture_coordinates
-    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
-    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
-    >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
-    >>> dc = form.double_cover
-    >>> dc.n_base_vertices, dc.complex.n_simplices(0), dc.lift([1j, 1, 2, 3]).tolist()[3:5]
-    (4, 8, [(3+0j), -1j])
-    """
-
-    complex: SimplicialComplex
-    bundle: HermitianLineBundle
-    n_base_vertices: int
-    face_lifts: np.ndarray
-    points: np.ndarray
-
-    def lift(self, psi: ArrayLike) -> np.ndarray:
-        """The conjugate-symmetric lift ``ψ̃ = (ψ, ψ̄)`` of one complex value per base vertex."""
-        z = np.asarray(psi, np.complex128).reshape(-1)
-        if z.size != self.n_base_vertices:
-            raise ShapeError(f"psi needs one value per base vertex ({self.n_base_vertices}), got {z.size}")
-        return np.concatenate([z, np.conj(z)])
-
-    def embedding(self) -> sp.csr_matrix:
-        """The real-linear map ``P`` (2N × 2N, complex) with ``P x = lift(x[0::2] + 1j x[1::2])``."""
-        N = self.n_base_vertices
-        v = np.arange(N)
-        rows = np.concatenate([v, v, v + N, v + N])
-        cols = np.concatenate([2 * v, 2 * v + 1, 2 * v, 2 * v + 1])
-        vals = np.concatenate([np.ones(N), np.full(N, 1j), np.ones(N), np.full(N, -1j)])
-        return sp.csr_matrix((vals, (rows, cols)), shape=(2 * N, 2 * N))
-
-    def restrict(self, matrix: sp.spmatrix) -> sp.csr_matrix:
-        """``Re(Pᴴ H P)``: a Hermitian form on the cover restricted to conjugate-symmetric functions (real, 2N × 2N)."""
-        H = sp.csr_matrix(matrix)
-        n = 2 * self.n_base_vertices
-        if H.shape != (n, n):
-            raise ShapeError(f"the matrix must be {n} x {n} (one row per vertex of the double cover), got {H.shape}")
-        P = self.embedding()
-        return sp.csr_matrix((P.conj().T @ H @ P).real)
-
-
-def _vertex_name(mesh: SurfaceMesh, v: int) -> str:
-    return f"vertex {int(mesh.vertex_labels[v])}"
-
-
-def _edge_name(mesh: SurfaceMesh, e: int) -> str:
-    return "edge ({}, {})".format(*(int(x) for x in mesh.vertex_labels[mesh.complex.simplices(1)[e]]))
-
-
-def _per_vertex_positive(mesh: SurfaceMesh, value, what: str) -> np.ndarray:
-    try:
-        arr = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise InvalidParameterError(f"{what} must be a positive number or one per vertex, got {value!r}") from None
-    if arr.ndim == 0:
-        if not np.isfinite(arr):
-            raise NonFiniteError(f"{what} is not finite ({float(arr)}); give a positive number")
-        if arr <= 0:
-            raise InvalidParameterError(f"{what} must be positive, got {float(arr)}")
-        return np.full(mesh.n_vertices, float(arr))
-    if arr.ndim != 1:
-        raise ShapeError(f"{what} must be a number or a 1-d array with one value per vertex, got shape {arr.shape}")
-    arr = mesh.per_vertex(arr, what)
-    bad = ~np.isfinite(arr)
-    if np.any(bad):
-        raise NonFiniteError(f"{what} is not finite at {_vertex_name(mesh, int(np.argmax(bad)))}")
-    bad = arr <= 0
-    if np.any(bad):
-        v = int(np.argmax(bad))
-        raise InvalidParameterError(f"{what} must be positive; it is {arr[v]} at {_vertex_name(mesh, v)}")
-    return arr.astype(np.float64)
 
 
 class StripeForm:
@@ -308,7 +202,7 @@ class StripeForm:
         bad = self.edge_sign < 0
         if np.any(bad):
             raise InvalidConnectionError(
-                f"the line field is not consistently oriented along {_edge_name(self.mesh, int(np.argmax(bad)))} "
+                f"the line field is not consistently oriented along {edge_name(self.mesh, int(np.argmax(bad)))} "
                 f"({int(bad.sum())} such edges): there is no complex line bundle on the base; use the real rank-2 "
                 "bundle form.bundle or the double cover form.double_cover")
         X = self.mesh.complex
@@ -343,37 +237,6 @@ class StripeForm:
     def __repr__(self) -> str:
         nb = int(self.is_branch.sum())
         return f"StripeForm(n={self.n}, method={self.method!r}, branch_faces={nb}, {self.mesh!r})"
-
-
-def _directions(tb: TangentBundle, directions, method: str) -> tuple[np.ndarray, np.ndarray]:
-    mesh = tb.mesh
-    try:
-        W = np.asarray(directions, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise ShapeError("directions must be a real array of shape (n_vertices, 3) (or (n_vertices, k, 3) from "
-                         "dhlb.surface.direction_vectors)") from None
-    if W.ndim == 3 and W.shape[2] == 3 and W.shape[1] >= 1:
-        W = W[:, 0, :]
-    if W.ndim != 2 or W.shape[1] != 3:
-        raise ShapeError(f"directions must have shape (n_vertices, 3), got {np.shape(directions)}")
-    W = mesh.per_vertex(W, "directions")
-    bad = ~np.isfinite(W).all(axis=1)
-    if np.any(bad):
-        raise NonFiniteError(f"the direction at {_vertex_name(mesh, int(np.argmax(bad)))} is not finite "
-                             f"({W[np.argmax(bad)].tolist()}); give a finite tangent vector")
-    theta, tangential = tb.vectors_to_angles(W)
-    norm = np.linalg.norm(W, axis=1)
-    zero = ~(tangential > 1e-8 * norm)
-    if np.any(zero):
-        v = int(np.argmax(zero))
-        what = "is zero" if norm[v] == 0 else "is normal to the surface (no tangential part)"
-        raise SectionZeroError(f"the direction at {_vertex_name(mesh, v)} {what} ({int(zero.sum())} such vertices); "
-                               "stripes need a nonzero tangent direction at every vertex")
-    if method == "extrinsic":
-        Nv = tb.normals
-        T = W - np.sum(W * Nv, axis=1, keepdims=True) * Nv
-        return T / np.linalg.norm(T, axis=1, keepdims=True), theta
-    return tb.angles_to_vectors(np.arange(mesh.n_vertices), theta), theta
 
 
 def stripe_form(
@@ -449,13 +312,13 @@ def stripe_form(
         raise InvalidParameterError("give exactly one of frequency= (stripes per unit length) and spacing= "
                                     "(the period in mean edge lengths)")
     mesh = tb.mesh
-    X, theta = _directions(tb, directions, method)
+    X, theta = checked_directions(tb, directions, method)
     if spacing is None:
-        f = _per_vertex_positive(mesh, frequency, "frequency")
+        f = per_vertex_positive(mesh, frequency, "frequency")
     else:
         E = mesh.complex.simplices(1)
         mean_edge = float(np.mean(np.linalg.norm(mesh.points[E[:, 1]] - mesh.points[E[:, 0]], axis=1)))
-        f = 1.0 / (_per_vertex_positive(mesh, spacing, "spacing") * mean_edge)
+        f = 1.0 / (per_vertex_positive(mesh, spacing, "spacing") * mean_edge)
     form = StripeForm(tb, X, theta, f, int(n), method)
     if warn_aliasing:
         big = np.abs(form.omega) > np.pi
@@ -463,7 +326,7 @@ def stripe_form(
             e = int(np.argmax(np.abs(form.omega)))
             warnings.warn(
                 f"the stripes are narrower than the mesh resolves on {int(big.sum())} edge(s): the largest phase "
-                f"change is {abs(form.omega[e]):.3g} rad > π on {_edge_name(mesh, e)} (a period of "
+                f"change is {abs(form.omega[e]):.3g} rad > π on {edge_name(mesh, e)} (a period of "
                 f"{TWO_PI / abs(form.omega[e]):.3g} edge lengths). Per-vertex values alias there; the texture "
                 "coordinates use the frequency adjustment of §4.3 and stay correct. Refine the mesh or lower the "
                 "frequency if unwanted zeros appear", DhlbWarning, stacklevel=2)
