@@ -147,11 +147,7 @@ class StripeForm:
     @cached_property
     def face_edges(self) -> np.ndarray:
         """``(m, 3)`` canonical edge of the side ``c → c+1`` of each face (corners in mesh order)."""
-        F = self.mesh.faces
-        a, b = F, np.roll(F, -1, axis=1)
-        N = self.mesh.n_vertices
-        E = self.mesh.complex.simplices(1)
-        return np.searchsorted(E[:, 0] * N + E[:, 1], np.minimum(a, b) * N + np.maximum(a, b))
+        return self.mesh.halfedge_edge.reshape(-1, 3)
 
     @cached_property
     def face_forward(self) -> np.ndarray:
