@@ -1,21 +1,23 @@
 """Abstract simplicial complexes of any dimension: storage, look-up, boundary maps.
 
 The structural operations (star, link, skeleta, components, subdivision) live in
-:mod:`dhlb.topology.structure`, the manifold and orientation checks in
-:mod:`dhlb.topology.manifold`, integer homology in :mod:`dhlb.topology.homology`;
-:class:`SimplicialComplex` exposes them as methods.
+:mod:`dhlb.topology.structure`, the manifold checks in :mod:`dhlb.topology.manifold`,
+orientations in :mod:`dhlb.topology.orientation`, integer homology in :mod:`dhlb.topology.homology`;
+:class:`SimplicialComplex` exposes them as methods. Face tables, boundary matrices and the
+vertex-adjacency pattern are computed in the private module ``dhlb.topology._incidence``.
 """
 
 from __future__ import annotations
 
 from functools import cached_property
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
 
 from dhlb.errors import InvalidSimplexError, SimplexNotFoundError
-from dhlb.topology import _keys
+from dhlb.topology import _incidence, _keys
+from dhlb.topology._incidence import VertexAdjacency
 from dhlb.topology._input import parse_rows, parse_simplices
 
 if TYPE_CHECKING:
@@ -24,16 +26,6 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
 __all__ = ["SimplicialComplex", "VertexAdjacency"]
-
-
-class VertexAdjacency(NamedTuple):
-    """CSR pattern of vertex adjacency; see :attr:`SimplicialComplex.vertex_adjacency`."""
-
-    indptr: np.ndarray
-    indices: np.ndarray
-    diagonal: np.ndarray
-    upper: np.ndarray
-    lower: np.ndarray
 
 
 def _compact_labels(blocks: dict) -> tuple[np.ndarray, dict]:
@@ -248,18 +240,7 @@ class SimplicialComplex:
 
     @cached_property
     def _faces(self) -> dict[int, np.ndarray]:
-        out = {}
-        for k in range(1, self._dim + 1):
-            rows = self._rows[k]
-            f = np.empty(rows.shape, np.int64)
-            for i in range(k + 1):
-                if i == k:
-                    f[:, i] = self._key_list[k] // self._n if k > 1 else rows[:, 0]
-                else:
-                    f[:, i] = self._row_index(k - 1, np.delete(rows, i, axis=1))
-            f.setflags(write=False)
-            out[k] = f
-        return out
+        return _incidence.face_tables(self._rows, self._key_list, self._n, self._row_index)
 
     def boundary(self, k: int) -> sp.csr_matrix:
         """∂_k as an integer sparse matrix of shape ``(n_{k-1}, n_k)``, entries ``(−1)^i``.
@@ -281,15 +262,7 @@ class SimplicialComplex:
 
     @cached_property
     def _boundaries(self) -> list[sp.csr_matrix]:
-        mats = [sp.csr_matrix((0, self.n_simplices(0)), dtype=np.int64)]
-        for k in range(1, self._dim + 1):
-            f = self._faces[k]
-            n_k = f.shape[0]
-            signs = np.tile((-1) ** np.arange(k + 1, dtype=np.int64), n_k)
-            cols = np.repeat(np.arange(n_k, dtype=np.int64), k + 1)
-            mats.append(sp.csc_matrix((signs, (f.ravel(), cols)), shape=(self.n_simplices(k - 1), n_k)).tocsr())
-        mats.append(sp.csr_matrix((self.n_simplices(self._dim), 0), dtype=np.int64))
-        return mats
+        return _incidence.boundary_matrices(self._faces, self.counts)
 
     @cached_property
     def vertex_adjacency(self) -> VertexAdjacency:
@@ -305,20 +278,8 @@ class SimplicialComplex:
         >>> adj.indptr.tolist(), adj.indices.tolist(), adj.upper.tolist()
         ([0, 3, 6, 9], [0, 1, 2, 0, 1, 2, 0, 1, 2], [1, 2, 5])
         """
-        N = self._n
         E = self._rows[1] if self._dim >= 1 else np.zeros((0, 2), np.int64)
-        i = np.concatenate([np.arange(N), E[:, 0], E[:, 1]])
-        j = np.concatenate([np.arange(N), E[:, 1], E[:, 0]])
-        order = np.argsort(i * N + j)  # distinct keys: no stable sort needed
-        pos = np.empty(i.size, np.int64)
-        pos[order] = np.arange(i.size)
-        indptr = np.zeros(N + 1, np.int64)
-        np.cumsum(np.bincount(i, minlength=N), out=indptr[1:])
-        n1 = E.shape[0]
-        out = VertexAdjacency(indptr, j[order], pos[:N], pos[N:N + n1], pos[N + n1:])
-        for a in out:
-            a.setflags(write=False)
-        return out
+        return _incidence.vertex_adjacency(self._n, E)
 
     @cached_property
     def top_entry_positions(self) -> np.ndarray:
@@ -329,39 +290,16 @@ class SimplicialComplex:
 
         Summing per-simplex local matrices into a global vertex operator is one ``bincount``.
         """
-        from dhlb.topology.structure import subfaces
-
-        n = self._dim
-        rows = self._rows[n]
-        adj = self.vertex_adjacency
-        pos = np.empty((rows.shape[0], n + 1, n + 1), np.int64)
-        for a in range(n + 1):
-            pos[:, a, a] = adj.diagonal[rows[:, a]]
-        if n >= 1:
-            edges = subfaces(self, n, 1)
-            for p, (a, b) in enumerate(_keys.combination_columns(n + 1, 2).tolist()):
-                pos[:, b, a] = adj.lower[edges[:, p]]  # v_a < v_b: (v_b, v_a) is below the diagonal
-                pos[:, a, b] = adj.upper[edges[:, p]]
-        pos.setflags(write=False)
-        return pos
+        return _incidence.top_entry_positions(self, self.vertex_adjacency)
 
     def maximal_simplices(self) -> list[np.ndarray]:
         """For each k, the k-simplices that are faces of no (k+1)-simplex."""
-        out = []
-        for k in range(self._dim + 1):
-            if k == self._dim:
-                out.append(self._rows[k])
-            else:
-                used = np.zeros(self.n_simplices(k), bool)
-                used[self._faces[k + 1].ravel()] = True
-                out.append(self._rows[k][~used])
-        return out
+        return _incidence.maximal_rows(self._rows, self._faces)
 
     @property
     def is_pure(self) -> bool:
         """True if every maximal simplex has dimension :attr:`dim`."""
         return all(m.shape[0] == 0 for m in self.maximal_simplices()[:-1])
-
 
     # ------------------------------------------------------------------ delegated operations
     # Implemented in sibling modules (one room per concern); these are thin entry points.
@@ -414,14 +352,14 @@ class SimplicialComplex:
         return is_manifold(self)
 
     def is_orientable(self) -> bool:
-        """See :func:`dhlb.topology.manifold.is_orientable`."""
-        from dhlb.topology.manifold import is_orientable
+        """See :func:`dhlb.topology.orientation.is_orientable`."""
+        from dhlb.topology.orientation import is_orientable
 
         return is_orientable(self)
 
     def orientation(self) -> np.ndarray:
-        """±1 per top simplex, a consistent orientation (see :func:`dhlb.topology.manifold.orientation`)."""
-        from dhlb.topology.manifold import orientation
+        """±1 per top simplex, a consistent orientation (see :func:`dhlb.topology.orientation.orientation`)."""
+        from dhlb.topology.orientation import orientation
 
         cached = self.__dict__.get("_orientation")
         if cached is None:

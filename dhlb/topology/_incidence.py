@@ -1,0 +1,118 @@
+"""Incidence data derived from the stored rows of a :class:`~dhlb.topology.complex.SimplicialComplex`.
+
+Face tables, the boundary matrices ∂_k, the maximal simplices, the CSR pattern of the vertex
+adjacency and the data positions of the local entries of each top simplex in it. These are the
+implementations behind the (cached) attributes of the class, which keep the documentation and
+examples; they take plain arrays, or the complex itself, and this module does not import
+:mod:`dhlb.topology.complex` (which imports it).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, NamedTuple
+
+import numpy as np
+import scipy.sparse as sp
+
+from dhlb.topology import _keys
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+
+    from dhlb.topology.complex import SimplicialComplex
+
+__all__ = ["VertexAdjacency", "face_tables", "boundary_matrices", "maximal_rows", "vertex_adjacency",
+           "top_entry_positions"]
+
+
+class VertexAdjacency(NamedTuple):
+    """CSR pattern of vertex adjacency; see :attr:`SimplicialComplex.vertex_adjacency`."""
+
+    indptr: np.ndarray
+    indices: np.ndarray
+    diagonal: np.ndarray
+    upper: np.ndarray
+    lower: np.ndarray
+
+
+def face_tables(rows: Sequence[np.ndarray], keys: Sequence[np.ndarray], n: int,
+                row_index: Callable[[int, np.ndarray], np.ndarray]) -> dict[int, np.ndarray]:
+    """Per k >= 1, shape ``(n_k, k+1)``: row in the (k−1)-simplices of the face omitting vertex ``i``.
+
+    ``rows[k]`` are the sorted k-rows, ``keys[k]`` their keys (prefix row * n + last vertex),
+    ``n`` the number of vertices and ``row_index(k, rows)`` the row look-up of the complex.
+    """
+    out = {}
+    for k in range(1, len(rows)):
+        rk = rows[k]
+        f = np.empty(rk.shape, np.int64)
+        for i in range(k + 1):
+            if i == k:
+                f[:, i] = keys[k] // n if k > 1 else rk[:, 0]
+            else:
+                f[:, i] = row_index(k - 1, np.delete(rk, i, axis=1))
+        f.setflags(write=False)
+        out[k] = f
+    return out
+
+
+def boundary_matrices(faces: dict[int, np.ndarray], counts: Sequence[int]) -> list[sp.csr_matrix]:
+    """∂_0 .. ∂_{dim+1} from the face tables, ``counts = (n_0, ..., n_dim)``; entries ``(−1)^i``."""
+    dim = len(counts) - 1
+    mats = [sp.csr_matrix((0, counts[0]), dtype=np.int64)]
+    for k in range(1, dim + 1):
+        f = faces[k]
+        n_k = f.shape[0]
+        signs = np.tile((-1) ** np.arange(k + 1, dtype=np.int64), n_k)
+        cols = np.repeat(np.arange(n_k, dtype=np.int64), k + 1)
+        mats.append(sp.csc_matrix((signs, (f.ravel(), cols)), shape=(counts[k - 1], n_k)).tocsr())
+    mats.append(sp.csr_matrix((counts[dim], 0), dtype=np.int64))
+    return mats
+
+
+def maximal_rows(rows: Sequence[np.ndarray], faces: dict[int, np.ndarray]) -> list[np.ndarray]:
+    """For each k, the rows of ``rows[k]`` that are faces of no (k+1)-simplex."""
+    out = []
+    dim = len(rows) - 1
+    for k in range(dim + 1):
+        if k == dim:
+            out.append(rows[k])
+        else:
+            used = np.zeros(rows[k].shape[0], bool)
+            used[faces[k + 1].ravel()] = True
+            out.append(rows[k][~used])
+    return out
+
+
+def vertex_adjacency(N: int, E: np.ndarray) -> VertexAdjacency:
+    """CSR pattern (read-only arrays) of N vertices and the canonical edges ``E`` (rows ``i < j``)."""
+    i = np.concatenate([np.arange(N), E[:, 0], E[:, 1]])
+    j = np.concatenate([np.arange(N), E[:, 1], E[:, 0]])
+    order = np.argsort(i * N + j)  # distinct keys: no stable sort needed
+    pos = np.empty(i.size, np.int64)
+    pos[order] = np.arange(i.size)
+    indptr = np.zeros(N + 1, np.int64)
+    np.cumsum(np.bincount(i, minlength=N), out=indptr[1:])
+    n1 = E.shape[0]
+    out = VertexAdjacency(indptr, j[order], pos[:N], pos[N:N + n1], pos[N + n1:])
+    for a in out:
+        a.setflags(write=False)
+    return out
+
+
+def top_entry_positions(X: SimplicialComplex, adj: VertexAdjacency) -> np.ndarray:
+    """Positions in ``adj`` of the entries ``(v_b, v_a)`` of each top simplex, shape ``(n_top, k, k)``."""
+    from dhlb.topology.structure import subfaces  # structure imports complex, which imports this module
+
+    n = X.dim
+    rows = X.simplices(n)
+    pos = np.empty((rows.shape[0], n + 1, n + 1), np.int64)
+    for a in range(n + 1):
+        pos[:, a, a] = adj.diagonal[rows[:, a]]
+    if n >= 1:
+        edges = subfaces(X, n, 1)
+        for p, (a, b) in enumerate(_keys.combination_columns(n + 1, 2).tolist()):
+            pos[:, b, a] = adj.lower[edges[:, p]]  # v_a < v_b: (v_b, v_a) is below the diagonal
+            pos[:, a, b] = adj.upper[edges[:, p]]
+    pos.setflags(write=False)
+    return pos
