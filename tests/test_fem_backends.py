@@ -133,8 +133,10 @@ def test_auto_selection_rules(torus_problem, monkeypatch):
     assert B.select_backend(1000, 7000) == "superlu"                           # small: always SuperLU
     direct = "cholmod" if "cholmod" in avail else "superlu"
     assert B.select_backend(50_000, 350_000) == direct                          # 2-D pattern
+    assert B.select_backend(30_000, 210_000) == "superlu"                       # 2-D, < 40k: SuperLU is faster
     three_d = "amg-lobpcg" if "amg-lobpcg" in avail else direct
     assert B.select_backend(50_000, 750_000) == three_d                         # 3-D pattern
+    assert B.select_backend(30_000, 450_000, dimension=2.6) == three_d          # 3-D, >= 10k: not SuperLU's rule
     assert B.select_backend(50_000, 750_000, shifted=True) == direct            # σ given: direct
     assert B.select_backend(50_000, 750_000, eigen=False) == direct             # linear solve: direct
     assert B.select_backend(3_000_000, 21_000_000) == three_d                   # huge: iterative
