@@ -246,3 +246,16 @@ def test_pattern_dimension_tells_surfaces_with_blocks_from_tet_meshes(torus_prob
     three_d = "amg-lobpcg" if "amg-lobpcg" in B.available_backends() else direct
     assert B.select_backend(50_000, 700_000, dimension=2.0) == direct
     assert B.select_backend(50_000, 700_000, dimension=lambda: 2.6) == three_d
+
+
+@pytest.mark.skipif(not B._importable("sksparse"), reason="scikit-sparse is not installed")
+def test_cholmod_metis_ordering_for_large_matrices_gives_the_same_eigenpairs(torus_problem, monkeypatch):
+    import dhlb.fem.backends_cholesky as C
+
+    A, M = torus_problem
+    ref = smallest_eigenpairs(A, M, k=2, backend="superlu")
+    monkeypatch.setattr(C, "METIS_MIN", 10)  # the torus counts as "large": METIS ordering (or the fallback)
+    B.clear_cache()
+    res = smallest_eigenpairs(A, M, k=2, backend="cholmod")
+    assert res.backend == "cholmod"
+    np.testing.assert_allclose(res.eigenvalues, ref.eigenvalues, rtol=1e-9)

@@ -90,11 +90,31 @@ class CholmodBackend:
             K = K.real.tocsc()
         with blas_guard(), warnings.catch_warnings():
             warnings.simplefilter("ignore", cholmod.CholmodTypeConversionWarning)
-            symbolic = cached_symbolic(pattern_key(self.name, K), lambda: cholmod.analyze(K, mode="supernodal"))
+            symbolic = cached_symbolic(pattern_key(self.name, K), lambda: _analyze(cholmod, K))
             try:
                 return _CholmodFactor(symbolic.cholesky(K), K.dtype.kind == "c")
             except cholmod.CholmodNotPositiveDefiniteError as err:
                 return _fallback(K, positive_definite, err, "CHOLMOD")
+
+
+METIS_MIN = 100_000
+"""From this many unknowns on, CHOLMOD orders by METIS (nested dissection) instead of its default.
+
+Measured on the bunny subdivided once (139k vertices, complex n = 4 field matrix): default
+(AMD) analysis 0.15 s + factorization 2.25 s, solves 71 ms; METIS 1.0 s + 1.28 s, solves 58 ms,
+so the eigen solve (21 solves) is ~10 % faster; at 35k vertices METIS' analysis (0.19 s) costs
+more than it saves (factorization 0.18 s vs 0.20 s), and at 556k both give the same factor time.
+"""
+
+
+def _analyze(cholmod, K):
+    """CHOLMOD's symbolic analysis: METIS for large matrices (if the library has it), else its default."""
+    if K.shape[0] >= METIS_MIN:
+        try:
+            return cholmod.analyze(K, mode="supernodal", ordering_method="metis")
+        except cholmod.CholmodError:  # a SuiteSparse built without METIS: the default ordering
+            pass
+    return cholmod.analyze(K, mode="supernodal")
 
 
 class _CholespyFactor:
