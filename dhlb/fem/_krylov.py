@@ -96,14 +96,21 @@ class KrylovOutcome:
     theta: np.ndarray
 
 
-def _gram_schmidt(Vb, MVb, w):
+def _gram_schmidt(Vb, MVb, w, local: int = 0):
     """Classical Gram–Schmidt of ``w`` against ``Vb`` in the M-inner product, with reorthogonalization.
 
-    Repeated while a pass shrinks ``w`` below 0.7 of its size (Daniel–Gragg–Kaufman–Stewart; at
-    most 5 passes): the result is orthogonal to working precision relative to its own size.
-    Returns ``(w, h, ok)``, ``ok = False`` if ``w`` kept shrinking (it is rounding noise).
+    First against the last ``local`` columns only (in Lanczos the new vector ``S v_j`` is mostly
+    along ``v_j``: the large cancellation happens there, at the cost of ``local`` columns), then
+    full passes, repeated while a pass shrinks ``w`` below 0.7 of its size
+    (Daniel–Gragg–Kaufman–Stewart; at most 5 passes): the result is orthogonal to working
+    precision relative to its own size. Returns ``(w, h, ok)``, ``ok = False`` if ``w`` kept
+    shrinking (it is rounding noise).
     """
     h = np.zeros(Vb.shape[1], dtype=w.dtype)
+    if 0 < local < Vb.shape[1]:
+        c = (w.conj() @ MVb[:, -local:]).conj()
+        w = w - Vb[:, -local:] @ c
+        h[-local:] += c
     old = np.linalg.norm(w)
     for _ in range(5):
         c = (w.conj() @ MVb).conj()              # = MVbᴴ w without conjugating the tall MVb
@@ -125,7 +132,7 @@ def _expand(V, MV, H, W, M, j, nv, rng):
     b = W.shape[1]
     for i in range(b):
         q = nv + i
-        w, h, ok = _gram_schmidt(V[:, :q], MV[:, :q], W[:, i])
+        w, h, ok = _gram_schmidt(V[:, :q], MV[:, :q], W[:, i], local=min(q, 2 * b + i))
         Mw = M @ w
         beta = float(np.sqrt(max((w.conj() @ Mw).real, 0.0)))
         H[:q, j + i] = h
