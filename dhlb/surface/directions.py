@@ -193,15 +193,12 @@ def field_indices(tb: TangentBundle, u: ArrayLike) -> FieldIndices:
     L = tb.bundle
     ind = index_form(L, z)
     face_index = (m.face_sign * ind[m.triangle_of_face]).astype(np.int64)
-    bd = m.boundary_halfedges
+    h = np.nonzero(m.halfedge_twin < 0)[0]  # boundary half-edges, faces[f, k] → faces[f, k+1]
     rot = 0.0
-    if bd.size:
+    if h.size:
         xi = rotation_form(L, z)
-        N = m.n_vertices
-        E = m.complex.simplices(1)
-        lo, hi = np.minimum(bd[:, 0], bd[:, 1]), np.maximum(bd[:, 0], bd[:, 1])
-        e = np.searchsorted(E[:, 0] * N + E[:, 1], lo * N + hi)
-        rot = float(np.sum(np.where(bd[:, 0] < bd[:, 1], 1.0, -1.0) * xi[e]))
+        a, b = m.faces.ravel()[h], np.roll(m.faces, -1, axis=1).ravel()[h]
+        rot = float(np.sum(np.where(a < b, 1.0, -1.0) * xi[m.halfedge_edge[h]]))
     faces = np.nonzero(face_index)[0]
     bary = _zeros_in_faces(tb, z, faces)
     pts = np.einsum("kp,kpd->kd", bary, m.points[m.faces[faces]])
