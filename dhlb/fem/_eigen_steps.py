@@ -7,7 +7,7 @@ chunks); and the errors raised when ``A`` turns out not to be PSD or nothing con
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg as sla
@@ -36,6 +36,10 @@ class EigenResult:
     shift : float, the shift ``σ`` that was factorized (``A − σM``)
     block_size : int, number of vectors iterated (each iteration solves that many right-hand sides)
     method : str, ``"lanczos"``, ``"subspace"``, ``"lanczos+subspace"`` (fallback) or ``"lobpcg"``
+    factor : object or None
+        The factorization of ``A − shift·M`` that was used (``factor.solve(B)`` solves
+        ``(A − shift·M) X = B``), so that callers can reuse it without refactorizing; ``None`` for
+        iterative backends.  Not part of equality or ``repr``.
 
     Examples
     --------
@@ -56,6 +60,7 @@ class EigenResult:
     shift: float
     block_size: int = 0
     method: str = "subspace"
+    factor: object = field(default=None, compare=False, repr=False)
 
 
 def _rayleigh_ritz(A, M, W, k, shift, normA, normM):

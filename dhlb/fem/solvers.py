@@ -211,8 +211,10 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
             return _iterate_lobpcg(be, A, M, U, k, eps_shift, tol, maxiter)
         fac, shift = _factorize_shifted(be, A, M, shift, eps_shift, default)
         if block_size is None:
-            return _lanczos_then_subspace(fac, be, A, M, U, k, shift, default, tol, maxiter)
-        return _subspace_iteration(fac, be, A, M, U, k, shift, default, tol, maxiter)
+            res = _lanczos_then_subspace(fac, be, A, M, U, k, shift, default, tol, maxiter)
+        else:
+            res = _subspace_iteration(fac, be, A, M, U, k, shift, default, tol, maxiter)
+        return replace(res, factor=fac)
 
 
 def _lanczos_then_subspace(fac, be, A, M, U, k, shift, default, tol, maxiter):
