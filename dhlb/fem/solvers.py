@@ -131,7 +131,8 @@ def backward_errors(A, M, eigenvalues, eigenvectors) -> np.ndarray:
 
 
 def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 500, sigma=None,
-                        v0=None, backend=None, block_size: int | None = None) -> EigenResult:
+                        v0=None, backend=None, block_size: int | None = None,
+                        factor_shift: str = "auto") -> EigenResult:
     """The ``k`` smallest eigenpairs of ``A u = λ M u`` (A Hermitian PSD, M Hermitian PD).
 
     Parameters
@@ -155,6 +156,11 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
         ``"superlu"``, ``"cholmod"``, ``"cholespy"``, ``"amg-lobpcg"`` (if installed), a backend
         object, or ``None``/``"auto"``: chosen by size, sparsity and availability
         (:func:`dhlb.fem.backends.select_backend`).  ``amg-lobpcg`` needs ``sigma=None``.
+    factor_shift : {"auto", "floor"}
+        Where the factorization is placed when ``sigma`` is not given: ``"auto"`` lets the solver
+        choose (fastest); ``"floor"`` factorizes ``A + εM`` (``σ = −ε``, see module docstring), so
+        that :attr:`EigenResult.factor` approximates ``A⁻¹`` — for callers that go on iterating
+        with ``A⁻¹`` (e.g. the unit-modulus stripe section).
 
     Returns
     -------
@@ -188,6 +194,8 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float = 1e-10, maxiter: int = 
     if not (isinstance(maxiter, (int, np.integer)) and maxiter >= 1):
         raise InvalidParameterError(f"maxiter must be a positive integer, got {maxiter!r}")
     default = sigma is None
+    if factor_shift not in ("auto", "floor"):
+        raise InvalidParameterError(f"factor_shift must be 'auto' or 'floor', got {factor_shift!r}")
     if not default and not (np.isscalar(sigma) and np.isreal(sigma) and np.isfinite(sigma)):
         raise InvalidParameterError(f"sigma must be a finite real number, got {sigma!r}")
     be = get_backend(backend, n=n, nnz=A.nnz, eigen=True, shifted=not default, dimension=lambda: pattern_dimension(A))
