@@ -1,6 +1,8 @@
-"""Layer 4: finite elements on hermitian line bundles — Θ/Λ/Ξ integrals, mass and Dirichlet matrices, solvers."""
+"""Layer 4: finite elements on hermitian line bundles — Θ/Λ/Ξ integrals, mass and Dirichlet matrices.
+
+The solvers live in :mod:`dhlb.linalg`; their public names are re-exported here.
+"""
 from dhlb.fem.assembly import bundle_matrices, dirichlet_matrix, lumped_mass, mass_matrix
-from dhlb.fem.backends import available_backends, select_backend
 from dhlb.fem.connection import connection_laplacian, connection_mass, cotan_edge_weights
 from dhlb.fem.integrals import (
     expi_divided_difference,
@@ -12,7 +14,7 @@ from dhlb.fem.integrals import (
     theta,
     xi,
 )
-from dhlb.fem.solvers import EigenResult, backward_errors, smallest_eigenpairs, solve
+from dhlb.linalg import EigenResult, available_backends, backward_errors, select_backend, smallest_eigenpairs, solve
 
 __all__ = [
     "bundle_matrices",

@@ -37,8 +37,8 @@ import warnings
 import numpy as np
 
 from dhlb.errors import DhlbWarning, InvalidParameterError, ShapeError
-from dhlb.fem.backends import get_backend
-from dhlb.fem.solvers import smallest_eigenpairs, solve
+from dhlb.linalg import smallest_eigenpairs, solve
+from dhlb.linalg.backends import get_backend
 from dhlb.surface.directions import direction_vectors, field_indices
 from dhlb.surface.energy import _tangent, check_s, energy_matrices
 from dhlb.surface.guidance import Guidance, boundary_guidance, curvature_guidance, user_guidance

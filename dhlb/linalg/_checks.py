@@ -1,4 +1,4 @@
-"""Input validation and small helpers of :mod:`dhlb.fem.solvers` (Hermitian pencils, norms, phases)."""
+"""Input validation and small helpers of :mod:`dhlb.linalg.eigen` (Hermitian pencils, norms, phases)."""
 
 from __future__ import annotations
 

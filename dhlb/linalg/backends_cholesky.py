@@ -27,7 +27,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from dhlb.errors import InvalidOperatorError
-from dhlb.fem.backends import (
+from dhlb.linalg.backends import (
     SuperLUBackend,
     blas_guard,
     cached_symbolic,

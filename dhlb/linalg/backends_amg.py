@@ -7,7 +7,7 @@ direct factorizations fill in badly.
 Eigenproblem
     :func:`scipy.sparse.linalg.lobpcg` for the lowest eigenpairs of ``A u = λ M u`` with the
     preconditioner ``T ≈ (A + εM)⁻¹`` given by one V-cycle of a smoothed-aggregation hierarchy of
-    ``A + εM`` (``ε`` the Gershgorin shift of :func:`dhlb.fem.solvers.default_shift`).  Complex
+    ``A + εM`` (``ε`` the Gershgorin shift of :func:`dhlb.linalg.eigen.default_shift`).  Complex
     Hermitian matrices use pyamg's complex Hermitian aggregation directly (measured 10× faster
     than LOBPCG on the real 2N embedding, whose doubled eigenvalues need twice the block and
     converge slowly).  LOBPCG's own stopping test is the residual norm ``‖A x − θ M x‖₂`` of the
@@ -41,7 +41,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from dhlb.errors import ConvergenceError
-from dhlb.fem.backends import blas_guard
+from dhlb.linalg.backends import blas_guard
 
 __all__ = ["AMGLobpcgBackend"]
 

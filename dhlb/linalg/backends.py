@@ -1,4 +1,4 @@
-"""Linear-algebra backends of :mod:`dhlb.fem.solvers`: one small interface, several implementations.
+"""Linear-algebra backends of :mod:`dhlb.linalg.eigen`: one small interface, several implementations.
 
 A *backend* is an object with
 
@@ -20,7 +20,7 @@ Implemented backends (see ``docs/performance.md`` for measurements):
 =============== ======================================================================== ==============
 name            method                                                                   needs
 =============== ======================================================================== ==============
-``superlu``     :func:`scipy.sparse.linalg.splu`, symmetric mode, MMD(AᵀA+A) ordering    scipy (always)
+``superlu``     :func:`scipy.sparse.linalg.splu`, symmetric mode, nested dissection      scipy, pymetis
 ``cholmod``     CHOLMOD supernodal ``L Lᴴ``, complex Hermitian directly                  scikit-sparse
 ``cholespy``    CHOLMOD inside cholespy, real only: the real 2N embedding of ``K``        cholespy
 ``amg-lobpcg``  LOBPCG preconditioned by smoothed-aggregation AMG; O(N) memory           pyamg
@@ -54,6 +54,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from dhlb.errors import InvalidOperatorError, InvalidParameterError
+from dhlb.linalg.memory import InsufficientMemoryError, available_bytes, check_factorization_memory
+from dhlb.linalg.ordering import nested_dissection
 
 __all__ = ["BLAS_THREADS", "SuperLUBackend", "available_backends", "blas_guard", "cache_info", "clear_cache",
            "get_backend", "pattern_dimension", "register_backend", "select_backend"]
@@ -144,12 +146,25 @@ def canonical_csc(K) -> sp.csc_matrix:
 
 # ---------------------------------------------------------------------- SuperLU
 class _PermutedLU:
-    """Solve ``K x = b`` with an LU factorization ``G`` of ``K[q][:, q]``: ``x[q] = G⁻¹ b[q]``."""
+    """Solve ``K x = b`` with an LU factorization ``G`` of ``K[q][:, q]``: ``x[q] = G⁻¹ b[q]``.
+
+    ``negative_pivots`` is the number of negative pivots of a symmetric ``L D Lᴴ`` factorization
+    (no pivoting took place), which by Sylvester's law of inertia is the number of negative
+    eigenvalues of ``K``; ``None`` when SuperLU had to pivot off the diagonal.
+    """
 
     name = "superlu"
 
     def __init__(self, lu, q=None):
         self.lu, self.q = lu, q
+        self._neg = -1
+
+    @property
+    def negative_pivots(self) -> int | None:
+        if self._neg == -1:  # computed on demand: SuperLU hands out U only as a copy
+            lu = self.lu
+            self._neg = int(np.sum(lu.U.diagonal().real < 0)) if np.array_equal(lu.perm_r, lu.perm_c) else None
+        return self._neg
 
     def solve(self, B):
         B = np.asarray(B)
@@ -161,23 +176,19 @@ class _PermutedLU:
         return X
 
 
-MMD_MAX = 60_000
-"""Above this many unknowns SuperLU orders by COLAMD instead of minimum degree on ``Kᵀ + K``:
-SuperLU's MMD is super-linear (measured: 0.1 s at 35k unknowns, 290 s at 150k; COLAMD 14 s
-for the whole factorization there, with 40 % more fill)."""
-
-
 class SuperLUBackend:
-    """Sparse LU by SuperLU (real or complex); ``factorize(K).solve(B)`` solves ``K X = B``.
+    """Sparse LU by SuperLU (real or complex) in a nested-dissection order; ``factorize(K).solve(B)``.
 
-    The Hermitian ``K`` is factorized in SuperLU's symmetric mode: a symmetric fill-reducing
-    ordering (minimum degree on ``Kᵀ + K`` up to :data:`MMD_MAX` unknowns, measured about 1.5×
-    faster than COLAMD on surface Laplacians, and orders of magnitude faster than MMD without
-    symmetric mode; COLAMD above) and diagonal pivots.  The ordering is computed once per
-    sparsity pattern and reused.  With ``positive_definite=True`` no pivoting is allowed
-    (``P K Pᵀ = L D Lᴴ`` in LU form) and by Sylvester's law of inertia ``K`` is positive definite
-    iff all pivots ``D`` are positive, which is checked; otherwise an off-diagonal pivot is taken
-    when a diagonal one is below 1 % of its column (indefinite ``K``).
+    The Hermitian ``K`` is permuted symmetrically by :func:`dhlb.linalg.ordering.nested_dissection`
+    (METIS; computed once per sparsity pattern and cached) and factorized in SuperLU's symmetric
+    mode with diagonal pivots, i.e. as ``L D Lᴴ`` in LU form; small matrices (below
+    :data:`~dhlb.linalg.ordering.ND_MIN` unknowns) use SuperLU's minimum degree on ``Kᵀ + K``.
+    With ``positive_definite=True`` no pivoting is allowed and, by Sylvester's law of inertia,
+    ``K`` is positive definite iff all pivots ``D`` are positive, which is checked; otherwise an
+    off-diagonal pivot is taken when a diagonal one is below 1 % of its column.  Before
+    factorizing, the memory the factor will need is estimated (:mod:`dhlb.linalg.memory`);
+    a factorization that would not fit, or that runs out of memory inside SuperLU, raises
+    :class:`~dhlb.linalg.memory.InsufficientMemoryError`.
     """
 
     name = "superlu"
@@ -185,27 +196,39 @@ class SuperLUBackend:
     def factorize(self, K, *, positive_definite: bool = False):
         """Factorize ``K``; raises :class:`InvalidOperatorError` if it is singular (or not PD when asked)."""
         K = canonical_csc(K)
+        n = K.shape[0]
+        complex_ = K.dtype.kind == "c"
+        need = check_factorization_memory(n, K.nnz, complex_=complex_, dimension=lambda: pattern_dimension(K),
+                                          backend=self.name, alternatives=_fitting_alternatives())
         kw = {"diag_pivot_thresh": 0.0 if positive_definite else 0.01, "options": {"SymmetricMode": True}}
         key = pattern_key(self.name, K)
         try:
             with blas_guard():
-                if key in _cache:
-                    q = cached_symbolic(key, None)
-                    lu = spla.splu(canonical_csc(K[q][:, q]), permc_spec="NATURAL", **kw)
-                    fac = _PermutedLU(lu, q)
+                q = cached_symbolic(key, lambda: nested_dissection(K))
+                if q is None:
+                    lu = spla.splu(K, permc_spec="MMD_AT_PLUS_A", **kw)
                 else:
-                    order = "MMD_AT_PLUS_A" if K.shape[0] <= MMD_MAX else "COLAMD"
-                    lu = spla.splu(K, permc_spec=order, **kw)
-                    cached_symbolic(key, lambda: np.argsort(lu.perm_c))
-                    fac = _PermutedLU(lu)
+                    lu = spla.splu(canonical_csc(K[q][:, q]), permc_spec="NATURAL", **kw)
         except RuntimeError as err:  # "Factor is exactly singular"
             raise InvalidOperatorError(f"the matrix to factorize is singular ({err})") from err
+        except (MemoryError, SystemError) as err:  # SuperLU's "malloc fails" surfaces as either
+            raise InsufficientMemoryError(
+                f"SuperLU ran out of memory factorizing this {n:,}-unknown matrix ({K.nnz:,} nonzeros; estimated "
+                f"{need / 2**30:.2f} GiB, {available_bytes() / 2**30:.2f} GiB available now); use an iterative "
+                "backend (backend='amg-lobpcg', pip install pyamg) or a machine with more memory",
+                needed=need, available=available_bytes()) from err
+        fac = _PermutedLU(lu, q)
         if positive_definite and np.array_equal(lu.perm_r, lu.perm_c):
             piv = lu.U.diagonal().real
+            fac._neg = int(np.sum(piv < 0))
             if not np.all(piv > 0):
                 raise InvalidOperatorError(f"the matrix is not positive definite ({int(np.sum(piv <= 0))} "
                                            "non-positive pivots in its L D Lᴴ factorization)")
         return fac
+
+
+def _fitting_alternatives():
+    return ("amg-lobpcg",) if "amg-lobpcg" in available_backends() else ()
 
 
 # ---------------------------------------------------------------------- registry, selection
@@ -218,9 +241,9 @@ def _lazy(module: str, cls: str):
 
 _REGISTRY = {
     "superlu": (SuperLUBackend, ()),
-    "cholmod": (_lazy("dhlb.fem.backends_cholesky", "CholmodBackend"), ("sksparse",)),
-    "cholespy": (_lazy("dhlb.fem.backends_cholesky", "CholespyBackend"), ("cholespy",)),
-    "amg-lobpcg": (_lazy("dhlb.fem.backends_amg", "AMGLobpcgBackend"), ("pyamg",)),
+    "cholmod": (_lazy("dhlb.linalg.backends_cholesky", "CholmodBackend"), ("sksparse",)),
+    "cholespy": (_lazy("dhlb.linalg.backends_cholesky", "CholespyBackend"), ("cholespy",)),
+    "amg-lobpcg": (_lazy("dhlb.linalg.backends_amg", "AMGLobpcgBackend"), ("pyamg",)),
 }
 _INSTALL = {"sksparse": "apt-get install libsuitesparse-dev && pip install 'scikit-sparse<0.5' (SuiteSparse 5) "
                         "or pip install scikit-sparse (SuiteSparse >= 7)",

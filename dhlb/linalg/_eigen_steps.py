@@ -1,4 +1,4 @@
-"""The eigen-solver's result type and the steps shared by its methods (see :mod:`dhlb.fem.solvers`).
+"""The eigen-solver's result type and the steps shared by its methods (see :mod:`dhlb.linalg.eigen`).
 
 :class:`EigenResult`; the Rayleigh–Ritz step with the backward errors of the wanted pairs; the
 block subspace iteration on a factorized shift; the driver of iterative backends (LOBPCG in
@@ -13,29 +13,31 @@ import numpy as np
 import scipy.linalg as sla
 
 from dhlb.errors import ConvergenceError, InvalidOperatorError
-from dhlb.fem._checks import eta as _eta
-from dhlb.fem._checks import fix_phase as _fix_phase
-from dhlb.fem._checks import norm1 as _norm1
-from dhlb.fem._krylov import m_orthonormalize as _m_orthonormalize
+from dhlb.linalg._checks import eta as _eta
+from dhlb.linalg._checks import fix_phase as _fix_phase
+from dhlb.linalg._checks import norm1 as _norm1
 
-__all__ = ["EigenResult"]
+__all__ = ["EigenResult", "m_orthonormalize"]
 
 
 @dataclass(frozen=True)
 class EigenResult:
-    """Result of :func:`smallest_eigenpairs`.
+    """Result of :func:`~dhlb.linalg.smallest_eigenpairs`.
 
     Attributes
     ----------
     eigenvalues : (k,) float, ascending
     eigenvectors : (n, k) array, columns M-orthonormal (``Uᴴ M U = I``)
     iterations : int
-    residuals : (k,) float, normwise backward errors ``η`` (see module docstring)
+        Applications of the shifted inverse (ARPACK), LOBPCG iterations, or 0 (dense).
+    residuals : (k,) float, normwise backward errors ``η``
     converged : bool
-    backend : str, name of the factorization backend
+    backend : str, name of the factorization backend actually used
     shift : float, the shift ``σ`` that was factorized (``A − σM``)
-    block_size : int, number of vectors iterated (each iteration solves that many right-hand sides)
-    method : str, ``"lanczos"``, ``"subspace"``, ``"lanczos+subspace"`` (fallback) or ``"lobpcg"``
+    block_size : int, number of Krylov vectors (ARPACK's ``ncv``) or of the LOBPCG block
+    method : str, ``"arpack"``, ``"dense"`` or ``"lobpcg"``
+    factorizations : int, number of sparse factorizations done
+    solves : int, number of solves with the factorization (right-hand sides)
     factor : object or None
         The factorization of ``A − shift·M`` that was used (``factor.solve(B)`` solves
         ``(A − shift·M) X = B``), so that callers can reuse it without refactorizing; ``None`` for
@@ -44,11 +46,11 @@ class EigenResult:
     Examples
     --------
     >>> import scipy.sparse as sp
-    >>> from dhlb.fem import smallest_eigenpairs
+    >>> from dhlb.linalg import smallest_eigenpairs
     >>> A = sp.csr_matrix([[2.0, -1.0], [-1.0, 2.0]])                # eigenvalues 1 and 3
     >>> r = smallest_eigenpairs(A, sp.identity(2, format="csr"), 1)
-    >>> r.converged, round(float(r.eigenvalues[0]), 6), r.eigenvectors.shape
-    (True, 1.0, (2, 1))
+    >>> r.converged, round(float(r.eigenvalues[0]), 6), r.eigenvectors.shape, r.method
+    (True, 1.0, (2, 1), 'dense')
     """
 
     eigenvalues: np.ndarray
@@ -59,14 +61,47 @@ class EigenResult:
     backend: str
     shift: float
     block_size: int = 0
-    method: str = "subspace"
+    method: str = "arpack"
+    factorizations: int = 0
+    solves: int = 0
     factor: object = field(default=None, compare=False, repr=False)
+
+
+def m_orthonormalize(W: np.ndarray, M) -> tuple[np.ndarray, np.ndarray]:
+    """An M-orthonormal basis ``Q`` of ``span W`` and ``M Q`` (eigen-decomposed Gram matrix).
+
+    Cheaper than a Householder QR for tall, skinny blocks. A second pass restores the
+    orthogonality lost to rounding when the Gram matrix is ill-conditioned; when the columns are
+    numerically dependent (eigenvalue ratio below 1e-12) a Householder QR restores a full-rank
+    basis first.
+
+    Examples
+    --------
+    >>> import scipy.sparse as sp
+    >>> Q, MQ = m_orthonormalize(np.array([[1.0, 1.0], [0.0, 1.0]]), sp.diags([1.0, 4.0]))
+    >>> bool(np.allclose(Q.T @ MQ, np.eye(2)))
+    True
+    """
+    Q, MQ = W, M @ W
+    for _ in range(2):
+        G = Q.T.conj() @ MQ
+        s, V = np.linalg.eigh(0.5 * (G + G.conj().T))
+        if s[0] <= 1e-12 * s[-1]:
+            Q = np.linalg.qr(Q)[0]
+            MQ = M @ Q
+            G = Q.conj().T @ MQ
+            s, V = np.linalg.eigh(0.5 * (G + G.conj().T))
+        T = V / np.sqrt(s)
+        Q, MQ = Q @ T, MQ @ T
+        if s[0] > 1e-4 * s[-1]:  # well conditioned: orthogonal to ~eps·cond; no second pass needed
+            break
+    return Q, MQ
 
 
 def _rayleigh_ritz(A, M, W, k, shift, normA, normM):
     """Ritz pairs of span ``W`` ordered by distance to ``shift``: ``(U, MU, λ_k, U_k, η_k)``."""
     W = W / np.linalg.norm(W, axis=0)
-    Q, MQ = _m_orthonormalize(W, M)
+    Q, MQ = m_orthonormalize(W, M)
     AQ = A @ Q
     Qh = Q.conj().T
     Ap, Mp = Qh @ AQ, Qh @ MQ
@@ -96,30 +131,6 @@ def _not_converged(res, maxiter, tol, p):
                            "maxiter, loosen tol, or pass a better v0")
     err.result = res
     return err
-
-
-def _subspace_iteration(fac, be, A, M, U, k, shift, default, tol, maxiter, its0=0, method="subspace"):
-    name, p = getattr(fac, "name", be.name), U.shape[1]
-    normA, normM = _norm1(A), _norm1(M)
-    MU = M @ U
-    lam_old = lam = eta = Uk = None
-    for it in range(1, maxiter + 1):
-        W = fac.solve(MU)
-        if not np.all(np.isfinite(W)):
-            raise InvalidOperatorError("the shifted solve produced non-finite values; A - σM is numerically singular")
-        U, MU, lam, Uk, eta = _rayleigh_ritz(A, M, W, k, shift, normA, normM)
-        ok = eta <= tol
-        if lam_old is not None:
-            ok &= np.abs(lam - lam_old) * normM <= tol * (normA + np.abs(lam) * normM)
-        else:
-            ok &= False
-        if default and lam[0] < shift:
-            raise _not_psd(lam[0], shift)
-        if np.all(ok):
-            return EigenResult(lam, _fix_phase(Uk), its0 + it, eta, True, name, shift, p, method)
-        lam_old = lam
-    raise _not_converged(EigenResult(lam, _fix_phase(Uk), its0 + maxiter, eta, False, name, shift, p, method),
-                         its0 + maxiter, tol, p)
 
 
 def _iterate_lobpcg(be, A, M, U, k, eps_shift, tol, maxiter):

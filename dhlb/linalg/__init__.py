@@ -1,0 +1,38 @@
+"""Layer 4: sparse linear algebra — eigenpairs and shifted solves of Hermitian pencils, their backends.
+
+* :func:`smallest_eigenpairs` — ``A u = λ M u``: ARPACK in shift-and-invert mode on one sparse
+  factorization (:mod:`dhlb.linalg.eigen`), dense for small problems, LOBPCG for iterative
+  backends; every pair passes a normwise backward-error test.
+* :func:`solve` — ``(A − λM) x = b``.
+* backends (:mod:`dhlb.linalg.backends`): SuperLU in a nested-dissection order (always),
+  CHOLMOD, cholespy and AMG-LOBPCG when their packages are installed; :func:`select_backend`
+  chooses by size, sparsity and the memory a factorization would need
+  (:mod:`dhlb.linalg.memory`, :mod:`dhlb.linalg.ordering`).
+
+Examples
+--------
+>>> import numpy as np, scipy.sparse as sp
+>>> from dhlb.linalg import smallest_eigenpairs
+>>> A = sp.diags([2.0, 3.0, 5.0]); M = sp.identity(3)
+>>> smallest_eigenpairs(A, M, 2).eigenvalues.tolist()
+[2.0, 3.0]
+"""
+
+from dhlb.linalg.backends import available_backends, select_backend
+from dhlb.linalg.eigen import EigenResult, backward_errors, default_shift, default_tol, smallest_eigenpairs
+from dhlb.linalg.linear import solve
+from dhlb.linalg.memory import InsufficientMemoryError, available_bytes, set_memory_limit
+
+__all__ = [
+    "EigenResult",
+    "backward_errors",
+    "default_shift",
+    "default_tol",
+    "smallest_eigenpairs",
+    "solve",
+    "available_backends",
+    "select_backend",
+    "InsufficientMemoryError",
+    "available_bytes",
+    "set_memory_limit",
+]

@@ -1,0 +1,184 @@
+"""Memory of sparse factorizations: an estimate before the work, the memory available, the check.
+
+A direct factorization of a matrix from a 2-D mesh needs ``O(n log n)`` memory and one from a
+3-D mesh ``O(n^{4/3})``; on a large mesh it can exceed what the machine (or the process's limit)
+allows, and SuperLU then fails from deep inside (``SystemError … gstrf``, "malloc fails").  Before
+factorizing, :func:`check_factorization_memory` compares :func:`factor_bytes` with
+:func:`available_bytes` and raises :class:`~dhlb.errors.InsufficientMemoryError` naming the size,
+the estimate and what would fit.
+
+The estimate is a model fitted to the nested-dissection factorizations of this package's
+matrices (SuperLU, L and U stored in full, measured peak resident memory of the factorization):
+
+* surface-like patterns (growth dimension < 2.2, see :func:`dhlb.linalg.pattern_dimension`):
+  ``bytes ≈ s · 44 · n log₂ n`` with ``s`` the bytes per scalar (8 real, 16 complex);
+* volume-like patterns: ``bytes ≈ s · 5 · n^{4/3} · (nnz/n)``.
+
+The model is calibrated to overestimate (it is compared with measured factors in the tests): a
+refusal should never be needed on a problem that would fit, but a factorization that the model
+lets through can still fail, and that failure is reported the same way.
+
+Examples
+--------
+>>> factor_bytes(1_000_000, 7_000_000, complex_=True, dimension=2.0) > 1e9   # a 1M-vertex surface: GBs
+True
+>>> available_bytes() > 0
+True
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import resource
+
+from dhlb.errors import DhlbError
+
+__all__ = ["InsufficientMemoryError", "available_bytes", "check_factorization_memory", "factor_bytes",
+           "set_memory_limit"]
+
+_LIMIT: int | None = None
+
+
+class InsufficientMemoryError(DhlbError, MemoryError):
+    """A factorization (or another step) would need more memory than is available.
+
+    Attributes
+    ----------
+    needed, available : int
+        The estimate and the available bytes, as in the message.
+    """
+
+    def __init__(self, message: str, *, needed: int = 0, available: int = 0):
+        super().__init__(message)
+        self.needed, self.available = int(needed), int(available)
+
+
+def set_memory_limit(nbytes: int | None) -> None:
+    """Pretend that at most ``nbytes`` are available (``None``: the machine's own figure).
+
+    For tests and for users who share a machine: every later memory check uses
+    ``min(nbytes, available_bytes())``.  The environment variable ``DHLB_MEMORY_LIMIT`` (bytes,
+    or with a suffix ``K``, ``M``, ``G``) does the same.
+
+    Examples
+    --------
+    >>> set_memory_limit(10**6); available_bytes() <= 10**6
+    True
+    >>> set_memory_limit(None)
+    """
+    global _LIMIT
+    _LIMIT = None if nbytes is None else int(nbytes)
+
+
+def _env_limit() -> int | None:
+    text = os.environ.get("DHLB_MEMORY_LIMIT", "").strip().upper()
+    if not text:
+        return None
+    scale = {"K": 2**10, "M": 2**20, "G": 2**30}.get(text[-1], 1)
+    try:
+        return int(float(text.rstrip("KMG")) * scale)
+    except ValueError:
+        return None
+
+
+def _meminfo_available() -> int | None:
+    try:
+        with open("/proc/meminfo") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return None
+
+
+def _cgroup_available() -> int | None:
+    try:
+        with open("/sys/fs/cgroup/memory.max") as fh:
+            top = fh.read().strip()
+        if top == "max":
+            return None
+        with open("/sys/fs/cgroup/memory.current") as fh:
+            return int(top) - int(fh.read().strip())
+    except (OSError, ValueError):
+        return None
+
+
+def _rlimit_available() -> int | None:
+    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    if soft == resource.RLIM_INFINITY:
+        return None
+    try:
+        with open("/proc/self/statm") as fh:
+            used = int(fh.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+    except (OSError, ValueError):
+        used = 0
+    return soft - used
+
+
+def available_bytes() -> int:
+    """Bytes this process can still allocate: the least of free memory, cgroup and ``RLIMIT_AS`` room.
+
+    Examples
+    --------
+    >>> isinstance(available_bytes(), int)
+    True
+    """
+    figures = [f for f in (_meminfo_available(), _cgroup_available(), _rlimit_available(), _LIMIT, _env_limit())
+               if f is not None]
+    return max(0, min(figures)) if figures else 2**62
+
+
+def factor_bytes(n: int, nnz: int, *, complex_: bool, dimension: float) -> int:
+    """Model of the peak bytes of a nested-dissection SuperLU factorization (see module docstring).
+
+    Parameters
+    ----------
+    n, nnz : int
+        Size and nonzeros of the matrix.
+    complex_ : bool
+        Complex scalars (16 bytes) or real (8).
+    dimension : float
+        Growth dimension of the matrix graph (:func:`dhlb.linalg.pattern_dimension`).
+
+    Examples
+    --------
+    >>> factor_bytes(10_000, 70_000, complex_=False, dimension=2.0) < factor_bytes(10_000, 70_000,
+    ...                                                                          complex_=True, dimension=2.0)
+    True
+    """
+    s = 16 if complex_ else 8
+    n = max(int(n), 2)
+    if dimension < 2.2:
+        return int(s * 44 * n * math.log2(n))
+    return int(s * 5 * n ** (4 / 3) * max(nnz / n, 1.0))
+
+
+def check_factorization_memory(n: int, nnz: int, *, complex_: bool, dimension, backend: str,
+                               alternatives=()) -> int:
+    """Raise :class:`InsufficientMemoryError` if the factorization would not fit; return the estimate.
+
+    ``dimension`` may be a callable (computed only when the problem is large enough to matter);
+    ``alternatives`` names the backends that would fit (e.g. ``("amg-lobpcg",)``), for the message.
+
+    Examples
+    --------
+    >>> check_factorization_memory(100, 700, complex_=False, dimension=2.0, backend="superlu") > 0
+    True
+    """
+    if n < 20_000 and _LIMIT is None and _env_limit() is None:  # small: never the problem, skip the look-ups
+        return factor_bytes(n, nnz, complex_=complex_, dimension=2.0)
+    d = dimension() if callable(dimension) else dimension
+    need = factor_bytes(n, nnz, complex_=complex_, dimension=d)
+    have = available_bytes()
+    if need > have:
+        alt = (f"; the iterative backend {', '.join(map(repr, alternatives))} needs O(n) memory and would fit"
+               if alternatives else "; an iterative backend needs O(n) memory: pip install pyamg, then "
+               "backend='amg-lobpcg'")
+        raise InsufficientMemoryError(
+            f"a {backend} factorization of this {n:,}-unknown {'complex' if complex_ else 'real'} matrix "
+            f"({nnz:,} nonzeros, a {'surface' if d < 2.2 else 'volume'}-like pattern) needs about "
+            f"{need / 2**30:.2f} GiB, but only {have / 2**30:.2f} GiB are available{alt}",
+            needed=need, available=have)
+    return need
