@@ -11,7 +11,8 @@ import inspect
 import pytest
 
 PACKAGES = ["dhlb", "dhlb.topology", "dhlb.forms", "dhlb.bundles", "dhlb.geometry", "dhlb.fem", "dhlb.surface",
-            "dhlb.stripes", "dhlb.volume", "dhlb.io", "dhlb.render", "dhlb.examples"]
+            "dhlb.stripes", "dhlb.volume", "dhlb.io", "dhlb.render", "dhlb.examples", "dhlb.linalg",
+            "dhlb.strategies"]
 
 
 def _public_objects():

@@ -47,6 +47,12 @@ class InsufficientMemoryError(DhlbError, MemoryError):
     ----------
     needed, available : int
         The estimate and the available bytes, as in the message.
+
+    Examples
+    --------
+    >>> err = InsufficientMemoryError("too big", needed=2**33, available=2**30)
+    >>> isinstance(err, MemoryError), err.needed // err.available
+    (True, 8)
     """
 
     def __init__(self, message: str, *, needed: int = 0, available: int = 0):
