@@ -7,7 +7,13 @@ of the end-to-end stripe time to **one factorization + one solve of the plain re
 Laplacian** ``K + εM`` of the same mesh with the same backend, measured in the same run
 (target <= 2.5). Each figure is the best of ``REPEAT`` runs.
 
-Run:  python benchmarks/bench_stripes.py [backend]      (reads ../shared/meshes)
+Sections (issue 18): on stanford-bunny, n = 1 and n = 2 (cotan), the time of ``stripe_pattern``
+with ``section="unit"`` (eigenvector, then the unit-modulus iteration on the same factorization)
+divided by the time with ``section="eigenvector"``, both measured in the same run (target <= 1.5),
+with the iterations and both unit energies.
+
+Run:  python benchmarks/bench_stripes.py [backend] [--sections]      (reads ../shared/meshes;
+      --sections: only the section table)
 """
 from __future__ import annotations
 
@@ -23,8 +29,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
-from dhlb.fem.solvers import _get_backend, default_shift
 from dhlb.io import read_surface
+from dhlb.linalg import default_shift, select_backend, solve
 from dhlb.stripes import stripe_pattern
 from dhlb.surface import direction_field, validate_surface
 from dhlb.surface.tangent import TangentBundle
@@ -48,12 +54,10 @@ def baseline(V, F, backend):
     """One factorization + solve of the plain real cotangent Laplacian (the mesh is not timed)."""
     geo = TangentBundle(validate_surface(V, F), 1).geometry
     K, M = geo.stiffness_matrix(), geo.mass_matrix(lumped=True)
-    be = _get_backend(backend)
 
     def run():
         eps = default_shift(K, M)
-        fac = be.factorize((K + eps * M).tocsc(), positive_definite=True)
-        return fac.solve(M @ np.ones(K.shape[0]))
+        return solve(K, M, -eps, M @ np.ones(K.shape[0]), backend=backend, positive_definite=True)
 
     return best(run, 3)[1]
 
@@ -78,12 +82,45 @@ def main(backend=None):
     head = ("mesh", "faces", "n", "energy", "field s", "setup s", "solve s", "texture s", "stripes s",
             "K fact+solve s", "ratio", "iters", "unknowns", "zeros", "branch")
     fmt = "{:<18} {:>6} {:>2} {:>6} {:>8} {:>8} {:>8} {:>9} {:>9} {:>14} {:>6} {:>5} {:>8} {:>5} {:>6}"
-    print(f"backend: {rows[0] and _get_backend(backend).name if rows else backend}; OPENBLAS_NUM_THREADS="
+    print(f"backend: {backend or 'auto'}; OPENBLAS_NUM_THREADS="
           f"{os.environ.get('OPENBLAS_NUM_THREADS')}; best of {REPEAT}")
     print(fmt.format(*head))
     for r in rows:
         print(fmt.format(r[0], r[1], r[2], r[3], *(f"{x:.3f}" for x in r[4:10]), f"{r[10]:.2f}", *r[11:]))
 
 
+def sections(backend=None, name="stanford-bunny.obj", spacing=8.0):
+    """Time of section="unit" / time of section="eigenvector" on one mesh, n = 1 and 2 (same run)."""
+    warnings.simplefilter("ignore")
+    path = os.path.join(MESHES, name)
+    if not os.path.exists(path):
+        print(f"skipping sections: {name} not found in {MESHES}")
+        return []
+    V, F = read_surface(path)
+    rows = []
+    for n in (1, 2):
+        fld = direction_field(V, F, n=n, backend=backend)
+        eig, t_eig = best(lambda: stripe_pattern(V, F, fld, spacing=spacing, n=n, section="eigenvector",
+                                                 backend=backend))
+        unit, t_unit = best(lambda: stripe_pattern(V, F, fld, spacing=spacing, n=n, section="unit", backend=backend))
+        rows.append((name, eig.mesh.n_faces, n, t_eig, t_unit, t_unit / t_eig, unit.iteration.iterations,
+                     eig.unit_energy, unit.unit_energy, unit.unit_energy / eig.unit_energy, unit.eigenvalue,
+                     unit.solver["backend"]))
+    load = os.getloadavg()
+    print(f"sections on {name}, spacing {spacing}, best of {REPEAT}; load average {load[0]:.2f} {load[1]:.2f} "
+          f"{load[2]:.2f}; backend chosen: {rows[0][-1] if rows else select_backend(1, 1)}")
+    fmt = "{:<18} {:>6} {:>2} {:>9} {:>8} {:>6} {:>6} {:>12} {:>12} {:>6} {:>10}"
+    print(fmt.format("mesh", "faces", "n", "eigvec s", "unit s", "ratio", "iters", "E_unit eig", "E_unit unit",
+                     "E u/e", "lambda1"))
+    for r in rows:
+        print(fmt.format(r[0], r[1], r[2], f"{r[3]:.3f}", f"{r[4]:.3f}", f"{r[5]:.2f}", r[6], f"{r[7]:.5g}",
+                         f"{r[8]:.5g}", f"{r[9]:.3f}", f"{r[10]:.5g}"))
+    return rows
+
+
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else None)
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    be = args[0] if args else None
+    if "--sections" not in sys.argv:
+        main(be)
+    sections(be)

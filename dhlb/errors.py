@@ -208,3 +208,119 @@ class UnresolvedFluxWarning(DhlbWarning):
 
 
 __all__.append("UnresolvedFluxWarning")
+
+
+# --------------------------------------------------------------------------- outputs and budgets
+class OutputError(DhlbError, OSError):
+    """An output file cannot be written (disk full, no permission, missing folder, read-only file system).
+
+    The message names the path; nothing half-written is left at that path.
+
+    Examples
+    --------
+    >>> err = OutputError("out/x.obj", "No space left on device")
+    >>> print(err)
+    cannot write out/x.obj: No space left on device
+    >>> err.path, isinstance(err, OSError)
+    ('out/x.obj', True)
+    """
+
+    def __init__(self, path: str, reason: str):
+        super().__init__(f"cannot write {path}: {reason}")
+        self.path = path
+        self.reason = reason
+
+    def __str__(self) -> str:  # OSError would print its args tuple
+        return str(self.args[0]) if self.args else ""
+
+
+class OverwriteError(DhlbError, ValueError):
+    """An output path is (or resolves to) one of the input files; dhlb never replaces an input.
+
+    Examples
+    --------
+    >>> print(OverwriteError("spot.obj", "the input mesh"))
+    refusing to write spot.obj: it is the input mesh; choose another output name
+    """
+
+    def __init__(self, path: str, role: str = "an input file"):
+        super().__init__(f"refusing to write {path}: it is {role}; choose another output name")
+        self.path = path
+        self.role = role
+
+
+class ResourceLimitError(InvalidParameterError):
+    """A parameter would make the work exceed the memory (or time) budget; refused before starting.
+
+    The message names the parameter, its value, the estimate and the allowed range.
+
+    Examples
+    --------
+    >>> err = ResourceLimitError("--box", 400, 3.1e11, 4e9, "use --box 150 or less")
+    >>> print(err)
+    --box = 400 needs about 310 GB of memory (estimate), more than the 4 GB allowed; use --box 150 or less
+    >>> err.estimate_bytes > err.limit_bytes
+    True
+    """
+
+    def __init__(self, parameter: str, value, estimate_bytes: float, limit_bytes: float, advice: str = ""):
+        msg = (
+            f"{parameter} = {value} needs about {format_bytes(estimate_bytes)} of memory (estimate), "
+            f"more than the {format_bytes(limit_bytes)} allowed"
+        )
+        super().__init__(msg + (f"; {advice}" if advice else ""))
+        self.parameter = parameter
+        self.value = value
+        self.estimate_bytes = float(estimate_bytes)
+        self.limit_bytes = float(limit_bytes)
+
+
+class InvalidTypeError(DhlbError, TypeError, ValueError):
+    """An argument has the wrong kind of value: complex where reals are meant, text where numbers are.
+
+    Examples
+    --------
+    >>> isinstance(InvalidTypeError("hbar must be a real number, got str '1'"), (TypeError, ValueError))
+    True
+    """
+
+
+__all__ += ["OutputError", "OverwriteError", "ResourceLimitError", "InvalidTypeError", "format_bytes",
+            "differing_digits"]
+
+
+def format_bytes(n: float) -> str:
+    """A byte count for messages: ``'310 GB'``, ``'12 MB'`` (decimal units, 2 significant digits).
+
+    Examples
+    --------
+    >>> format_bytes(3.1e11), format_bytes(12_345_678), format_bytes(512)
+    ('310 GB', '12 MB', '512 B')
+    """
+    n = float(n)
+    for unit, size in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+        if abs(n) >= size:
+            return f"{float(f'{n / size:.2g}'):g} {unit}"
+    return f"{n:.0f} B"
+
+
+def differing_digits(a: float, b: float, min_digits: int = 6) -> tuple[str, str]:
+    """Format two floats with just enough significant digits that the printed texts differ.
+
+    For messages that compare two numbers (e.g. :class:`CurvatureMismatchError`): ``%.6g`` can
+    print two different numbers identically; this adds digits until they differ (at most 17,
+    which is exact for float64).
+
+    Examples
+    --------
+    >>> differing_digits(1.0000001, 1.0000002)
+    ('1.0000001', '1.0000002')
+    >>> differing_digits(0.5, 0.25)
+    ('0.5', '0.25')
+    """
+    a, b = float(a), float(b)
+    for digits in range(min_digits, 18):
+        sa, sb = f"{a:.{digits}g}", f"{b:.{digits}g}"
+        if sa != sb:
+            return sa, sb
+    return repr(a), repr(b)

@@ -106,3 +106,54 @@ def test_bad_inputs_exit_codes(tmp_path, capsys):
     assert "zero" in capsys.readouterr().err  # a typed SectionZeroError, one line, naming the vertex
     with pytest.raises(SystemExit):
         run([TORUS, "--spacing", "3", "--frequency", "2"])  # mutually exclusive
+
+
+# ---------------------------------------------------------------------- issue 18 / 19: --section, budgets, overwriting
+def test_section_option_reaches_the_json(tmp_path, capsys):
+    for section in ("unit", "eigenvector", "power"):
+        out = tmp_path / section
+        assert run([TORUS, "--spacing", "4", "--section", section, "--no-png", "-o", str(out), "--json"]) == 0
+        data = json.loads(capsys.readouterr().out)
+        assert data["section"] == section and data["unit_energy"] >= data["eigenvalue"] - 1e-12
+        assert (data["iteration"] is None) == (section == "eigenvector")
+    assert run([TORUS, "--spacing", "4", "--section", "power", "--iterations", "0", "-o", str(out)]) == 2
+
+
+def test_refuses_to_overwrite_the_input_mesh(tmp_path, capsys, monkeypatch):
+    mesh = tmp_path / "spot.obj"
+    mesh.write_bytes(open(TORUS, "rb").read())
+    before = mesh.read_bytes()
+    monkeypatch.chdir(tmp_path)
+    assert run(["spot.obj", "--spacing", "5", "-o", "spot"]) == 2
+    err = capsys.readouterr().err
+    assert "refusing to write spot.obj" in err and "input mesh" in err
+    assert mesh.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["spot.obj"]
+    assert run(["spot.obj", "--spacing", "5", "-o", "./sub/../spot.obj"]) == 2        # the same file, spelled otherwise
+    assert mesh.read_bytes() == before
+
+
+def test_outputs_are_written_whole_and_no_temporary_file_is_left(tmp_path):
+    out = tmp_path / "t"
+    assert run([TORUS, "--spacing", "4", "--no-png", "-o", str(out)]) == 0
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names == ["t-isolines.obj", "t.json", "t.obj"]
+    assert run([TORUS, "--spacing", "4", "--no-png", "-o", str(tmp_path / "missing" / "t")]) == 1
+
+
+@pytest.mark.parametrize("argv,words", [
+    (["--frequency", "1e4"], ["--frequency = 10000", "allowed: 0 < --frequency <="]),
+    (["--spacing", "1e-4"], ["--spacing = 0.0001", "allowed: --spacing >="]),
+    (["--spacing", "4", "--size", "60000"], ["--size", "16 and 8192"]),
+    (["--spacing", "4", "--size", "8000"], ["--size = 8000", "allowed: --size 16 to"])])
+def test_parameters_that_scale_the_work_are_refused_before_it_starts(tmp_path, capsys, argv, words):
+    import resource
+    import time
+
+    t0 = time.perf_counter()
+    rss0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    assert run([TORUS, *argv, "-o", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert all(w in err for w in words), err
+    assert "needs about" in err or "--size must" in err
+    assert time.perf_counter() - t0 < 5 and resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - rss0 < 200_000
+    assert list(tmp_path.iterdir()) == []

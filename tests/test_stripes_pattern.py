@@ -338,7 +338,7 @@ def test_to_json_uses_input_face_rows():
         res = stripe_pattern(V, F, rng.normal(size=(len(V), 3)), spacing=3.0)
     out = res.to_json()
     assert {"zero_faces", "branch_faces", "timings", "eigenvalue", "solver"} <= set(out)
-    assert set(out["timings"]) == {"setup", "solve", "texture", "total"}
+    assert set(out["timings"]) == {"setup", "solve", "section", "texture", "total"}
     assert len(out["zero_faces"]) == res.zero_faces.size > 0
     mesh = res.mesh
     for z, f in zip(out["zero_faces"], res.zero_faces):

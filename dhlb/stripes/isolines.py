@@ -35,12 +35,19 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from dhlb.errors import InvalidParameterError, NonFiniteError
+from dhlb.errors import InvalidParameterError, NonFiniteError, ResourceLimitError, format_bytes
 
 if TYPE_CHECKING:
     from dhlb.stripes.texture import StripeTexture
 
-__all__ = ["Isolines", "isolines"]
+__all__ = ["MAX_BYTES", "Isolines", "isoline_cost", "isolines"]
+
+MAX_BYTES = 1_000_000_000
+"""Default memory budget of :func:`isolines` (bytes); larger work is refused before it starts."""
+BYTES_PER_SUBTRIANGLE = 320
+"""Measured peak bytes per sub-triangle of the subdivision (bary, α, corners, marching temporaries)."""
+BYTES_PER_SEGMENT = 480
+"""Measured peak bytes per isoline segment (two crossing points, merging, chaining)."""
 
 TWO_PI = 2.0 * np.pi
 _SIDES = np.array([[0, 1], [1, 2], [2, 0]])
@@ -80,6 +87,75 @@ class Isolines:
     segments: np.ndarray
     polylines: tuple
     closed: np.ndarray
+
+
+def _levels(texture, level):
+    c = float(level)
+    if not np.isfinite(c):
+        raise NonFiniteError(f"level must be finite, got {level!r}")
+    if not -np.pi <= c < np.pi:
+        c = float(np.mod(c + np.pi, TWO_PI) - np.pi)
+    if texture.form.n == 2 and abs(np.sin(c)) < 1e-6:  # ±c would be two nearly coincident curves: snap
+        c = 0.0 if abs(c) < 1.0 else -np.pi
+    return c, [c] if texture.form.n == 1 or c in (0.0, -np.pi) else [c, -c]
+
+
+def _n_subtriangles(texture, refine: int) -> int:
+    z, b = texture.zero_faces.size, texture.branch_faces.size
+    return int(texture.mesh.n_faces - z - b + 3 * b + 6 * refine * refine * z)
+
+
+def _n_crossings(sub, levels) -> int:
+    vmin, vmax = sub.alpha.min(axis=1), sub.alpha.max(axis=1)
+    total = 0
+    for L0 in levels:
+        k_lo = np.floor((vmin - L0) / TWO_PI) + 1
+        total += int(np.maximum(np.floor((vmax - L0) / TWO_PI) - k_lo + 1, 0).sum())
+    return total
+
+
+def _refuse(what, texture, estimate, max_bytes, scale, fixed=0.0):
+    f = float(np.max(texture.form.frequency))
+    allowed = f * max(max_bytes - fixed, 0.0) / max(estimate - fixed, 1.0) if scale == "frequency" else None
+    advice = (f"allowed: frequency <= {allowed:.3g} stripes per unit length on this mesh (about: the "
+              f"crossings grow linearly with it), a coarser pattern (larger spacing), or isolines(..., "
+              f"max_bytes=) for a larger budget" if allowed is not None else
+              "allowed: a smaller refine (the zero faces' grid has 6·refine² sub-triangles each) or max_bytes=")
+    return ResourceLimitError(what, f"{f:.6g}" if scale == "frequency" else scale, estimate, max_bytes,
+                              f"the isolines of this pattern need {format_bytes(estimate)}; {advice}")
+
+
+def isoline_cost(texture: StripeTexture, level: float = 0.0, *, refine: int = 8) -> dict:
+    """Size of the work of :func:`isolines` before doing it: sub-triangles, level crossings, bytes.
+
+    The count of crossings is exact (the number of level values ``c + 2πk`` inside the α range of
+    every sub-triangle); the bytes are the measured peak per sub-triangle and per crossing
+    (``BYTES_PER_SUBTRIANGLE``, ``BYTES_PER_SEGMENT``). It grows linearly with the stripe frequency.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> from dhlb.stripes.isolines import isoline_cost
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> form = stripe_form(validate_surface(V, [[0, 1, 2], [1, 3, 2]]), np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+    >>> tex = texture_coordinates(form, np.exp(0.5j * np.pi * np.array(V)[:, 0]))
+    >>> c = isoline_cost(tex, np.pi / 8)           # α = π x / 2 = π/8: the line x = 1/4 crosses both faces
+    >>> c["subtriangles"], c["crossings"]
+    (2, 2)
+    """
+    refine = _check_refine(refine)
+    _, levels = _levels(texture, level)
+    sub = texture.subdivision(refine)
+    T, S = len(sub.face), _n_crossings(sub, levels)
+    return {"subtriangles": T, "crossings": S, "bytes": T * BYTES_PER_SUBTRIANGLE + S * BYTES_PER_SEGMENT}
+
+
+def _check_refine(refine):
+    if isinstance(refine, (bool, np.bool_)) or not isinstance(refine, (int, np.integer)) or not 1 <= refine <= 64:
+        raise InvalidParameterError(f"refine must be an integer between 1 and 64, got {refine!r}")
+    return int(refine)
 
 
 def _march(sub, levels, corners):
@@ -188,7 +264,8 @@ def _chain(seg: np.ndarray, n_nodes: int, split=None) -> tuple[list, np.ndarray]
     return polylines, cyc_root[roots][keep]
 
 
-def isolines(texture: StripeTexture, level: float = 0.0, *, refine: int = 8, tol: float | None = None) -> Isolines:
+def isolines(texture: StripeTexture, level: float = 0.0, *, refine: int = 8, tol: float | None = None,
+             max_bytes: float | None = None) -> Isolines:
     """The isolines ``α ≡ level (mod 2π)`` of a :class:`~dhlb.stripes.StripeTexture` as polylines.
 
     Parameters
@@ -202,6 +279,18 @@ def isolines(texture: StripeTexture, level: float = 0.0, *, refine: int = 8, tol
     tol : float, optional
         Distance below which crossing points are merged (default ``1e-10 ×`` mean edge length). Isolines
         closer than this (e.g. the two sides of a hairpin at a level within ~tol of a fold) are merged.
+    max_bytes : float, optional
+        Memory budget (default :data:`MAX_BYTES`, 1 GB). The work (:func:`isoline_cost`) is counted
+        before anything large is allocated; above the budget a
+        :class:`~dhlb.errors.ResourceLimitError` names the frequency (or ``refine``), the estimate and
+        the allowed range.
+
+    Raises
+    ------
+    ResourceLimitError
+        The stripes are so dense (or ``refine`` so large) that the isolines would exceed ``max_bytes``.
+    InvalidParameterError, NonFiniteError
+        Bad ``refine``, ``tol`` or ``level``.
 
     Examples
     --------
@@ -217,16 +306,20 @@ def isolines(texture: StripeTexture, level: float = 0.0, *, refine: int = 8, tol
     >>> len(iso.polylines), iso.points[iso.polylines[0]][:, 0].round(12).tolist()   # the line x = 1/2
     (1, [0.5, 0.5, 0.5])
     """
-    c = float(level)
-    if not np.isfinite(c):
-        raise NonFiniteError(f"level must be finite, got {level!r}")
+    refine = _check_refine(refine)
+    c, levels = _levels(texture, level)
+    budget = float(MAX_BYTES if max_bytes is None else max_bytes)
+    if not budget > 0:
+        raise InvalidParameterError(f"max_bytes must be a positive number, got {max_bytes!r}")
     mesh = texture.mesh
+    est = _n_subtriangles(texture, refine) * BYTES_PER_SUBTRIANGLE
+    if est > budget:
+        raise _refuse("refine", texture, est, budget, str(refine))
     sub = texture.subdivision(refine)
-    if not -np.pi <= c < np.pi:
-        c = float(np.mod(c + np.pi, TWO_PI) - np.pi)
-    if texture.form.n == 2 and abs(np.sin(c)) < 1e-6:  # ±c would be two nearly coincident curves: snap
-        c = 0.0 if abs(c) < 1.0 else -np.pi
-    levels = [c] if texture.form.n == 1 or c in (0.0, -np.pi) else [c, -c]
+    fixed = len(sub.face) * BYTES_PER_SUBTRIANGLE
+    est = fixed + _n_crossings(sub, levels) * BYTES_PER_SEGMENT
+    if est > budget:
+        raise _refuse("frequency", texture, est, budget, "frequency", fixed)
     corners = np.einsum("tcj,tjd->tcd", sub.bary, mesh.points[mesh.faces[sub.face]])
     (f0, b0), (f1, b1) = _march(sub, levels, corners)
     faces = np.concatenate([f0, f1])

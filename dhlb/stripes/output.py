@@ -37,14 +37,17 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import io
 import json
 import os
+import secrets
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import InvalidParameterError
+from dhlb.errors import InvalidParameterError, OutputError
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -104,6 +107,32 @@ def stripes_sidecar(
     return out
 
 
+def _write_atomic(path: str, text: str) -> None:
+    """Write ``text`` to a temporary file in the target folder, then ``os.replace`` it onto ``path``.
+
+    An interrupted or failed write leaves ``path`` as it was; ``OSError`` becomes a one-line
+    :class:`~dhlb.errors.OutputError` naming ``path``.
+    """
+    folder, name = os.path.split(os.path.abspath(path))
+    if os.path.isdir(path):
+        raise OutputError(path, "it is a directory; give a file name")
+    tmp = os.path.join(folder, f".{name}.{secrets.token_hex(4)}.tmp")
+    try:
+        with open(tmp, "x", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    except OSError as exc:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        hint = {errno.ENOSPC: " (the disk is full)", errno.ENOENT: " (the folder does not exist)",
+                errno.EACCES: " (no permission; choose another folder)"}.get(exc.errno or 0, "")
+        raise OutputError(path, (exc.strerror or str(exc)) + hint) from None
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
 def _expanded(texture, refine: int):
     """Vertices, per-corner (vertex, u) of the subdivision; original corners reuse mesh vertices."""
     mesh = texture.mesh
@@ -139,6 +168,13 @@ def write_stripes_obj(
     -------
     (obj_path, json_path or None)
 
+    Raises
+    ------
+    OutputError
+        A file cannot be written (missing folder, no permission, disk full): one line naming the path.
+        Each file is written to a temporary file in its folder and renamed when complete, so an
+        interrupted run never leaves a half-written file at the target.
+
     Examples
     --------
     >>> import numpy as np
@@ -171,14 +207,12 @@ def write_stripes_obj(
     idx = np.stack([tri + 1, np.arange(1, 3 * m + 1).reshape(m, 3)], axis=-1).reshape(m, 6)
     np.savetxt(buf, idx, fmt="f %d/%d %d/%d %d/%d")
     out = os.fspath(path)
-    with open(out, "w", encoding="utf-8") as fh:
-        fh.write(buf.getvalue())
+    _write_atomic(out, buf.getvalue())
     side = None
     if sidecar:
         base = out[:-4] if out.lower().endswith(".obj") else out
         side = base + ".json"
         data = stripes_sidecar(texture, obj_name=os.path.basename(out), obj_face_of=face_of)
         data["expanded"] = int(expand)
-        with open(side, "w", encoding="utf-8") as fh:
-            json.dump(data, fh)
+        _write_atomic(side, json.dumps(data))
     return out, side

@@ -43,9 +43,19 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhlb.errors import DhlbWarning, InvalidOperatorError, InvalidParameterError
-from dhlb.fem.solvers import smallest_eigenpairs
+from dhlb.fem import select_backend, smallest_eigenpairs
 from dhlb.stripes.energy import ENERGIES, stripe_matrices
 from dhlb.stripes.oneform import StripeForm, stripe_form
+from dhlb.stripes.section import (
+    MAX_UNIT_ITERATIONS,
+    POWER_ITERATIONS,
+    UNIT_RTOL,
+    SectionIteration,
+    normalize_per_vertex,
+    power_section,
+    unit_energy,
+    unit_section,
+)
 from dhlb.stripes.texture import StripeTexture, texture_coordinates
 from dhlb.surface.mesh import SurfaceMesh, validate_surface
 from dhlb.surface.tangent import TangentBundle
@@ -55,7 +65,9 @@ if TYPE_CHECKING:
 
     from numpy.typing import ArrayLike
 
-__all__ = ["StripePattern", "stripe_pattern"]
+__all__ = ["SECTIONS", "StripePattern", "stripe_pattern"]
+
+SECTIONS = ("unit", "eigenvector", "power")
 
 
 @dataclass
@@ -67,18 +79,27 @@ class StripePattern:
     form : StripeForm
         Directions, frequencies, ω̂, the signs ``s_ij``, branch triangles, the bundles.
     psi : (N,) complex128
-        The section (compact vertices; for line fields the value on the sheet of ``X_i``), ``M``-normalized.
+        The section (compact vertices; for line fields the value on the sheet of ``X_i``): unit modulus
+        per vertex for ``section="unit"``, ``M``-normalized for ``"eigenvector"`` and ``"power"``.
     texture : StripeTexture
         Per-corner α, zero indices, branch data; ``texture.evaluate(faces, bary)`` anywhere.
     eigenvalue : float
-        The smallest eigenvalue ``λ = E(ψ)/‖ψ‖²`` (0 for an exactly integrable field).
+        The smallest eigenvalue ``λ₁`` of the relaxed problem (0 for an exactly integrable field).
+    section : str
+        ``"unit"``, ``"eigenvector"`` or ``"power"`` (see :func:`stripe_pattern`).
+    unit_energy : float
+        The seed's energy of the unit function ``φ = ψ/|ψ|``: ``ρ(φ) = φᴴAφ / φᴴMφ >= λ₁``.
+    iteration : SectionIteration or None
+        Steps after the eigen solve (``"unit"``, ``"power"``): iterations, the unit energy of every
+        iterate, which one was kept (:class:`~dhlb.stripes.section.SectionIteration`).
     energy : str
         ``"cotan"`` or ``"fem"``.
     solver : dict
         ``backend``, ``iterations``, ``residual`` (backward error), ``converged``, ``shift``,
         ``block_size``, ``unknowns``, ``complex`` (solved as the complex N × N problem).
     timings : dict
-        Seconds: ``setup`` (mesh, form, matrices), ``solve``, ``texture``, ``total``.
+        Seconds: ``setup`` (mesh, form, matrices), ``solve`` (eigenpair and section iteration),
+        ``section`` (the iteration alone), ``texture``, ``total``.
     orthogonal : StripePattern or None
         The pattern of the directions turned by 90° (``orthogonal=True``).
 
@@ -100,6 +121,9 @@ class StripePattern:
     solver: dict
     timings: dict
     orthogonal: StripePattern | None = field(default=None, repr=False)
+    section: str = "eigenvector"
+    unit_energy: float = float("nan")
+    iteration: SectionIteration | None = field(default=None, repr=False)
 
     @property
     def mesh(self) -> SurfaceMesh:
@@ -147,6 +171,9 @@ class StripePattern:
             "n_faces": int(mesh.n_faces),
             "frequency": {"min": float(f.min()), "max": float(f.max()), "mean": float(f.mean())},
             "eigenvalue": float(self.eigenvalue),
+            "section": self.section,
+            "unit_energy": float(self.unit_energy),
+            "iteration": None if self.iteration is None else self.iteration.to_json(),
             "zero_faces": [{"face": int(r), "index": int(i), "position": p}
                            for r, i, p in zip(mesh.face_rows[zf], self.zero_index[zf],
                                               self.texture.zero_points.tolist())],
@@ -161,7 +188,8 @@ class StripePattern:
 
     def __repr__(self) -> str:
         return (f"StripePattern(n={self.n}, energy={self.energy!r}, zeros={self.zero_faces.size}, "
-                f"branch_faces={self.branch_faces.size}, eigenvalue={self.eigenvalue:.6g}, {self.mesh!r})")
+                f"branch_faces={self.branch_faces.size}, section={self.section!r}, eigenvalue={self.eigenvalue:.6g}, "
+                f"unit_energy={self.unit_energy:.6g}, {self.mesh!r})")
 
 
 def _is_field(obj) -> bool:
@@ -212,38 +240,92 @@ def _indefinite(A, M, tol, backend, block_size):
                                maxiter=2000)
 
 
-def _solve(form, energy, lumped, branch_weight, backend, tol, block_size):
+def _factor_solve(res, A, M, tol):
+    """``K⁻¹`` for ``K = A − shift·M`` positive definite.
+
+    The eigensolver's factor, or (iterative backends, no factor) one direct factorization of the floor
+    shift, warm-started from the eigenvector.
+    """
+    if res.factor is not None:
+        return res.factor.solve
+    direct = select_backend(A.shape[0], A.nnz, eigen=True, shifted=True)
+    again = smallest_eigenpairs(A, M, 1, tol=tol, backend=direct, v0=res.eigenvectors[:, 0], factor_shift="floor")
+    return again.factor.solve
+
+
+def _section(section, A, M, x, res, cplx, tol, iterations, seed, unit_tol):
+    if section == "eigenvector":
+        return x, None
+    solve = _factor_solve(res, A, M, tol)
+    if section == "power":
+        it = power_section(A, M, solve, POWER_ITERATIONS if iterations is None else iterations, seed=seed,
+                           complex_form=cplx)
+    else:
+        it = unit_section(A, M, solve, x, complex_form=cplx,
+                          maxiter=MAX_UNIT_ITERATIONS if iterations is None else iterations, rtol=unit_tol,
+                          seed=0 if seed is None else seed)
+    return it.x, it
+
+
+def _solve(form, energy, lumped, branch_weight, backend, tol, block_size, section, iterations, seed, unit_tol):
     t0 = time.perf_counter()
     A, M, cplx = stripe_matrices(form, energy, lumped=lumped, branch_weight=branch_weight)
     t1 = time.perf_counter()
+    shift = "auto" if section == "eigenvector" else "floor"   # unit / power iterate with K ≈ A⁻¹ (not K ≈ (A − λ₁M)⁻¹)
     try:
-        res = smallest_eigenpairs(A, M, 1, tol=tol, backend=backend, block_size=block_size)
+        res = smallest_eigenpairs(A, M, 1, tol=tol, backend=backend, block_size=block_size, factor_shift=shift)
         indefinite = False
     except InvalidOperatorError as err:
         if "not positive semidefinite" not in str(err):
             raise
         res, indefinite = _indefinite(A, M, tol, backend, block_size), True
     t2 = time.perf_counter()
-    x = res.eigenvectors[:, 0]
+    x, it = _section(section, A, M, res.eigenvectors[:, 0], res, cplx, tol, iterations, seed, unit_tol)
+    t3 = time.perf_counter()
+    rho = it.unit_energy if it is not None else unit_energy(A, M, normalize_per_vertex(x, cplx))
     psi = x if cplx else x[0::2] + 1j * x[1::2]
     solver = {"backend": res.backend, "iterations": int(res.iterations), "residual": float(res.residuals[0]),
               "converged": bool(res.converged), "shift": float(res.shift), "block_size": int(res.block_size),
               "unknowns": int(A.shape[0]), "complex": cplx, "indefinite": indefinite}
-    return np.ascontiguousarray(psi, np.complex128), float(res.eigenvalues[0]), solver, t1 - t0, t2 - t1
+    return (np.ascontiguousarray(psi, np.complex128), float(res.eigenvalues[0]), solver, t1 - t0, t3 - t1,
+            t3 - t2, it, rho)
 
 
 def _one(tb, X, n, frequency, spacing, method, energy, lumped, branch_weight, backend, tol, block_size,
-         warn_aliasing, t_mesh):
+         warn_aliasing, section, iterations, seed, unit_tol, t_mesh):
     t0 = time.perf_counter()
     form = stripe_form(tb, X, n, frequency=frequency, spacing=spacing, method=method, warn_aliasing=warn_aliasing)
     t1 = time.perf_counter()
-    psi, lam, solver, t_mat, t_solve = _solve(form, energy, lumped, branch_weight, backend, tol, block_size)
+    psi, lam, solver, t_mat, t_solve, t_sec, it, rho = _solve(form, energy, lumped, branch_weight, backend, tol,
+                                                                block_size, section, iterations, seed, unit_tol)
     t2 = time.perf_counter()
     tex = texture_coordinates(form, psi)
     t3 = time.perf_counter()
     setup = t_mesh + (t1 - t0) + t_mat
-    timings = {"setup": setup, "solve": t_solve, "texture": t3 - t2, "total": setup + t_solve + (t3 - t2)}
-    return StripePattern(form, psi, tex, lam, energy, solver, timings)
+    timings = {"setup": setup, "solve": t_solve, "section": t_sec, "texture": t3 - t2,
+               "total": setup + t_solve + (t3 - t2)}
+    return StripePattern(form, psi, tex, lam, energy, solver, timings, section=section, unit_energy=rho,
+                         iteration=it)
+
+
+def _check_section(section, iterations, seed, unit_tol):
+    if section not in SECTIONS:
+        raise InvalidParameterError(f"section must be one of {SECTIONS}, got {section!r}")
+    if iterations is not None:
+        if isinstance(iterations, (bool, np.bool_)) or not isinstance(iterations, numbers.Integral):
+            raise InvalidParameterError(f"iterations must be an integer, got {iterations!r}")
+        low = 1 if section == "power" else 0
+        if not low <= int(iterations) <= 100_000:
+            raise InvalidParameterError(f"iterations must be between {low} and 100000 (one back-solve each), "
+                                        f"got {iterations!r}")
+    try:
+        ok = bool(np.isfinite(unit_tol) and unit_tol > 0)
+    except TypeError:
+        ok = False
+    if not ok:
+        raise InvalidParameterError(f"unit_tol must be a positive number, got {unit_tol!r}")
+    if seed is not None and not isinstance(seed, (numbers.Integral, np.random.Generator)):
+        raise InvalidParameterError(f"seed must be an integer or a numpy Generator, got {seed!r}")
 
 
 def stripe_pattern(
@@ -265,6 +347,10 @@ def stripe_pattern(
     reorient: bool = False,
     components: str = "all",
     warn_aliasing: bool = True,
+    section: str = "unit",
+    iterations: int | None = None,
+    seed: Any = None,
+    unit_tol: float = UNIT_RTOL,
 ) -> StripePattern:
     """A stripe pattern following ``directions`` with the given frequency (seed part 2).
 
@@ -301,6 +387,26 @@ def stripe_pattern(
         Passed to :func:`dhlb.surface.validate_surface`.
     warn_aliasing : bool
         Warn when stripes are narrower than two edges (the result stays correct, §4.3).
+    section : {"unit", "eigenvector", "power"}
+        Which section ψ gives the pattern:
+
+        * ``"unit"`` (default): the smallest eigenvector, then the unit-modulus iteration
+          ``x ← normalize_per_vertex(M K⁻¹ M x)`` with the eigensolver's factorization of
+          ``K = A + εM`` (:func:`dhlb.stripes.section.unit_section`): it returns the iterate of lowest
+          *unit* energy (the seed's energy of a unit function, part 2 §2.1, before the relaxation
+          Eq. 2.3), so each level of a surface with varying girth keeps its own number of stripes,
+          joined by dislocations. Never higher unit energy than ``"eigenvector"``.
+        * ``"eigenvector"``: the smallest eigenvector of the relaxed problem (the seed's §2.1 / §4.2).
+        * ``"power"``: the seed's Algorithm 9, ``iterations`` inverse power steps (default 20) from a
+          uniformly random start (``seed``), for reproducing published figures.
+    iterations : int, optional
+        ``"unit"``: the maximum number of steps (default 100; 0 = the normalized eigenvector);
+        ``"power"``: the number of steps (default 20).
+    seed : int or numpy Generator, optional
+        Random start of ``"power"``; for ``"unit"`` the seed of the small phase perturbation of the
+        start (default 0, deterministic; see :func:`dhlb.stripes.section.unit_section`).
+    unit_tol : float
+        ``"unit"`` stops when the unit energy changed by less than this (relative) in one step.
 
     Returns
     -------
@@ -333,6 +439,7 @@ def stripe_pattern(
     t0 = time.perf_counter()
     if energy not in ENERGIES:
         raise InvalidParameterError(f"energy must be one of {ENERGIES}, got {energy!r}")
+    _check_section(section, iterations, seed, unit_tol)
     fld = None
     if _is_field(V) and F is None and directions is None:
         fld, V = V, V.mesh
@@ -351,7 +458,8 @@ def stripe_pattern(
         X, n = directions, 1 if n is None else int(n)
     tb = V if isinstance(V, TangentBundle) and V.n == 1 else TangentBundle(mesh, 1)
     t_mesh = time.perf_counter() - t0
-    args = (frequency, spacing, method, energy, lumped, branch_weight, backend, tol, block_size, warn_aliasing)
+    args = (frequency, spacing, method, energy, lumped, branch_weight, backend, tol, block_size, warn_aliasing,
+            section, iterations, seed, unit_tol)
     res = _one(tb, X, n, *args, t_mesh)
     if orthogonal:
         t1 = time.perf_counter()

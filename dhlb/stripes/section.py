@@ -1,0 +1,319 @@
+"""The section ψ of a stripe pattern after the eigenvector: the unit-modulus iteration and Algorithm 9.
+
+The seed (part 2, §2.1, Eq. 2.3) defines the energy of a **unit** function φ (``|φ| = 1``) and then
+relaxes the constraint: the minimum of ``E(ψ)/‖ψ‖²`` over *all* ψ is the smallest eigenvector of
+``A x = λ M x``. That eigenvector localizes where the requested frequency fits best (a surface
+whose girth changes gets the stripe count of one level everywhere, with ``|ψ|`` tiny elsewhere).
+:func:`unit_section` goes back to the constraint: starting from the eigenvector it iterates
+
+    ``x ← normalize_per_vertex(M K⁻¹ M x)``,   ``K = A − σM``  (σ < λ₁, K positive definite),
+
+with the factorization of ``K`` the eigensolver already made. For a lumped (diagonal) ``M``,
+``normalize(M K⁻¹ M x) = normalize(K⁻¹ M x)`` (a positive factor per vertex does not change a
+phase), the iteration measured in issue 18. ``proofs/unit_section_iteration.py`` derives:
+
+* it is the generalized power method for ``max g(x) = xᴴ M K⁻¹ M x`` over ``|x_i| = 1``:
+  ``g`` is convex, so ``g(x_{t+1}) >= g(x_t)`` at every step;
+* Cauchy–Schwarz gives ``(xᴴ M x)² <= g(x) · xᴴ K x``, i.e. the unit energy satisfies
+  ``ρ(x) = xᴴAx / xᴴMx >= σ + xᴴMx / g(x)``, with equality exactly for eigenvectors: raising g
+  lowers this bound, but ρ itself **can** increase in a step (the script exhibits one);
+* hence the guard: the iteration returns the iterate of lowest unit energy seen, so the result is
+  never worse than the (normalized) start, in particular never worse than the eigenvector.
+
+The iteration is local. On an exactly rotation-symmetric mesh the eigenvector is a single Fourier
+mode ``e^{imθ} f(z)`` and every iterate stays that mode: a saddle point that only rounding errors
+leave (a 64 × 138 tube stalled there after one step with 12 stripes on every level). So the
+iteration starts from the normalized eigenvector with a seeded random phase perturbation of
+``kick = 0.3`` rad per vertex (the guard still compares with the unperturbed start); with it every
+tube of the tests, symmetric or jittered, reaches the per-level counts.
+
+For the real 2N formulation of a line field (unknowns ``(Re ψ_i, Im ψ_i)`` interleaved) the
+constraint is ``|ψ_i| = 1`` for each base vertex, i.e. on both lifts ``i`` and ``N + i`` of the
+double cover (their values are ``ψ_i`` and ``conj ψ_i``): each pair is normalized as a 2-vector.
+
+:func:`power_section` is the seed's Algorithm 9: a fixed number of inverse power steps
+``x ← K⁻¹ M x / ‖·‖_M`` from a uniformly random start (20 in the paper), for reproducing figures.
+
+Examples
+--------
+>>> import numpy as np, scipy.sparse as sp
+>>> from dhlb.stripes.section import unit_section
+>>> n, r = 12, np.exp(2j * np.pi * 3 / 12)   # a ring whose connection turns by 2π·3: three windings
+>>> i = np.arange(n)
+>>> D = sp.csr_matrix((np.r_[-r * np.ones(n), np.ones(n)], (np.r_[i, i], np.r_[i, (i + 1) % n])), shape=(n, n))
+>>> A, M = (D.conj().T @ D).tocsr(), sp.identity(n, dtype=complex, format="csr")   # Σ |z_{i+1} − r z_i|²
+>>> lu = sp.linalg.splu((A + 1e-8 * M).tocsc())
+>>> it = unit_section(A, M, lu.solve, np.exp(0.3j * i))          # a start with the wrong winding
+>>> bool(it.start_energy > 1 > 1e-9 > it.unit_energy), np.allclose(np.abs(it.x), 1.0)
+(True, True)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from dhlb.errors import InvalidParameterError, NonFiniteError
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+__all__ = ["SectionIteration", "normalize_per_vertex", "power_section", "unit_energy", "unit_section"]
+
+MAX_UNIT_ITERATIONS = 100
+"""Default maximum of unit-modulus steps (each one back-solve with the eigensolver's factorization)."""
+UNIT_RTOL = 1e-3
+"""Default stall tolerance: stop when the unit energy changed by less than this (relative) in a step."""
+UNIT_KICK = 0.3
+"""Default amplitude (radians) of the seeded random phase perturbation of the start (see :func:`unit_section`)."""
+POWER_ITERATIONS = 20
+"""Default number of inverse power steps of ``section="power"`` (the seed's figures, Alg. 9)."""
+
+
+@dataclass
+class SectionIteration:
+    """Record of :func:`unit_section` or :func:`power_section`.
+
+    Attributes
+    ----------
+    x : ndarray
+        The returned iterate (unit modulus per vertex for ``"unit"``; M-normalized for ``"power"``).
+    kind : str
+        ``"unit"`` or ``"power"``.
+    iterations : int
+        Back-solves done.
+    energies : list of float
+        Unit energy ``ρ(normalize(x_t))`` of the start (t = 0) and of every iterate.
+    best_iteration : int
+        The t whose iterate is returned (the lowest unit energy; ``"power"``: the last).
+    converged : bool
+        ``"unit"``: the relative change of the unit energy fell below ``rtol``; ``"power"``: True.
+    increases : int
+        Steps in which the unit energy went up (the guard kept the better iterate).
+
+    Examples
+    --------
+    >>> import numpy as np, scipy.sparse as sp
+    >>> from dhlb.stripes.section import unit_section
+    >>> A = sp.csr_matrix([[1.0, -1.0], [-1.0, 1.0]], dtype=complex); M = sp.identity(2, dtype=complex, format="csr")
+    >>> it = unit_section(A, M, sp.linalg.splu((A + 1e-9 * M).tocsc()).solve, np.array([1.0, 0.5j]))
+    >>> it.kind, it.best_iteration >= 1, round(it.unit_energy, 9)
+    ('unit', True, 0.0)
+    """
+
+    x: np.ndarray
+    kind: str
+    iterations: int
+    energies: list = field(default_factory=list)
+    best_iteration: int = 0
+    converged: bool = True
+    increases: int = 0
+
+    @property
+    def unit_energy(self) -> float:
+        """Unit energy of the returned iterate."""
+        return float(self.energies[self.best_iteration])
+
+    @property
+    def start_energy(self) -> float:
+        """Unit energy of the (normalized) start."""
+        return float(self.energies[0])
+
+    def to_json(self) -> dict:
+        """JSON-ready summary (energies rounded to float).
+
+        Examples
+        --------
+        >>> from dhlb.stripes.section import SectionIteration
+        >>> SectionIteration(None, "unit", 2, [3.0, 2.0, 2.5], 1, True, 1).to_json()["unit_energy"]
+        2.0
+        """
+        return {"kind": self.kind, "iterations": int(self.iterations), "unit_energy": self.unit_energy,
+                "unit_energy_start": self.start_energy, "best_iteration": int(self.best_iteration),
+                "converged": bool(self.converged), "increases": int(self.increases),
+                "energies": [float(e) for e in self.energies]}
+
+
+def normalize_per_vertex(x, complex_form: bool = True, fallback=None) -> np.ndarray:
+    """``x_i / |x_i|`` per vertex: complex entries, or interleaved ``(Re, Im)`` pairs (``complex_form=False``).
+
+    Where ``x_i = 0`` the value of ``fallback`` (default ``1``, i.e. phase 0) is used.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.stripes.section import normalize_per_vertex
+    >>> normalize_per_vertex(np.array([3 + 4j, 0, 2j])).round(3).tolist()
+    [(0.6+0.8j), (1+0j), 1j]
+    >>> normalize_per_vertex(np.array([3.0, 4.0, 0.0, -2.0]), complex_form=False).tolist()
+    [0.6, 0.8, 0.0, -1.0]
+    """
+    x = np.asarray(x)
+    z = x if complex_form else x[0::2] + 1j * x[1::2]
+    mod = np.abs(z)
+    if fallback is None:
+        fb = np.ones_like(z)
+    else:
+        f = np.asarray(fallback)
+        fb = f if complex_form else f[0::2] + 1j * f[1::2]
+    u = np.where(mod > 0, z / np.where(mod > 0, mod, 1.0), fb)
+    if complex_form:
+        return u.astype(np.complex128)
+    out = np.empty(2 * u.size)
+    out[0::2], out[1::2] = u.real, u.imag
+    return out
+
+
+def unit_energy(A, M, x) -> float:
+    """The Rayleigh quotient ``ρ(x) = Re(xᴴ A x) / Re(xᴴ M x)`` (the seed's energy of a unit function).
+
+    Examples
+    --------
+    >>> import numpy as np, scipy.sparse as sp
+    >>> from dhlb.stripes.section import unit_energy
+    >>> A = sp.csr_matrix([[1.0, -1.0], [-1.0, 1.0]]); M = sp.identity(2, format="csr")
+    >>> unit_energy(A, M, np.array([1.0, -1.0]))
+    2.0
+    """
+    x = np.asarray(x)
+    return float(np.real(np.vdot(x, A @ x)) / np.real(np.vdot(x, M @ x)))
+
+
+def _check_iterations(name, value, low=1):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or value < low:
+        raise InvalidParameterError(f"{name} must be an integer >= {low}, got {value!r}")
+    return int(value)
+
+
+def unit_section(
+    A,
+    M,
+    solve: Callable,
+    x0,
+    *,
+    complex_form: bool = True,
+    maxiter: int = MAX_UNIT_ITERATIONS,
+    rtol: float = UNIT_RTOL,
+    kick: float = UNIT_KICK,
+    seed=0,
+) -> SectionIteration:
+    """Minimize the unit energy from ``x0``: ``x ← normalize_per_vertex(M K⁻¹ M x)``, keeping the best iterate.
+
+    Parameters
+    ----------
+    A, M : sparse (n, n)
+        The stripe energy and mass (Hermitian, or real symmetric for the 2N form).
+    solve : callable
+        ``solve(b) = K⁻¹ b`` for a positive definite ``K = A − σM`` (σ below the smallest
+        eigenvalue; e.g. ``EigenResult.factor.solve`` with ``factor_shift="floor"``).
+    x0 : (n,) array
+        Start (normalized per vertex first), e.g. the smallest eigenvector.
+    complex_form : bool
+        Complex unknowns (True) or interleaved ``(Re ψ_i, Im ψ_i)`` pairs (False).
+    maxiter : int >= 0
+        Maximum number of steps (each one back-solve).
+    rtol : float > 0
+        Stop when ``|ρ_t − ρ_{t−1}| <= rtol · |ρ_{t−1}|`` (or ρ reaches the rounding level).
+    kick : float >= 0
+        Amplitude (radians) of a random phase ``e^{i kick u_i}``, ``u_i`` uniform in [−1, 1], applied to
+        the normalized start before the first step, so that symmetric saddle points are left (see
+        the module docstring). ``energies[0]`` is the unperturbed start's.
+    seed : int or numpy Generator
+        Of the perturbation (default 0: deterministic).
+
+    Returns
+    -------
+    SectionIteration
+        ``x`` is the iterate of lowest unit energy (the guard of the module docstring).
+
+    Examples
+    --------
+    >>> import numpy as np, scipy.sparse as sp
+    >>> from dhlb.stripes.section import unit_section
+    >>> A = sp.csr_matrix([[2.0, -1.0, -1.0], [-1.0, 2.0, -1.0], [-1.0, -1.0, 2.0]], dtype=complex)
+    >>> M = sp.identity(3, dtype=complex, format="csr")
+    >>> it = unit_section(A, M, sp.linalg.splu((A + 1e-9 * M).tocsc()).solve, np.array([1, 1j, -1]))
+    >>> it.energies[0] > it.unit_energy, round(it.unit_energy, 8), it.converged
+    (True, 0.0, True)
+    """
+    maxiter = _check_iterations("maxiter", maxiter, 0)
+    if not (np.isfinite(rtol) and rtol > 0):
+        raise InvalidParameterError(f"rtol must be a positive number, got {rtol!r}")
+    x0 = np.asarray(x0)
+    if not np.all(np.isfinite(x0)):
+        raise NonFiniteError("the start vector x0 contains NaN or inf")
+    diag = np.asarray(A.diagonal()).real
+    mass = np.asarray(M.diagonal()).real
+    atol = 1e-12 * float(np.sum(np.abs(diag)) / np.sum(mass))  # rounding level of ρ (scale: mean diagonal ratio)
+    if not (np.isfinite(kick) and kick >= 0):
+        raise InvalidParameterError(f"kick must be a number >= 0 (radians), got {kick!r}")
+    x = normalize_per_vertex(x0, complex_form)
+    rho = unit_energy(A, M, x)
+    energies, best, best_x = [rho], 0, x
+    if kick and maxiter:
+        rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
+        z = x if complex_form else x[0::2] + 1j * x[1::2]
+        z = z * np.exp(1j * kick * rng.uniform(-1.0, 1.0, z.size))
+        x = z if complex_form else np.column_stack([z.real, z.imag]).ravel()
+    converged, increases, t = False, 0, 0
+    for t in range(1, maxiter + 1):
+        y = M @ solve(M @ x)
+        x = normalize_per_vertex(y, complex_form, fallback=x)
+        new = unit_energy(A, M, x)
+        energies.append(new)
+        increases += new > rho
+        if new < energies[best]:
+            best, best_x = t, x
+        if abs(new - rho) <= rtol * abs(rho) or abs(new) <= atol:
+            converged = True
+            rho = new
+            break
+        rho = new
+    else:
+        converged = maxiter == 0
+    return SectionIteration(best_x, "unit", t if maxiter else 0, energies, best, converged, increases)
+
+
+def power_section(A, M, solve: Callable, iterations: int = POWER_ITERATIONS, *, seed=None,
+                  complex_form: bool = True) -> SectionIteration:
+    """The seed's Algorithm 9: ``iterations`` inverse power steps from a uniformly random start.
+
+    ``x`` starts as ``UNIFORMRAND`` (entries in [0, 1) of the real 2N vector; in the complex form
+    its realification), then ``x ← K⁻¹ M x``, ``x ← x / sqrt(xᴴ M x)``.
+
+    Parameters
+    ----------
+    A, M : sparse (n, n)
+    solve : callable, ``K⁻¹ b`` (see :func:`unit_section`)
+    iterations : int >= 1
+    seed : int or numpy Generator, optional
+    complex_form : bool
+
+    Returns
+    -------
+    SectionIteration
+        ``energies`` holds the unit energy of every iterate normalized per vertex.
+
+    Examples
+    --------
+    >>> import numpy as np, scipy.sparse as sp
+    >>> from dhlb.stripes.section import power_section
+    >>> A = sp.diags([0.0, 1.0, 4.0, 9.0]).tocsr(); M = sp.identity(4, format="csr")   # 2 vertices, real form
+    >>> it = power_section(A, M, sp.linalg.splu((A + 1e-9 * M).tocsc()).solve, 5, seed=0, complex_form=False)
+    >>> it.iterations, np.round(np.abs(it.x), 6).tolist()
+    (5, [1.0, 0.0, 0.0, 0.0])
+    """
+    iterations = _check_iterations("iterations", iterations, 1)
+    rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
+    n = A.shape[0]
+    x = rng.uniform(0.0, 1.0, 2 * n if complex_form else n)
+    if complex_form:
+        x = x[0::2] + 1j * x[1::2]
+    energies = [unit_energy(A, M, normalize_per_vertex(x, complex_form))]
+    for _ in range(iterations):
+        x = solve(M @ x)
+        x = x / np.sqrt(np.real(np.vdot(x, M @ x)))
+        energies.append(unit_energy(A, M, normalize_per_vertex(x, complex_form)))
+    return SectionIteration(x, "power", iterations, energies, iterations, True, 0)
