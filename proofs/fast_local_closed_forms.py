@@ -1,4 +1,4 @@
-"""Symbolic checks of the closed forms used by dhlb/fem/_fast_local.py and dhlb/fem/_fast_moments.py.
+"""Symbolic checks of the closed forms used by dhlb/fem/kernels_closed.py and dhlb/fem/_fast_moments.py.
 
 Run: python proofs/fast_local_closed_forms.py   (asserts; exits non-zero on failure).
 

@@ -1,10 +1,16 @@
-"""The closed forms of dhlb.geometry._small agree with the LAPACK route they replace (n <= 2)."""
+"""The closed forms of dhlb.geometry._small agree with the LAPACK route they replace (n <= 3)."""
 
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dhlb.geometry._small import eigvalsh_small, factor_from_edges, gradients_from_factor
+from dhlb.geometry._small import (
+    cholesky_3,
+    eigvalsh_small,
+    factor_from_edges,
+    gradients_from_factor,
+    surely_definite_3,
+)
 from dhlb.geometry.simplex import SimplexStack
 
 
@@ -69,3 +75,55 @@ def test_simplex_stack_triangle_quantities_match_the_lapack_route():
                                                                axis=1), rtol=1e-12)
     np.testing.assert_allclose(S.barycentric_gradient_gram, L.barycentric_gradient_gram, rtol=1e-8, atol=1e-10)
     np.testing.assert_allclose(S.cotan_weights, L.cotan_weights, rtol=1e-8, atol=1e-10)
+
+
+def _metrics_3(seed, m, squash):
+    """Random tetrahedron metrics, some nearly flat (squash), some indefinite (lengths not realizable)."""
+    rng = np.random.default_rng(seed)
+    E = rng.standard_normal((m, 3, 3))
+    E[:, :, 2] = E[:, :, 0] + E[:, :, 1] + squash * E[:, :, 2]
+    g = np.swapaxes(E, 1, 2) @ E
+    g[: m // 4, 2, 2] *= 0.01                               # indefinite or degenerate
+    return 0.5 * (g + np.swapaxes(g, 1, 2))
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=st.integers(0, 2**31), squash=st.sampled_from([1.0, 1e-3, 1e-6, 1e-9]))
+def test_cholesky_3_and_the_certificate_match_lapack(seed, squash):
+    g = _metrics_3(seed, 40, squash)
+    R = cholesky_3(g)
+    ev = np.linalg.eigvalsh(g)
+    ok = ev[:, 0] > 1e-10 * ev[:, -1]                     # the factor is defined to ~eps·cond
+    if ok.any():
+        Rl = np.swapaxes(np.linalg.cholesky(g[ok]), 1, 2)
+        np.testing.assert_allclose(R[ok], Rl, rtol=1e-5, atol=1e-12 * np.abs(Rl).max())
+    assert np.isnan(R[ev[:, 0] < -1e-8 * ev[:, -1]]).any(axis=(1, 2)).all()  # indefinite: a pivot fails
+    # the certificate never accepts a simplex the exact test rejects
+    sure = surely_definite_3(g, R, 100 * 3 * np.finfo(float).eps)
+    assert not np.any(sure & (ev[:, 0] <= 100 * 3 * np.finfo(float).eps * ev[:, -1]))
+    assert sure[ev[:, 0] > 1e-3 * ev[:, -1]].all()        # and accepts well-shaped ones
+
+
+@settings(max_examples=30, deadline=None)
+@given(seed=st.integers(0, 2**31))
+def test_tetrahedra_closed_forms_match_the_lapack_route(seed):
+    rng = np.random.default_rng(seed)
+    P = rng.standard_normal((60, 4, 3))
+    P[:5, 3] = P[:5, 0] + 0.5 * (P[:5, 1] - P[:5, 0]) + 0.5 * (P[:5, 2] - P[:5, 0])    # coplanar: degenerate
+    S = SimplexStack.from_points(P)
+    ev = np.linalg.eigvalsh(S.metric)
+    ref = np.where(ev[:, 0] / ev[:, -1] > S.rtol, 0, np.where(ev[:, 0] / ev[:, -1] >= -S.rtol, 1, 2))
+    assert np.array_equal(S.status, ref)
+    ok = S.positive_definite
+    det = np.linalg.det(P[:, 1:] - P[:, :1])
+    np.testing.assert_allclose(S.volumes[ok], np.abs(det[ok]) / 6, rtol=1e-10)
+    D = np.hstack([-np.ones((3, 1)), np.eye(3)])
+    G = np.swapaxes(D, 0, 1) @ np.linalg.inv(S.metric[ok]) @ D
+    np.testing.assert_allclose(S.barycentric_gradient_gram[ok], G, rtol=1e-8, atol=1e-10 * np.abs(G).max())
+    Y = S.barycentric_gradients[ok]
+    eye = np.broadcast_to(np.eye(3), (int(ok.sum()), 3, 3))
+    E = np.swapaxes(P[:, 1:] - P[:, :1], 1, 2)[ok]           # in R³ the gradients are in the ambient frame
+    np.testing.assert_allclose(np.swapaxes(Y[:, :, 1:], 1, 2) @ E, eye, atol=1e-9)
+    L = SimplexStack.from_squared_lengths(S.squared_lengths)   # lengths: the Cholesky frame
+    np.testing.assert_allclose(np.swapaxes(L.barycentric_gradients[ok][:, :, 1:], 1, 2) @ L.factor[ok], eye, atol=1e-8)
+    np.testing.assert_allclose(L.barycentric_gradient_gram[ok], G, rtol=1e-6, atol=1e-9 * np.abs(G).max())

@@ -1,6 +1,6 @@
 r"""The moment functions of the fast local matrices: ``exp[0^α, z_c^β(, z_d^γ)]`` at imaginary nodes.
 
-Used by :mod:`dhlb.fem._fast_local` (which states the reduction of the local matrices to these
+Used by :mod:`dhlb.fem.kernels_closed` (which states the reduction of the local matrices to these
 functions).  Nodes are ``z_c = -iA_c`` for real ``A_c`` (the curvatures ``Ω_abc``).
 
 * ``ρ = max |A_c| <= 4``: the Taylor series ``Σ_q h_q(nodes) / (q + N)!`` with exact
@@ -201,15 +201,16 @@ def _series_3d_h(A1: np.ndarray, A2: np.ndarray, q: int):
     return re, im
 
 
-def _series_3d(A1: np.ndarray, A2: np.ndarray):
+def _series_3d(A1: np.ndarray, A2: np.ndarray, pats: tuple):
     r = float(max(np.abs(A1).max(), np.abs(A2).max())) if A1.size else 0.0
     deg = _degree_3d(_radius_key(r))
     if deg > _H_MIN_DEGREE:
         re, im = np.empty((10, A1.size)), np.empty((10, A1.size))
         for s in range(0, A1.size, 4096):
             re[:, s: s + 4096], im[:, s: s + 4096] = _series_3d_h(A1[s: s + 4096], A2[s: s + 4096], deg)
-        return re, im
+        return re[list(pats)], im[list(pats)]
     even, odd, ce, co = _matrix_3d(deg)
+    ce, co = ce[list(pats)], co[list(pats)]
     q = max(sum(k) for k in even + odd)
     bufs = (np.empty((len(even), A1.size)), np.empty((len(odd), A1.size)))
     bufs[0][0] = 1.0
@@ -258,7 +259,7 @@ _NEED_Y = tuple((a, g) for a in range(1, 7) for g in range(1, 4) if a + g <= 7)
 _NEED_D = tuple((b, g) for b in range(1, 4) for g in range(1, 4) if b + g <= 4)
 
 
-def _large_3d(A1: np.ndarray, A2: np.ndarray):
+def _large_3d(A1: np.ndarray, A2: np.ndarray, pats: tuple):
     """The ten weighted moments for pairs with max(|A1|, |A2|) > _R (recurrence in the larger node)."""
     swap = np.abs(A2) > np.abs(A1)
     U, V = np.where(swap, A2, A1), np.where(swap, A1, A2)
@@ -282,25 +283,26 @@ def _large_3d(A1: np.ndarray, A2: np.ndarray):
             for g in range(4):
                 if a + b + g <= 8 and b + g <= 4:
                     t[a, b, g] = (t[a - 1, b, g] - t[a, b - 1, g]) * iz
-    re, im = np.empty((10, U.size)), np.empty((10, U.size))
-    for f, (w, a, b, g) in enumerate(PAT3):
+    re, im = np.empty((len(pats), U.size)), np.empty((len(pats), U.size))
+    for i, f in enumerate(pats):
+        w, a, b, g = PAT3[f]
         v = w * np.where(swap, t[a, g, b], t[a, b, g])
-        re[f], im[f] = v.real, v.imag
+        re[i], im[i] = v.real, v.imag
     return re, im
 
 
-def moments_3d(A1: np.ndarray, A2: np.ndarray):
-    """Real and imaginary parts (10, K) of the weighted moments of :data:`PAT3`."""
+def moments_3d(A1: np.ndarray, A2: np.ndarray, pats: tuple = tuple(range(10))):
+    """Real and imaginary parts (len(pats), K) of the weighted moments ``PAT3[f]``, ``f`` in ``pats``."""
     rho = np.maximum(np.abs(A1), np.abs(A2))
     if rho.max(initial=0.0) <= _TINY:
-        return _series_3d(A1, A2)
-    re, im = np.empty((10, A1.size)), np.empty((10, A1.size))
+        return _series_3d(A1, A2, pats)
+    re, im = np.empty((len(pats), A1.size)), np.empty((len(pats), A1.size))
     classes = (rho <= _TINY, (rho > _TINY) & (rho <= _R), rho > _R)
     for c, mask in enumerate(classes):
         idx = np.nonzero(mask)[0]
         if idx.size:
             fn = _large_3d if c == 2 else _series_3d
-            re[:, idx], im[:, idx] = fn(A1[idx], A2[idx])
+            re[:, idx], im[:, idx] = fn(A1[idx], A2[idx], pats)
     return re, im
 
 
@@ -310,17 +312,18 @@ _PHI = (((2.0, 0, 4, 1),), ((2.0, 0, 2, 1), (-4.0, 2, 4, 3)), ((4.0, 2, 5, 2), (
         ((2j, 1, 3, 2),), ((-8.0, 2, 6, 1),))
 
 
-def phi_2d(w: np.ndarray):
-    """Real and imaginary parts (5, m) of φ0..φ4 at w."""
+def phi_2d(w: np.ndarray, funcs: tuple = (0, 1, 2, 3, 4)):
+    """Real and imaginary parts (len(funcs), m) of φ_f at w for f in ``funcs``."""
+    key = tuple(_PHI[f] for f in funcs)
     small = np.abs(w) <= _R
     if small.all():
-        return _series_1d(_PHI, w)
-    re, im = np.empty((5, w.size)), np.empty((5, w.size))
+        return _series_1d(key, w)
+    re, im = np.empty((len(key), w.size)), np.empty((len(key), w.size))
     if small.any():
-        re[:, small], im[:, small] = _series_1d(_PHI, w[small])
+        re[:, small], im[:, small] = _series_1d(key, w[small])
     wb = w[~small]
     e = _e_table(wb, ((4, 1), (2, 1), (4, 3), (5, 2), (3, 2), (6, 1)))
-    for f, terms in enumerate(_PHI):
+    for f, terms in enumerate(key):
         v = sum(wgt * wb ** s * e[a, b] for wgt, s, a, b in terms)
         re[f, ~small], im[f, ~small] = v.real, v.imag
     return re, im

@@ -1,27 +1,19 @@
 """Local mass and Dirichlet matrices of the piecewise-linear sections (seed Theorems 15 and 17).
 
+The public boundary of the element kernels: inputs are validated here (typed errors naming the
+simplex) and passed to the kernel of their dimension (:func:`dhlb.fem.kernels.element_kernel`).
 See :mod:`dhlb.fem.integrals` for the conventions, the local gauge and the formulas.
 """
 
 from __future__ import annotations
 
-from functools import cache
-from math import factorial, prod
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import ShapeError
-from dhlb.fem._local_data import (
-    check_closed,
-    local_edges,
-    parse_connection,
-    parse_gram,
-    parse_omega,
-    parse_volume,
-    tensor_last,
-)
-from dhlb.fem._moments import pair_moments
+from dhlb.fem._local_data import check_closed, parse_connection, parse_gram, parse_omega, parse_volume
+from dhlb.fem.kernels import dense, element_kernel
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -29,34 +21,12 @@ if TYPE_CHECKING:
 __all__ = ["local_mass_matrices", "local_dirichlet_matrices", "local_matrices"]
 
 
-@cache
-def _xi_diagonal(n: int) -> np.ndarray:
-    """``Ξ_aa(l, l') = n! Π p! / (n+4)!`` with ``p = 2e_a + e_l + e_l'`` (no curvature), ``[a, l, l']``."""
-    out = np.empty((n + 1, n + 1, n + 1))
-    for a in range(n + 1):
-        for k in range(n + 1):
-            for q in range(n + 1):
-                p = np.zeros(n + 1, dtype=int)
-                p[a] += 2
-                p[k] += 1
-                p[q] += 1
-                out[a, k, q] = factorial(n) * prod(factorial(int(v)) for v in p) / factorial(n + 4)
-    out.setflags(write=False)
-    return out
-
-
-def _unit(n: int, *idx: int) -> np.ndarray:
-    p = np.zeros(n + 1, dtype=int)
-    for v in idx:
-        p[v] += 1
-    return p
-
-
 def _inputs(gram, volume, omega, connection, dim):
-    """Parse and broadcast.
+    """Validate and broadcast: the public boundary of the local matrices.
 
-    Returns ``(G, vol, n, tensor, r, batched)`` with the simplex axis LAST: ``G (n+1, n+1, m)`` (or
-    None), ``vol (m,)``, ``tensor (n+1, n+1, n+1, m)``, ``r (C(n+1,2), m)``.
+    Returns ``(G, vol, omega, r, kernel, batched)`` in the layout of :mod:`dhlb.fem.kernels`:
+    ``G (m, n+1, n+1)`` (or None), ``vol (m,)``, ``omega (m, C(n+1, 3))``, ``r (m, C(n+1, 2))`` or
+    None (local gauge), and the element kernel of the dimension.
     """
     g, sizes = None, {}
     if gram is not None:
@@ -75,78 +45,16 @@ def _inputs(gram, volume, omega, connection, dim):
     arr = np.broadcast_to(arr, (m, arr.shape[1]))
     vol = np.ascontiguousarray(np.broadcast_to(vol, (m,)))
     if g is not None:
-        g = np.ascontiguousarray(np.moveaxis(np.broadcast_to(g, (m, n + 1, n + 1)), 0, -1))
+        g = np.ascontiguousarray(np.broadcast_to(g, (m, n + 1, n + 1)))
     check_closed(arr, n)
-    tensor = tensor_last(arr, n)
-    e = local_edges(n)
-    if connection is None:
-        r = np.exp(1j * tensor[0, e[:, 0], e[:, 1]])
-    else:
-        r = np.ascontiguousarray(parse_connection(connection, m, n, arr).T)
-    return g, vol, n, tensor, r, bool(given)
+    arr = np.ascontiguousarray(arr)
+    r = None if connection is None else np.ascontiguousarray(parse_connection(connection, m, n, arr))
+    return g, vol, arr, r, element_kernel(n), bool(given)
 
 
-def _finish(out: np.ndarray, batched: bool) -> np.ndarray:
-    out = np.moveaxis(out, -1, 0)
-    return np.ascontiguousarray(out) if batched else out[0].copy()
-
-
-def _mass(vol, n, tensor, r, th=None):
-    """``M[b, a, :]`` with the simplex axis last."""
-    m, nv = vol.shape[0], n + 1
-    e = local_edges(n)
-    out = np.zeros((nv, nv, m), dtype=complex)
-    out[np.arange(nv), np.arange(nv)] = 2.0 / ((n + 1) * (n + 2)) * vol
-    if len(e):
-        if th is None:
-            th = pair_moments(tensor, [(int(i), int(j), _unit(n, i, j)) for i, j in e])
-        off = r * vol * th
-        out[e[:, 1], e[:, 0]] = off
-        out[e[:, 0], e[:, 1]] = np.conj(off)
-    return out
-
-
-def _dirichlet(g, vol, n, tensor, r):
-    """``A[b, a, :]`` with the simplex axis last, and ``Θ_ab(a, b)`` per local edge (for the mass)."""
-    m, nv = vol.shape[0], n + 1
-    e = local_edges(n)
-    ls = [(k, q) for k in range(nv) for q in range(k, nv)]
-    sym = np.empty((nv, nv), dtype=int)          # position of Ξ(l, l') in the request list
-    for t, (k, q) in enumerate(ls):
-        sym[k, q] = sym[q, k] = t
-    requests = []
-    for i, j in e:
-        i, j = int(i), int(j)
-        requests.append((i, j, _unit(n)))
-        requests += [(i, j, _unit(n, i, k)) for k in range(nv)]
-        requests += [(i, j, _unit(n, j, k)) for k in range(nv)]
-        requests += [(i, j, _unit(n, i, j, k, q)) for k, q in ls]
-    out = np.zeros((nv, nv, m), dtype=complex)
-    # diagonal: no curvature in the exponent and the Θ terms cancel
-    xid = _xi_diagonal(n)
-    for a in range(nv):
-        quad = np.einsum("klm,kqm,qrm->lrm", tensor[a], g, tensor[a], optimize=True)
-        out[a, a] = vol * (g[a, a] + np.einsum("lrm,lr->m", quad, xid[a]))
-    if len(e) == 0:
-        return out, None
-    mom = pair_moments(tensor, requests).reshape(len(e), -1, m)
-    th_ab = np.empty((len(e), m), dtype=complex)
-    for p, (a, b) in enumerate(e):
-        lam = mom[p, 0]
-        th_a = mom[p, 1: 1 + nv]                       # Θ_ab(a, l)
-        th_b = mom[p, 1 + nv: 1 + 2 * nv]              # Θ_ab(b, l)
-        xi_ab = mom[p, 1 + 2 * nv:][sym]               # Ξ_ab(l, l'), (n+1, n+1, m)
-        wa, wb = tensor[a], tensor[b]                  # W^a[k, l] = Ω_akl
-        quad = np.einsum("klm,kqm,qrm->lrm", wa, g, wb, optimize=True)   # (W^aᵀ G W^b)_{l l'}
-        pa = np.einsum("km,klm->lm", g[b], wa)                             # (G W^a)_{b l}
-        pb = np.einsum("km,klm->lm", g[a], wb)                             # (G W^b)_{a l}
-        val = (g[a, b] * lam + np.einsum("lrm,lrm->m", quad, xi_ab)
-               + 1j * (np.einsum("lm,lm->m", pa, th_a) - np.einsum("lm,lm->m", pb, th_b)))
-        off = r[p] * vol * val
-        out[b, a] = off
-        out[a, b] = np.conj(off)
-        th_ab[p] = th_a[b]
-    return out, th_ab
+def _finish(off, diag, batched: bool) -> np.ndarray:
+    out = dense(off, diag)
+    return out if batched else out[0]
 
 
 def local_mass_matrices(
@@ -178,8 +86,8 @@ def local_mass_matrices(
     >>> np.allclose(M * 24, [[2, 1, 1], [1, 2, 1], [1, 1, 2]])
     True
     """
-    _, vol, n, tensor, r, batched = _inputs(None, volume, omega, connection, dim)
-    return _finish(_mass(vol, n, tensor, r), batched)
+    _, vol, arr, r, kernel, batched = _inputs(None, volume, omega, connection, dim)
+    return _finish(*kernel(None, vol, arr, r, dirichlet=False)[:2], batched)
 
 
 def local_dirichlet_matrices(
@@ -210,8 +118,8 @@ def local_dirichlet_matrices(
     >>> np.allclose(A, A.conj().T), bool(np.linalg.eigvalsh(A).min() > 0)
     (True, True)
     """
-    g, vol, n, tensor, r, batched = _inputs(gram, volume, omega, connection, None)
-    return _finish(_dirichlet(g, vol, n, tensor, r)[0], batched)
+    g, vol, arr, r, kernel, batched = _inputs(gram, volume, omega, connection, None)
+    return _finish(*kernel(g, vol, arr, r, mass=False)[2:], batched)
 
 
 def local_matrices(
@@ -227,7 +135,6 @@ def local_matrices(
     >>> M.shape, A.shape
     ((3, 3), (3, 3))
     """
-    g, vol, n, tensor, r, batched = _inputs(gram, volume, omega, connection, None)
-    dirichlet, th = _dirichlet(g, vol, n, tensor, r)
-    mass = _mass(vol, n, tensor, r, th)
-    return _finish(mass, batched), _finish(dirichlet, batched)
+    g, vol, arr, r, kernel, batched = _inputs(gram, volume, omega, connection, None)
+    mo, md, ao, ad = kernel(g, vol, arr, r)
+    return _finish(mo, md, batched), _finish(ao, ad, batched)

@@ -7,9 +7,13 @@ dimension n, the hermitian product ``<<ψ, φ>> = ψᴴ M φ`` (Theorem 15) and 
 vertices, in the conventions of ``docs/conventions.md``: antilinear in the first slot, a single
 edge contributes ``|z_j − r_ij z_i|²``, eigenproblem ``A u = λ M u``.
 
-Assembly is vectorized over the top simplices: per simplex the local matrices of
-:mod:`dhlb.fem.integrals` (local vertex order = sorted row, global frames through the
-connection on the local edges) are scattered into one COO matrix.
+Assembly: the bundle and the geometry are validated when built (``HermitianLineBundle``,
+``EuclideanComplex``); here only that they live on the same pure complex.  The per-simplex data
+(volumes, Gram matrices only when the Dirichlet matrix is asked for, curvature on the local
+triangles, connection on the local edges) go to the element kernel of the dimension
+(:func:`dhlb.fem.kernels.element_kernel`), which returns the compact local entries of the
+requested matrices; they are summed per global edge and vertex into one CSR pattern, the vertex
+adjacency of the complex, shared by the mass and the Dirichlet matrix.
 
 With Ω = 0 and the trivial connection the matrices are exactly the P1 mass matrix and the P1
 stiffness matrix (the cotangent Laplacian for n = 2).
@@ -23,9 +27,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from dhlb.errors import NonFiniteError, ShapeError
-from dhlb.fem._fast_local import fast_local_entries, fast_local_matrices
-from dhlb.fem._local_matrices import local_mass_matrices, local_matrices
-from dhlb.topology.structure import subfaces
+from dhlb.fem.kernels import element_kernel
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -48,61 +50,34 @@ def _check_pair(bundle, geometry):
     return X
 
 
-def _local_data(bundle, geometry):
-    """Per top simplex: vertex rows, volumes, local curvature, local connection."""
+def _entries(bundle, geometry, *, mass: bool, dirichlet: bool):
+    """``(X, LocalEntries)`` of the top simplices from the element kernel of their dimension."""
     X = _check_pair(bundle, geometry)
     n = X.dim
-    rows = X.simplices(n)
-    vol = np.asarray(geometry.volumes(n), dtype=float)
-    if n >= 2:
-        omega = np.asarray(bundle.curvature, dtype=float)[subfaces(X, n, 2)]
-    else:
-        omega = np.zeros((rows.shape[0], 0))
-    r = np.asarray(bundle.connection, dtype=complex)[subfaces(X, n, 1)]
-    return X, rows, vol, omega, r
+    vol = geometry.volumes(n)
+    omega = bundle.curvature[geometry.top_faces(2)] if n >= 2 else np.zeros((vol.size, 0))
+    r = bundle.connection[geometry.top_faces(1)]
+    gram = geometry.barycentric_gradient_gram if dirichlet else None
+    return X, element_kernel(n)(gram, vol, omega, r, mass=mass, dirichlet=dirichlet)
 
 
-def _scatter(X, local: np.ndarray) -> sp.csr_matrix:
-    """Sum ``local[s, b, a]`` into ``K[v_b, v_a]`` (``v = X.simplices(n)[s]``) on the vertex-adjacency pattern."""
-    pos = X.top_entry_positions.ravel()
-    local = local.reshape(-1)
-    return _csr(X, [pos], [local.real], [local.imag])
+def _scatter(X, geometry, off: np.ndarray, diag: np.ndarray) -> sp.csr_matrix:
+    """Sum compact local entries (layout of :mod:`dhlb.fem.kernels`) into the vertex-adjacency CSR pattern.
 
-
-def _scatter_entries(X, off: np.ndarray, diag: np.ndarray) -> sp.csr_matrix:
-    """As :func:`_scatter` for Hermitian local matrices in a compact layout.
-
-    The layout is that of :func:`dhlb.fem._fast_local.fast_local_entries` (``off[p] = K_s[b, a]``
-    for local edge ``p = (a, b)``, shape ``(n_edges_local, n_top)``; ``diag`` ``(n + 1, n_top)``).
-    The entries are summed per canonical edge ``e = (v_a < v_b)`` (the lower entry ``K[v_b, v_a]``;
-    the upper one is its conjugate) and per vertex, then placed on the adjacency pattern.
+    ``off[p, s] = K_s[b, a]`` is summed per canonical edge ``(v_a < v_b)`` into the lower entry
+    ``K[v_b, v_a]`` (the upper one is its conjugate), ``diag`` per vertex.
     """
-    n = X.dim
     adj = X.vertex_adjacency
-    edges = subfaces(X, n, 1).T.ravel()  # (E, m) layout, like `off`
-    off = off.ravel()
+    edges = geometry.top_faces(1).T.ravel()              # (local edge, simplex), the layout of `off`
     n1 = X.n_simplices(1)
-    low = np.bincount(edges, weights=off.real, minlength=n1).astype(complex)
-    if np.iscomplexobj(off):
-        low.imag = np.bincount(edges, weights=off.imag, minlength=n1)
+    off = off.ravel()
     data = np.empty(adj.indices.size, complex)
+    low = data[adj.lower]
+    low.real = np.bincount(edges, weights=off.real, minlength=n1)
+    low.imag = np.bincount(edges, weights=off.imag, minlength=n1)
     data[adj.lower] = low
     data[adj.upper] = low.conj()
-    data[adj.diagonal] = np.bincount(X.simplices(n).T.ravel(), weights=diag.ravel(), minlength=X.n_vertices)
-    return sp.csr_matrix((data, adj.indices.copy(), adj.indptr.copy()), shape=(X.n_vertices, X.n_vertices))
-
-
-def _csr(X, positions, real_parts, imag_parts) -> sp.csr_matrix:
-    adj = X.vertex_adjacency
-    nnz = adj.indices.size
-    pos = np.concatenate(positions)
-    re = np.concatenate(real_parts)
-    data = np.bincount(pos, weights=re, minlength=nnz).astype(complex)
-    im = [(p, w) for p, w in zip(positions, imag_parts) if w is not None]
-    if im:
-        data.imag = np.bincount(
-            np.concatenate([p for p, _ in im]), weights=np.concatenate([w for _, w in im]), minlength=nnz
-        )
+    data[adj.diagonal] = np.bincount(X.simplices(X.dim).T.ravel(), weights=diag.ravel(), minlength=X.n_vertices)
     return sp.csr_matrix((data, adj.indices.copy(), adj.indptr.copy()), shape=(X.n_vertices, X.n_vertices))
 
 
@@ -148,20 +123,15 @@ def mass_matrix(
     >>> round(float(M.sum().real), 12)   # ∫ 1 = area
     1.0
     """
-    X, rows, vol, omega, r = _local_data(bundle, geometry)
-    n = X.dim
     if lumped:
-        w = vol if weights is None else vol * _weights(weights, vol.size)
-        diag = np.bincount(rows.ravel(), weights=np.repeat(w / (n + 1), n + 1), minlength=X.n_vertices)
-        return sp.diags(diag.astype(complex), format="csr")
-    if n in (2, 3):
-        gram = np.asarray(geometry.barycentric_gradient_gram, dtype=float)
-        local = fast_local_matrices(gram, vol, omega, r)[0]
-    else:
-        local = local_mass_matrices(vol, omega, r, dim=n)
+        _check_pair(bundle, geometry)
+        w = None if weights is None else _weights(weights, geometry.complex.n_simplices(geometry.dim))
+        return sp.diags(_lumped(geometry, w).astype(complex), format="csr")
+    X, (off, diag, _, _) = _entries(bundle, geometry, mass=True, dirichlet=False)
     if weights is not None:
-        local = local * _weights(weights, vol.size)[:, None, None]
-    return _scatter(X, local)
+        w = _weights(weights, diag.shape[1])
+        off, diag = off * w, diag * w
+    return _scatter(X, geometry, off, diag)
 
 
 def dirichlet_matrix(bundle: HermitianLineBundle, geometry: EuclideanComplex) -> sp.csr_matrix:
@@ -169,7 +139,6 @@ def dirichlet_matrix(bundle: HermitianLineBundle, geometry: EuclideanComplex) ->
 
     Examples
     --------
-    >>> import numpy as np
     >>> from dhlb import EuclideanComplex, HermitianLineBundle
     >>> from dhlb.examples import cube_nd
     >>> X, P = cube_nd(2, 3, return_points=True)
@@ -178,9 +147,8 @@ def dirichlet_matrix(bundle: HermitianLineBundle, geometry: EuclideanComplex) ->
     >>> bool(abs(A - geo.stiffness_matrix()).max() < 1e-14)   # Ω = 0: the cotangent Laplacian
     True
     """
-    X, _rows, vol, omega, r = _local_data(bundle, geometry)
-    gram = np.asarray(geometry.barycentric_gradient_gram, dtype=float)
-    return _scatter(X, fast_local_matrices(gram, vol, omega, r)[1])
+    X, (_, _, off, diag) = _entries(bundle, geometry, mass=False, dirichlet=True)
+    return _scatter(X, geometry, off, diag)
 
 
 def bundle_matrices(
@@ -197,16 +165,9 @@ def bundle_matrices(
     >>> A.shape == M.shape == (27, 27)
     True
     """
-    X, _rows, vol, omega, r = _local_data(bundle, geometry)
-    gram = np.asarray(geometry.barycentric_gradient_gram, dtype=float)
-    if X.dim in (2, 3):
-        m_off, m_diag, a_off, a_diag = fast_local_entries(gram, vol, omega, r)
-        A = _scatter_entries(X, a_off, a_diag)
-        M = _scatter_entries(X, m_off, m_diag)
-    else:
-        Ml, Al = local_matrices(gram, vol, omega, r)
-        A, M = _scatter(X, Al), _scatter(X, Ml)
-    return (A, mass_matrix(bundle, geometry, lumped=True)) if lumped else (A, M)
+    X, (m_off, m_diag, a_off, a_diag) = _entries(bundle, geometry, mass=not lumped, dirichlet=True)
+    A = _scatter(X, geometry, a_off, a_diag)
+    return A, (mass_matrix(bundle, geometry, lumped=True) if lumped else _scatter(X, geometry, m_off, m_diag))
 
 
 def lumped_mass(geometry: EuclideanComplex) -> np.ndarray:
@@ -220,7 +181,11 @@ def lumped_mass(geometry: EuclideanComplex) -> np.ndarray:
     >>> lumped_mass(G).round(6).tolist()
     [0.166667, 0.166667, 0.166667]
     """
+    return _lumped(geometry, None)
+
+
+def _lumped(geometry, weights) -> np.ndarray:
     X = geometry.complex
     n = X.dim
-    vol = np.asarray(geometry.volumes(n), dtype=float)
-    return np.bincount(X.simplices(n).ravel(), weights=np.repeat(vol / (n + 1), n + 1), minlength=X.n_vertices)
+    w = geometry.volumes(n) if weights is None else geometry.volumes(n) * weights
+    return np.bincount(X.simplices(n).ravel(), weights=np.repeat(w / (n + 1), n + 1), minlength=X.n_vertices)

@@ -1,7 +1,7 @@
-"""Closed forms for stacks of 1- and 2-simplices (edges, triangles): the hot path of surface meshes.
+"""Closed forms for stacks of 1-, 2- and 3-simplices: the hot path of surface and tet meshes.
 
 :class:`~dhlb.geometry.simplex.SimplexStack` uses them instead of batched LAPACK calls, which
-cost ~1 µs per tiny matrix, for ``n <= 2``:
+cost ~1 µs per tiny matrix, for ``n <= 3``:
 
 * eigenvalues of a symmetric 2×2 metric ``g = [[a, b], [b, c]]``:
   ``λ_max = (a + c)/2 + hypot((a − c)/2, b)`` and ``λ_min = det g / λ_max`` (no cancellation in
@@ -11,7 +11,14 @@ cost ~1 µs per tiny matrix, for ``n <= 2``:
   ``E = [e_1 | e_2]``: ``r_11 = |e_1|``, ``r_12 = <e_1, e_2>/r_11``, ``r_22 = |e_1 ∧ e_2| / r_11``
   with ``|e_1 ∧ e_2|² = Σ_{i<j} (e_1i e_2j − e_1j e_2i)²`` (Lagrange's identity, any ambient
   dimension) -- the R of a QR factorization with the signs fixed to a positive diagonal;
-* ``Y = R⁻ᵀ [−1 | I]`` from the explicit inverse of a 2×2 (or 1×1) lower-triangular matrix.
+* the Cholesky factor of a 3×3 metric written out (``r_11 = sqrt(g_11)``, ``r_1j = g_1j / r_11``,
+  ``r_22 = sqrt(g_22 − r_12²)``, ``r_23 = (g_23 − r_12 r_13)/r_22``, ``r_33 = sqrt(g_33 − r_13² − r_23²)``);
+  ``nan`` where a pivot is not positive;
+* a certificate of definiteness for 3×3 metrics: positive pivots and ``det g / tr(g)³ > t`` imply
+  ``λ_min/λ_max >= det g/λ_max³ >= det g / tr(g)³ > t`` (``λ_min = det g/(λ_mid λ_max)``), so only
+  the simplices it cannot certify need eigenvalues;
+* ``Y = R⁻ᵀ [−1 | I]`` from the explicit inverse of a lower-triangular matrix of order <= 3
+  (forward substitution written out).
 
 Each formula is checked against the LAPACK route in ``tests/test_geometry_small.py``.
 """
@@ -20,7 +27,19 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["eigvalsh_small", "factor_from_edges", "gradients_from_factor"]
+__all__ = ["soa_empty", "eigvalsh_small", "factor_from_edges", "cholesky_3", "surely_definite_3",
+           "gradients_from_factor", "gram_of_columns"]
+
+
+def soa_empty(m: int, *shape: int) -> np.ndarray:
+    """An uninitialised ``(m, *shape)`` array stored simplex axis last, so ``A[:, i, j]`` is contiguous.
+
+    Examples
+    --------
+    >>> soa_empty(5, 3, 3)[:, 0, 1].flags["C_CONTIGUOUS"]
+    True
+    """
+    return np.moveaxis(np.empty((*shape, m)), -1, 0)
 
 
 def eigvalsh_small(g: np.ndarray, det: np.ndarray | None = None) -> np.ndarray:
@@ -78,8 +97,45 @@ def factor_from_edges(E: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return R, g
 
 
+def cholesky_3(g: np.ndarray) -> np.ndarray:
+    """Upper-triangular ``R`` ``(m, 3, 3)`` with ``g = RᵀR`` for symmetric ``(m, 3, 3)``; ``nan`` where not definite.
+
+    Examples
+    --------
+    >>> cholesky_3(np.array([[[4.0, 2.0, 0.0], [2.0, 5.0, 0.0], [0.0, 0.0, 9.0]]]))[0].tolist()
+    [[2.0, 1.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 3.0]]
+    """
+    R = soa_empty(g.shape[0], 3, 3)
+    R[:, 1, 0] = R[:, 2, 0] = R[:, 2, 1] = 0.0
+    with np.errstate(invalid="ignore", divide="ignore"):
+        r11 = np.sqrt(g[:, 0, 0])
+        r12, r13 = g[:, 0, 1] / r11, g[:, 0, 2] / r11
+        r22 = np.sqrt(g[:, 1, 1] - r12 * r12)
+        r23 = (g[:, 1, 2] - r12 * r13) / r22
+        r33 = np.sqrt(g[:, 2, 2] - r13 * r13 - r23 * r23)
+    R[:, 0, 0], R[:, 0, 1], R[:, 0, 2], R[:, 1, 1], R[:, 1, 2], R[:, 2, 2] = r11, r12, r13, r22, r23, r33
+    return R
+
+
+def surely_definite_3(g: np.ndarray, R: np.ndarray, rtol: float) -> np.ndarray:
+    """Simplices whose metric certainly has ``λ_min/λ_max > rtol`` (``R`` from :func:`cholesky_3`).
+
+    ``det g = (r_11 r_22 r_33)²``; the margin ``1e-12`` covers the rounding of the pivots.
+
+    Examples
+    --------
+    >>> g = np.array([np.eye(3), np.diag([1.0, 1.0, 1e-20])])
+    >>> surely_definite_3(g, cholesky_3(g), 1e-13).tolist()
+    [True, False]
+    """
+    with np.errstate(invalid="ignore"):
+        det = (R[:, 0, 0] * R[:, 1, 1] * R[:, 2, 2]) ** 2
+        tr = g[:, 0, 0] + g[:, 1, 1] + g[:, 2, 2]
+        return det > max(2.0 * rtol, 1e-12) * tr * tr * tr    # nan (a failed pivot) compares False
+
+
 def gradients_from_factor(R: np.ndarray) -> np.ndarray:
-    """``Y = R⁻ᵀ [−1 | I]`` ``(m, n, n+1)`` for upper-triangular ``R`` ``(m, n, n)``, ``n <= 2`` (nonsingular).
+    """``Y = R⁻ᵀ [−1 | I]`` ``(m, n, n+1)`` for upper-triangular ``R`` ``(m, n, n)``, ``n <= 3`` (nonsingular).
 
     Examples
     --------
@@ -87,9 +143,40 @@ def gradients_from_factor(R: np.ndarray) -> np.ndarray:
     [[[-1.0, 1.0, 0.0], [-0.5, 0.0, 0.5]]]
     """
     m, n = R.shape[0], R.shape[1]
-    Z = np.zeros((m, n, n))  # Z = R⁻ᵀ (lower triangular)
+    Z = soa_empty(m, n, n)  # Z = R⁻ᵀ (lower triangular)
     Z[:, 0, 0] = 1.0 / R[:, 0, 0]
-    if n == 2:
+    if n >= 2:
         Z[:, 1, 1] = 1.0 / R[:, 1, 1]
         Z[:, 1, 0] = -R[:, 0, 1] * Z[:, 0, 0] * Z[:, 1, 1]
-    return np.concatenate([-Z.sum(axis=2, keepdims=True), Z], axis=2)
+    if n == 3:
+        Z[:, 2, 2] = 1.0 / R[:, 2, 2]
+        Z[:, 2, 1] = -R[:, 1, 2] * Z[:, 1, 1] * Z[:, 2, 2]
+        Z[:, 2, 0] = -(R[:, 0, 2] * Z[:, 0, 0] + R[:, 1, 2] * Z[:, 1, 0]) * Z[:, 2, 2]
+    Y = soa_empty(m, n, n + 1)
+    for k in range(n):
+        Y[:, k, k + 2:] = 0.0
+        Y[:, k, 1:k + 2] = Z[:, k, :k + 1]
+        Y[:, k, 0] = -Z[:, k, 0]
+        for j in range(1, k + 1):
+            Y[:, k, 0] -= Z[:, k, j]
+    return Y
+
+
+def gram_of_columns(Y: np.ndarray) -> np.ndarray:
+    """``YᵀY`` ``(m, k, k)`` for ``(m, n, k)``, entry by entry (symmetric by construction, simplex axis last).
+
+    Examples
+    --------
+    >>> gram_of_columns(np.array([[[1.0, 2.0], [0.0, 1.0]]]))[0].tolist()
+    [[1.0, 2.0], [2.0, 5.0]]
+    """
+    m, n, k = Y.shape
+    G = soa_empty(m, k, k)
+    for a in range(k):
+        for b in range(a, k):
+            acc = Y[:, 0, a] * Y[:, 0, b]
+            for q in range(1, n):
+                acc += Y[:, q, a] * Y[:, q, b]
+            G[:, a, b] = acc
+            G[:, b, a] = acc
+    return G

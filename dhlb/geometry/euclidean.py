@@ -10,6 +10,7 @@ curvature, and serve as references.
 from __future__ import annotations
 
 from functools import cached_property
+from itertools import combinations
 from math import factorial
 from typing import TYPE_CHECKING
 
@@ -17,8 +18,10 @@ import numpy as np
 import scipy.sparse as sp
 
 from dhlb.errors import InvalidMetricError, InvalidParameterError, NonFiniteError, NonManifoldError, ShapeError
+from dhlb.geometry._small import soa_empty
 from dhlb.geometry.simplex import SimplexStack
 from dhlb.topology.complex import SimplicialComplex
+from dhlb.topology.structure import subfaces
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -103,6 +106,7 @@ class EuclideanComplex:
         else:
             self._lengths = self._parse_lengths(edge_lengths)
         self._volumes: dict[int, np.ndarray] = {}
+        self._faces: dict[int, np.ndarray] = {}
         self._top.check(labels=X.vertex_labels[X.simplices(self.dim)], what=f"{self.dim}-simplex")
 
     # ------------------------------------------------------------------ input
@@ -154,25 +158,37 @@ class EuclideanComplex:
         return L
 
     # ------------------------------------------------------------------ per-simplex stacks
-    def _edge_ids(self, rows: np.ndarray) -> np.ndarray:
-        """Row indices in simplices(1) of the (sorted) vertex pairs ``rows[..., 0] < rows[..., 1]``."""
-        E = self.complex.simplices(1)
-        N = self.complex.n_vertices
-        keys = E[:, 0] * N + E[:, 1]
-        return np.searchsorted(keys, rows[..., 0] * N + rows[..., 1])
+    def top_faces(self, k: int) -> np.ndarray:
+        """Rows in ``complex.simplices(k)`` of the local k-faces of each top simplex, ``(m, C(n+1, k+1))``.
+
+        Lexicographic local order (``dhlb.topology.structure.subfaces``), computed once per geometry.
+
+        Examples
+        --------
+        >>> from dhlb import SimplicialComplex
+        >>> E = EuclideanComplex(SimplicialComplex([(0, 1, 2)]), points=[[0, 0], [1, 0], [0, 1]])
+        >>> E.top_faces(1).tolist()
+        [[0, 1, 2]]
+        """
+        if k not in self._faces:
+            f = subfaces(self.complex, self.dim, k)
+            f.setflags(write=False)
+            self._faces[k] = f
+        return self._faces[k]
 
     def _stack(self, k: int) -> SimplexStack:
         S = self.complex.simplices(k)
         if self._points is not None:
             return SimplexStack.from_points(self._points[S], rtol=self._rtol)
-        L2 = np.zeros((S.shape[0], k + 1, k + 1))
-        a, b = np.triu_indices(k + 1, 1)
-        if a.size:
-            ids = self._edge_ids(np.stack([S[:, a], S[:, b]], axis=-1))
+        L2 = soa_empty(S.shape[0], k + 1, k + 1)
+        for a in range(k + 1):
+            L2[:, a, a] = 0.0
+        if k >= 1:
+            ids = self.top_faces(1) if k == self.dim else subfaces(self.complex, k, 1)
             sq = self._lengths[ids] ** 2
-            L2[:, a, b] = sq
-            L2[:, b, a] = sq
-        return SimplexStack.from_squared_lengths(L2, rtol=self._rtol)
+            for p, (a, b) in enumerate(combinations(range(k + 1), 2)):
+                L2[:, a, b] = L2[:, b, a] = sq[:, p]
+        return SimplexStack._from_checked_lengths(L2, rtol=self._rtol)
 
     @cached_property
     def _top(self) -> SimplexStack:

@@ -33,7 +33,15 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhlb.errors import DegenerateSimplexError, InvalidMetricError, NonFiniteError, ShapeError
-from dhlb.geometry._small import eigvalsh_small, factor_from_edges, gradients_from_factor
+from dhlb.geometry._small import (
+    cholesky_3,
+    eigvalsh_small,
+    factor_from_edges,
+    gradients_from_factor,
+    gram_of_columns,
+    soa_empty,
+    surely_definite_3,
+)
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -75,9 +83,12 @@ def metric_from_squared_lengths(sq_lengths: ArrayLike) -> np.ndarray:
            [0., 1.]])
     """
     L2 = np.asarray(sq_lengths, dtype=float)
-    first = L2[:, 0, 1:]
-    g = 0.5 * (first[:, :, None] + first[:, None, :] - L2[:, 1:, 1:])
-    return 0.5 * (g + np.swapaxes(g, 1, 2))
+    m, n = L2.shape[0], L2.shape[1] - 1
+    g = soa_empty(m, n, n)
+    for a in range(n):
+        for b in range(a, n):
+            g[:, a, b] = g[:, b, a] = 0.5 * (L2[:, 0, a + 1] + L2[:, 0, b + 1] - L2[:, a + 1, b + 1])
+    return g
 
 
 def _check_finite(arr: np.ndarray, what: str) -> None:
@@ -117,6 +128,7 @@ class SimplexStack:
         self.n = metric.shape[1]
         self.m = metric.shape[0]
         self.rtol = default_rtol(self.n) if rtol is None else float(rtol)
+        self._cross = self._det = None
 
     # ------------------------------------------------------------------ constructors
     @classmethod
@@ -134,6 +146,16 @@ class SimplexStack:
         if 1 <= n <= 2:  # closed forms (dhlb.geometry._small)
             R, g = factor_from_edges(E)
             return cls(g, factor=R, points=P, rtol=rtol)
+        if n == 3:  # closed-form Cholesky factor of g, lazily (dhlb.geometry._small)
+            cols = [np.ascontiguousarray(E[:, :, a]) for a in range(3)]
+            g = soa_empty(m, 3, 3)
+            for a, b in ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)):
+                g[:, a, b] = g[:, b, a] = np.einsum("md,md->m", cols[a], cols[b])
+            S = cls(g, points=P, rtol=rtol)
+            if d == 3:  # in R³: ∇λ_a = (e_b × e_c) / det E (cyclic), accurate to eps·cond(E), not cond²
+                S._cross = [np.cross(cols[(a + 1) % 3], cols[(a + 2) % 3]) for a in range(3)]
+                S._det = np.einsum("md,md->m", cols[0], S._cross[0])
+            return S
         R = np.linalg.qr(E, mode="r") if n > 0 else np.zeros((m, 0, 0))
         R = R[:, :n, :n]
         g = np.swapaxes(E, 1, 2) @ E
@@ -156,6 +178,11 @@ class SimplexStack:
             s, a, b = (int(v) for v in np.argwhere((L2 <= 0) & off)[0])
             raise InvalidMetricError(f"simplex {s}: the edge ({a}, {b}) has non-positive length; "
                                      "edge lengths must be > 0")
+        return cls._from_checked_lengths(L2, rtol)
+
+    @classmethod
+    def _from_checked_lengths(cls, L2: np.ndarray, rtol: float | None) -> SimplexStack:
+        """:meth:`from_squared_lengths` for data validated by the caller (``EuclideanComplex``)."""
         return cls(metric_from_squared_lengths(L2), sq_lengths=L2, rtol=rtol)
 
     # ------------------------------------------------------------------ definiteness
@@ -182,14 +209,28 @@ class SimplexStack:
         return np.linalg.eigvalsh(self._g)
 
     @cached_property
-    def status(self) -> np.ndarray:
-        """Per simplex: 0 positive definite, 1 degenerate (zero volume), 2 indefinite (not realizable)."""
-        ev = self.metric_eigenvalues
-        if self.n == 0:
-            return np.zeros(self.m, np.int64)
+    def _cholesky_3(self) -> np.ndarray:
+        """Closed-form Cholesky factor of every metric (n = 3), ``nan`` where a pivot fails."""
+        return cholesky_3(self._g)
+
+    def _classify(self, ev: np.ndarray) -> np.ndarray:
         scale = np.maximum(np.abs(ev).max(axis=1), np.finfo(float).tiny)
         lo = ev[:, 0] / scale
         return np.where(lo > self.rtol, OK, np.where(lo >= -self.rtol, DEGENERATE, INDEFINITE)).astype(np.int64)
+
+    @cached_property
+    def status(self) -> np.ndarray:
+        """Per simplex: 0 positive definite, 1 degenerate (zero volume), 2 indefinite (not realizable)."""
+        if self.n == 0:
+            return np.zeros(self.m, np.int64)
+        if self.n == 3 and "metric_eigenvalues" not in self.__dict__:
+            # certified simplices need no eigenvalues; the others get the exact test
+            doubt = np.nonzero(~surely_definite_3(self._g, self._cholesky_3, self.rtol))[0]
+            out = np.zeros(self.m, np.int64)
+            if doubt.size:
+                out[doubt] = self._classify(np.linalg.eigvalsh(self._g[doubt]))
+            return out
+        return self._classify(self.metric_eigenvalues)
 
     @cached_property
     def positive_definite(self) -> np.ndarray:
@@ -286,6 +327,10 @@ class SimplexStack:
             R = self._factor_given.copy()
             R[~self.positive_definite] = np.nan
             return R
+        if n == 3:
+            R = self._cholesky_3.copy()
+            R[~self.positive_definite] = np.nan
+            return R
         R = np.full((self.m, n, n), np.nan)
         ok = self.positive_definite
         if np.any(ok) and n > 0:
@@ -299,6 +344,14 @@ class SimplexStack:
         """n-volume ``sqrt(det g) / n!`` per simplex (0 if degenerate, ``nan`` if indefinite)."""
         if self.n == 0:
             return np.ones(self.m)
+        if self.n == 3:
+            if self._det is not None:
+                vol = np.abs(self._det) / 6.0
+            else:
+                R = self.factor
+                vol = np.abs(R[:, 0, 0] * R[:, 1, 1] * R[:, 2, 2]) / 6.0
+            vol[self.status == DEGENERATE] = 0.0
+            return vol
         vol = np.abs(np.prod(np.diagonal(self.factor, axis1=1, axis2=2), axis=1)) / factorial(self.n)
         vol[self.status == DEGENERATE] = 0.0
         return vol
@@ -310,7 +363,16 @@ class SimplexStack:
         if n == 0:
             return np.zeros((m, 0, 1))
         ok = self.positive_definite
-        if n <= 2:
+        if self._cross is not None:
+            Y = soa_empty(m, 3, 4)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                inv = np.where(ok, 1.0 / self._det, np.nan)
+            for k in range(3):
+                for a in range(3):
+                    Y[:, k, a + 1] = self._cross[a][:, k] * inv
+                Y[:, k, 0] = -(Y[:, k, 1] + Y[:, k, 2] + Y[:, k, 3])
+            return Y
+        if n <= 3:
             if ok.all():
                 return gradients_from_factor(self.factor)
             Y = np.full((m, n, n + 1), np.nan)
@@ -326,11 +388,8 @@ class SimplexStack:
     def barycentric_gradient_gram(self) -> np.ndarray:
         """``G_ij = <∇λ_i, ∇λ_j>`` ``(m, n+1, n+1)``, symmetric positive semidefinite, rows sum to 0."""
         Y = self.barycentric_gradients
-        if 1 <= self.n <= 2:  # symmetric by construction
-            G = Y[:, 0, :, None] * Y[:, 0, None, :]
-            for k in range(1, self.n):
-                G += Y[:, k, :, None] * Y[:, k, None, :]
-            return G
+        if 1 <= self.n <= 3:  # symmetric by construction
+            return gram_of_columns(Y)
         G = np.swapaxes(Y, 1, 2) @ Y
         return 0.5 * (G + np.swapaxes(G, 1, 2))
 
