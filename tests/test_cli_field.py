@@ -108,3 +108,33 @@ def test_errors(tmp_path, capsys, argv, code, message):
 def test_output_is_required(capsys):
     code, _, err = cli([os.path.join(DATA, "rounded_cube.obj")], capsys)
     assert code == 2 and "-o OUT" in err
+
+
+def test_prescribed_singularities_by_face_and_by_point(tmp_path, capsys):
+    from dhlb.io import example_path, read_surface
+
+    V, F = read_surface(example_path("spot.obj"))
+    c = V[F[3000]].mean(axis=0)
+    point = ",".join(f"{x:.9f}" for x in c)
+    code, text, err = cli([example_path("spot.obj"), "--n", 1, "--singularity", "0:1",
+                           f"--singularity={point}:1", "-o", tmp_path / "p", "--json", "--no-png"], capsys)
+    assert code == 0, err
+    summary = json.loads(text)
+    assert sorted((s["face"], s["index"]) for s in summary["singularities"]) == [(0, 1), (3000, 1)]
+    assert summary["prescribed"] == [{"face": 0, "index": 1}, {"face": 3000, "index": 1}]
+    assert summary["delta_norm"] > 0 and summary["index_sum"] == 2
+    z = np.load(tmp_path / "p.npz")
+    assert sorted(z["singular_faces"].tolist()) == [0, 3000]
+
+
+@pytest.mark.parametrize("argv, code, message", [
+    (["--singularity", "0:1"], 1, r"sum to 1.*n·χ = 1·2 = 2"),
+    (["--singularity", "0:x"], 2, "must be an integer"),
+    (["--singularity", "1,2:1"], 2, "face number or three finite"),
+    (["--singularity", "0:1", "--singularity", "5:1", "--align", "curvature"], 2, "does not combine"),
+])
+def test_prescribed_singularity_errors(argv, code, message, tmp_path, capsys):
+    from dhlb.io import example_path
+
+    got, _, err = cli([example_path("spot.obj"), *argv, "-o", tmp_path / "e", "--no-png"], capsys)
+    assert got == code and re.search(message, err), err

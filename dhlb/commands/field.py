@@ -17,7 +17,7 @@ import numpy as np
 
 from dhlb.commands._common import UsageError, add_command, resolve_input, write_output
 
-__all__ = ["NAME", "SUMMARY", "read_alignment", "register", "run", "write_field"]
+__all__ = ["NAME", "SUMMARY", "read_alignment", "read_singularities", "register", "run", "write_field"]
 
 NAME = "field"
 SUMMARY = "smoothest or aligned n-direction field of a triangle mesh, its singularities and a picture"
@@ -31,13 +31,20 @@ component gets its own field.
 
 Outputs (OUT is a base path): OUT.ply (mesh + directions as vertex properties), OUT.npz
 (u, directions, frames, face_index, singularities), OUT.json (singularities, index sum,
-Euler characteristic, eigenvalue, timings) and OUT.png (picture). --json prints the summary."""
+Euler characteristic, eigenvalue, timings) and OUT.png (picture). --json prints the summary.
+
+With --singularity (repeatable) the field has exactly the given singularities instead
+(dualised trivial connections, dhlb.surface.prescribed_field): FACE:K puts index K/n on the
+face with row FACE of the file, x,y,z:K on the face nearest to the point; K is an integer in
+{-1, 0, 1} per face and on a closed surface the K sum to n * chi (Poincare-Hopf)."""
 
 _EXAMPLES = """\
   dhlb field bunny.obj --n 4 -o bunny-cross            # smoothest cross field
   dhlb field kitten.obj --n 2 --s 1 --align curvature --lambda 0 -o kitten
   dhlb field part.off --n 4 --align boundary -o part --json
-  dhlb field face.ply --n 1 --align guide.npy -o face   # guide.npy: (k, 3) vectors or complex (k,)"""
+  dhlb field face.ply --n 1 --align guide.npy -o face   # guide.npy: (k, 3) vectors or complex (k,)
+  dhlb field spot.obj --n 1 --singularity 0:1 --singularity 3000:1 -o spot-two
+  dhlb field torus.obj --n 4 --singularity 0.5,0,1.2:1 --singularity 12:-1 -o torus-pair"""
 
 _ALIGN = ("curvature", "min-curvature", "boundary", "boundary-normal")
 
@@ -52,6 +59,10 @@ def register(subparsers) -> None:
                    help=f"alignment: {', '.join(_ALIGN)}, or a .npy file of (k, 3) vectors or complex (k,) values")
     p.add_argument("--lambda", dest="lam", type=float, default=0.0,
                    help="lambda_t of the aligned problem, below the smallest eigenvalue (default 0)")
+    p.add_argument("--singularity", action="append", metavar="FACE:K | x,y,z:K",
+                   help="prescribe index K/n at a face (row of the file) or at the face nearest to a point; "
+                        "repeatable; the result has exactly these singularities (write --singularity=-1,0,0:1 "
+                        "when x is negative)")
     p.add_argument("--backend", default=None, help="linear-algebra backend (see dhlb.fem.solvers)")
     p.add_argument("--reorient", action="store_true", help="flip inconsistently oriented faces")
     p.add_argument("--format", dest="fmt", metavar="FMT", help="file format if the extension does not say it")
@@ -78,6 +89,40 @@ def read_alignment(value):
     except (OSError, ValueError) as exc:
         raise UsageError(f"{value}: not a readable .npy array ({exc})") from None
     return arr
+
+
+def read_singularities(values):
+    """The ``singularities`` of :func:`dhlb.surface.prescribed_field` for ``--singularity`` values.
+
+    Examples
+    --------
+    >>> read_singularities(["3:1", "0.5,0,1:-1"])
+    [(3, 1), ((0.5, 0.0, 1.0), -1)]
+    """
+    out = []
+    for value in values or []:
+        where, sep, k = value.rpartition(":")
+        try:
+            index = int(k)
+        except ValueError:
+            raise UsageError(f"--singularity {value!r}: the index K after ':' must be an integer") from None
+        if not sep or not where:
+            raise UsageError(f"--singularity {value!r}: expected FACE:K or x,y,z:K")
+        parts = where.split(",")
+        try:
+            if len(parts) == 1:
+                out.append((int(parts[0]), index))
+            elif len(parts) == 3:
+                p = tuple(float(c) for c in parts)
+                if not all(np.isfinite(p)):
+                    raise ValueError
+                out.append((p, index))
+            else:
+                raise ValueError
+        except ValueError:
+            raise UsageError(f"--singularity {value!r}: the location must be a face number or three finite "
+                             "coordinates x,y,z") from None
+    return out
 
 
 def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
@@ -119,7 +164,7 @@ def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
 def run(args) -> int:
     """Entry point of ``dhlb field``."""
     from dhlb.io import read_surface
-    from dhlb.surface import direction_field
+    from dhlb.surface import direction_field, prescribed_field
 
     if not args.output or args.output == "-":
         raise UsageError("give the output base path with -o OUT (writes OUT.ply, OUT.npz, OUT.json, OUT.png)")
@@ -134,10 +179,16 @@ def run(args) -> int:
     if fmt not in ("obj", "off", "ply"):
         raise UsageError(f"{args.mesh}: dhlb field needs a triangle surface (.obj, .off, .ply), not {fmt}")
     align = read_alignment(args.align)
+    sing = read_singularities(args.singularity)
+    if args.singularity and (align is not None or args.s != 0.0):
+        raise UsageError("--singularity prescribes the field; it does not combine with --align or --s")
     V, F = read_surface(args.mesh, fmt)
     t1 = time.perf_counter()
-    res = direction_field(V, F, n=args.n, s=args.s, align=align, lam=args.lam, reorient=args.reorient,
-                          backend=args.backend)
+    if args.singularity:
+        res = prescribed_field(V, F, args.n, sing, reorient=args.reorient, backend=args.backend)
+    else:
+        res = direction_field(V, F, n=args.n, s=args.s, align=align, lam=args.lam, reorient=args.reorient,
+                              backend=args.backend)
     t2 = time.perf_counter()
     summary = res.to_json()
     paths = write_field(out, res, V, F, png=not args.no_png)

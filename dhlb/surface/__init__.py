@@ -29,7 +29,8 @@ from dhlb.surface.guidance import (
     user_guidance,
 )
 from dhlb.surface.mesh import SurfaceMesh, validate_surface
-from dhlb.surface.result import DirectionField
+from dhlb.surface.prescribed import locate_faces, prescribed_field
+from dhlb.surface.result import DirectionField, PrescribedField
 from dhlb.surface.tangent import TangentBundle, tangent_bundle
 
 __all__ = [
@@ -37,6 +38,7 @@ __all__ = [
     "Guidance", "boundary_guidance", "curvature_guidance", "dihedral_angles", "hopf_differential", "user_guidance",
     "FieldIndices", "Singularities", "direction_vectors", "field_indices", "section_values",
     "energy_matrices", "boundary_form", "DirectionField", "direction_field", "guidance_for", "stripe_pattern",
+    "PrescribedField", "prescribed_field", "locate_faces",
 ]
 
 

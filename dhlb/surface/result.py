@@ -11,7 +11,7 @@ from dhlb.surface.guidance import Guidance
 from dhlb.surface.mesh import SurfaceMesh
 from dhlb.surface.tangent import TangentBundle
 
-__all__ = ["DirectionField"]
+__all__ = ["DirectionField", "PrescribedField"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -121,3 +121,62 @@ class DirectionField:
     def __repr__(self) -> str:
         return (f"DirectionField(n={self.n}, s={self.s}, vertices={self.mesh.n_vertices}, "
                 f"singularities={len(self.singularities.faces)}, index_sum={self.index_sum})")
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class PrescribedField(DirectionField):
+    """A :class:`DirectionField` with prescribed singularities (:func:`dhlb.surface.prescribed_field`).
+
+    Attributes
+    ----------
+    prescribed : (m,) int64, the prescribed index per face of ``mesh.faces`` (mesh orientation)
+    delta : (n_1,) float64, the connection change δ per canonical edge of ``mesh.complex``
+    delta_norm : float, ``sqrt(δᵀ W δ)`` in the norm of ``weights``
+    weights : str, ``"cotan"`` (Hodge star ⋆₁) or ``"uniform"`` (plain ℓ²)
+    edge_weights : (n_1,) float64, the weights W of the norm δ is minimal in (after any reweighting)
+    generators : (q, n_1) sparse int, the generators of H₁ (fundamental cycles, rows)
+    holonomy : (q,) float64, the rotation θ_c of the field relative to parallel transport along each
+    admissible_holonomy : (q,) float64, the admissible θ_c are these plus 2πZ
+    flatness_defect : float, largest closing error of the tree transport (round-off)
+
+    Examples
+    --------
+    >>> from dhlb.io import read_surface, example_path
+    >>> from dhlb.surface import prescribed_field
+    >>> res = prescribed_field(*read_surface(example_path("torus.obj")), n=1)   # no singularity at all
+    >>> res.index_sum, len(res.singularities.faces), res.generators.shape[0], res.flatness_defect < 1e-12
+    (0, 0, 2, True)
+    """
+
+    prescribed: np.ndarray = None
+    delta: np.ndarray = None
+    delta_norm: float = 0.0
+    weights: str = "cotan"
+    generators: object = None
+    holonomy: np.ndarray = None
+    admissible_holonomy: np.ndarray = None
+    flatness_defect: float = 0.0
+    edge_weights: np.ndarray = None
+
+    @property
+    def prescribed_singularities(self) -> dict:
+        """``{input face row: k}`` of the prescription (after locating points and summing per face)."""
+        f = np.nonzero(self.prescribed)[0]
+        return {int(r): int(k) for r, k in zip(self.mesh.face_rows[f], self.prescribed[f])}
+
+    def to_json(self) -> dict:
+        """The summary of :meth:`DirectionField.to_json` plus the prescription and the correction."""
+        out = super().to_json()
+        out.update({
+            "prescribed": [{"face": r, "index": k} for r, k in self.prescribed_singularities.items()],
+            "delta_norm": self.delta_norm, "delta_max": float(np.max(np.abs(self.delta), initial=0.0)),
+            "weights": self.weights, "holonomy": [float(x) for x in self.holonomy],
+            "admissible_holonomy": [float(x) for x in self.admissible_holonomy],
+            "flatness_defect": self.flatness_defect,
+        })
+        return out
+
+    def __repr__(self) -> str:
+        return (f"PrescribedField(n={self.n}, vertices={self.mesh.n_vertices}, "
+                f"singularities={len(self.singularities.faces)}, index_sum={self.index_sum}, "
+                f"delta_norm={self.delta_norm:.4g})")
