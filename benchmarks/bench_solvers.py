@@ -13,7 +13,13 @@ compacted away), and a box tet mesh (``--m`` cells per axis; 32 gives 196,608 te
 bundle of a vortex ring's velocity field.  For an iterative backend ``real``/``cplx`` are the
 AMG setup plus one preconditioned CG solve to 1e-12.
 
-Run:  python benchmarks/bench_solvers.py [--m 32] [--skip-direct-3d] [--json PATH]
+Then, side by side in the same run (issue 15): ARPACK (``dhlb.linalg``) against the hand-written
+thick-restart Lanczos it replaced, on the bunny with k = 1 and k = 6 and on a Landau level of
+multiplicity 12 (flat torus, degree 12, k = 12), both on SuperLU with tol = 1e-10.  The old
+solver is taken from git history (commit ``LANCZOS_COMMIT``) into a temporary package, so the
+package itself carries no dead code.
+
+Run:  python benchmarks/bench_solvers.py [--m 32] [--skip-direct-3d] [--json PATH] [--only-compare]
 """
 from __future__ import annotations
 
@@ -32,9 +38,9 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
-from dhlb.fem import bundle_matrices, smallest_eigenpairs
-from dhlb.fem.backends import available_backends, clear_cache, get_backend
-from dhlb.fem.solvers import default_shift
+from dhlb.fem import bundle_matrices
+from dhlb.linalg import default_shift, smallest_eigenpairs
+from dhlb.linalg.backends import available_backends, clear_cache, get_backend
 from dhlb.geometry import EuclideanComplex
 
 BUNNY = os.path.join(os.path.dirname(__file__), "..", "..", "shared", "meshes", "stanford-bunny.obj")
@@ -109,13 +115,74 @@ def run_problem(label, A, M, L, M0, backends, repeat):
     return rows, auto
 
 
+LANCZOS_COMMIT = "ef6e07a"
+_OLD = ("backends.py", "solvers.py", "_eigen_steps.py", "_krylov.py", "_checks.py")
+
+
+def old_solver():
+    """``smallest_eigenpairs`` of the hand-written Lanczos, from git history, as a throw-away package."""
+    import subprocess
+    import tempfile
+
+    root = os.path.join(os.path.dirname(__file__), "..")
+    tmp = tempfile.mkdtemp()
+    pkg = os.path.join(tmp, "_old_fem")
+    os.makedirs(pkg)
+    open(os.path.join(pkg, "__init__.py"), "w").close()
+    for name in _OLD:
+        src = subprocess.run(["git", "-C", root, "show", f"{LANCZOS_COMMIT}:dhlb/fem/{name}"], check=True,
+                             capture_output=True, text=True).stdout
+        with open(os.path.join(pkg, name), "w") as fh:
+            fh.write(src.replace("dhlb.fem.", "_old_fem."))
+    sys.path.insert(0, tmp)
+    import importlib
+
+    return importlib.import_module("_old_fem.solvers").smallest_eigenpairs
+
+
+def compare_lanczos(repeat):
+    """ARPACK vs the old Lanczos on bunny k = 1, 6 and a 12-fold Landau level; prints and returns the rows."""
+    sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
+    from tests.fem_fixtures import flat_torus_landau
+
+    old = old_solver()
+    _, A, M, *_ = bunny_problem()
+    L, geo, _ = flat_torus_landau(2, 60, 12)
+    Al, Ml = bundle_matrices(L, geo)
+    cases = {"bunny k=1": (A, M, 1), "bunny k=6": (A, M, 6), "Landau d=12, k=12": (Al, Ml, 12)}
+    rows = []
+    print(f"\nARPACK vs hand-written Lanczos (git {LANCZOS_COMMIT}), SuperLU, tol 1e-10, best of {repeat}")
+    print(f"{'case':<20}{'n':>8}{'Lanczos s':>11}{'solves':>8}{'ARPACK s':>10}{'solves':>8}{'max |Δλ|/λ':>12}")
+    for label, (AA, MM, k) in cases.items():
+        def run_old(AA=AA, MM=MM, k=k):
+            clear_cache()
+            return old(AA, MM, k, tol=1e-10, backend="superlu")
+
+        def run_new(AA=AA, MM=MM, k=k):
+            clear_cache()
+            return smallest_eigenpairs(AA, MM, k, tol=1e-10, backend="superlu")
+
+        t_old, r_old = best_of(run_old, repeat)
+        t_new, r_new = best_of(run_new, repeat)
+        d = float(np.max(np.abs(r_old.eigenvalues - r_new.eigenvalues) / np.abs(r_new.eigenvalues).clip(1e-300)))
+        rows.append({"case": label, "n": AA.shape[0], "lanczos": t_old, "lanczos_solves": int(r_old.iterations
+                     * r_old.block_size), "arpack": t_new, "arpack_solves": int(r_new.solves), "rel_diff": d})
+        print(f"{label:<20}{AA.shape[0]:>8}{t_old:>11.3f}{rows[-1]['lanczos_solves']:>8}{t_new:>10.3f}"
+              f"{r_new.solves:>8}{d:>12.1e}", flush=True)
+    return rows
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--m", type=int, default=32, help="cells per axis of the tet box (32: 196,608 tets)")
     ap.add_argument("--repeat", type=int, default=2, help="best of this many runs")
     ap.add_argument("--skip-direct-3d", action="store_true", help="only the iterative backend on the tet box")
     ap.add_argument("--json", default=os.path.join(os.path.dirname(__file__), "bench_solvers.json"))
+    ap.add_argument("--only-compare", action="store_true", help="only the ARPACK vs Lanczos table")
     args = ap.parse_args(argv)
+    if args.only_compare:
+        compare_lanczos(args.repeat)
+        return
     backends = available_backends()
     print(f"backends available: {backends}; OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}")
     out = {"machine": platform.machine(), "cpus": os.cpu_count(), "backends": backends, "results": [], "auto": {}}
@@ -128,6 +195,7 @@ def main(argv=None):
         rows, auto = run_problem(label, A, M, L, M0, bes, args.repeat)
         out["results"] += rows
         out["auto"][label] = auto
+    out["arpack_vs_lanczos"] = compare_lanczos(args.repeat)
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh, indent=1)

@@ -262,3 +262,40 @@ def test_cholmod_metis_ordering_for_large_matrices_gives_the_same_eigenpairs(tor
     res = smallest_eigenpairs(A, M, k=2, backend="cholmod")
     assert res.backend == "cholmod"
     np.testing.assert_allclose(res.eigenvalues, ref.eigenvalues, rtol=1e-9)
+
+
+# ---------------------------------------------------------------------- memory
+def test_factorization_that_does_not_fit_says_memory(monkeypatch):
+    """Issue 15 point 5: a factorization over the memory limit is refused (or falls back), never a SuperLU error."""
+    from dhlb.linalg import memory
+
+    n = 40_000                                             # a 200 × 200 grid Laplacian, 2-D pattern
+    m = 200
+    T = sp.diags([-np.ones(m - 1), 2 * np.ones(m), -np.ones(m - 1)], [-1, 0, 1])
+    A = (sp.kron(T, sp.identity(m)) + sp.kron(sp.identity(m), T)).tocsr()
+    M = sp.identity(n, format="csr")
+    need = memory.factor_bytes(n, A.nnz, complex_=False, dimension=2.0)
+    monkeypatch.setattr(memory, "_LIMIT", need // 4)       # an artificially small limit
+    with pytest.raises(memory.InsufficientMemoryError, match=r"40,000-unknown .* needs about .* GiB") as info:
+        smallest_eigenpairs(A, M, k=1, backend="superlu")
+    assert info.value.needed == need and info.value.available <= need // 4
+    with pytest.raises(memory.InsufficientMemoryError):
+        solve(A, M, -1.0, np.ones(n), backend="superlu")
+    if "amg-lobpcg" in B.available_backends():             # auto: the iterative backend, and the result says so
+        res = smallest_eigenpairs(A, M, k=1)
+        assert res.converged and res.backend == "amg-lobpcg" and "would not fit in memory" in res.note
+        np.testing.assert_allclose(res.eigenvalues, [2 * (2 - 2 * np.cos(np.pi / (m + 1)))], rtol=1e-8)
+
+
+def test_memory_model_overestimates_measured_factors():
+    """The model must not refuse what fits: compare it with SuperLU's actual factor storage (nested dissection)."""
+    from dhlb.linalg import memory
+    from dhlb.linalg.backends import SuperLUBackend, pattern_dimension
+
+    for m in (60, 120):
+        T = sp.diags([-np.ones(m - 1), 2 * np.ones(m), -np.ones(m - 1)], [-1, 0, 1])
+        A = (sp.kron(T, sp.identity(m)) + sp.kron(sp.identity(m), T) + 1e-3 * sp.identity(m * m)).tocsc()
+        fac = SuperLUBackend().factorize(A)
+        stored = (fac.lu.L.nnz + fac.lu.U.nnz) * (8 + 4)   # values + row indices
+        est = memory.factor_bytes(A.shape[0], A.nnz, complex_=False, dimension=pattern_dimension(A))
+        assert stored < est < 60 * stored

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import os
+import sys
 import time
 
 import numpy as np
@@ -63,7 +64,7 @@ def register(subparsers) -> None:
                    help="prescribe index K/n at a face (row of the file) or at the face nearest to a point; "
                         "repeatable; the result has exactly these singularities (write --singularity=-1,0,0:1 "
                         "when x is negative)")
-    p.add_argument("--backend", default=None, help="linear-algebra backend (see dhlb.fem.solvers)")
+    p.add_argument("--backend", default=None, help="superlu, cholmod, cholespy, amg-lobpcg (default: by size, memory)")
     p.add_argument("--reorient", action="store_true", help="flip inconsistently oriented faces")
     p.add_argument("--format", dest="fmt", metavar="FMT", help="file format if the extension does not say it")
     p.add_argument("--no-png", action="store_true", help="do not render OUT.png")
@@ -190,6 +191,9 @@ def run(args) -> int:
         res = direction_field(V, F, n=args.n, s=args.s, align=align, lam=args.lam, reorient=args.reorient,
                               backend=args.backend)
     t2 = time.perf_counter()
+    note = (getattr(res, "solver", None) or {}).get("note")
+    if note and not args.quiet:
+        print(f"dhlb field: note: {note}", file=sys.stderr)
     summary = res.to_json()
     paths = write_field(out, res, V, F, png=not args.no_png)
     t3 = time.perf_counter()

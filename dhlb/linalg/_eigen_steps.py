@@ -38,6 +38,9 @@ class EigenResult:
     method : str, ``"arpack"``, ``"dense"`` or ``"lobpcg"``
     factorizations : int, number of sparse factorizations done
     solves : int, number of solves with the factorization (right-hand sides)
+    note : str
+        Empty, or why the solver departed from the requested method (e.g. the factorization would
+        not fit in memory and an iterative backend was used instead).
     factor : object or None
         The factorization of ``A − shift·M`` that was used (``factor.solve(B)`` solves
         ``(A − shift·M) X = B``), so that callers can reuse it without refactorizing; ``None`` for
@@ -64,6 +67,7 @@ class EigenResult:
     method: str = "arpack"
     factorizations: int = 0
     solves: int = 0
+    note: str = ""
     factor: object = field(default=None, compare=False, repr=False)
 
 

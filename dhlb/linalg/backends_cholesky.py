@@ -29,11 +29,14 @@ import scipy.sparse as sp
 from dhlb.errors import InvalidOperatorError
 from dhlb.linalg.backends import (
     SuperLUBackend,
+    _fitting_alternatives,
     blas_guard,
     cached_symbolic,
     canonical_csc,
+    pattern_dimension,
     pattern_key,
 )
+from dhlb.linalg.memory import InsufficientMemoryError, available_bytes, check_factorization_memory
 
 __all__ = ["CholespyBackend", "CholmodBackend", "real_embedding"]
 
@@ -88,13 +91,22 @@ class CholmodBackend:
         K = canonical_csc(K)
         if K.dtype.kind == "c" and not np.any(K.data.imag):
             K = K.real.tocsc()
+        n = K.shape[0]
+        need = check_factorization_memory(n, K.nnz, complex_=K.dtype.kind == "c", triangles=1, backend=self.name,
+                                          dimension=lambda: pattern_dimension(K), alternatives=_fitting_alternatives())
         with blas_guard(), warnings.catch_warnings():
             warnings.simplefilter("ignore", cholmod.CholmodTypeConversionWarning)
-            symbolic = cached_symbolic(pattern_key(self.name, K), lambda: _analyze(cholmod, K))
             try:
+                symbolic = cached_symbolic(pattern_key(self.name, K), lambda: _analyze(cholmod, K))
                 return _CholmodFactor(symbolic.cholesky(K), K.dtype.kind == "c")
             except cholmod.CholmodNotPositiveDefiniteError as err:
                 return _fallback(K, positive_definite, err, "CHOLMOD")
+            except (MemoryError, cholmod.CholmodOutOfMemoryError) as err:
+                raise InsufficientMemoryError(
+                    f"CHOLMOD ran out of memory factorizing this {n:,}-unknown matrix (estimated {need / 2**30:.2f} "
+                    f"GiB, {available_bytes() / 2**30:.2f} GiB available now); use backend='amg-lobpcg' "
+                    "(pip install pyamg) or a machine with more memory", needed=need, available=available_bytes()) \
+                    from err
 
 
 METIS_MIN = 100_000

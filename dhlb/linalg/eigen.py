@@ -59,7 +59,8 @@ from dhlb.linalg._checks import fix_phase as _fix_phase
 from dhlb.linalg._checks import norm1 as _norm1
 from dhlb.linalg._checks import validate_pair as _validate_pair
 from dhlb.linalg._eigen_steps import EigenResult, _iterate_lobpcg, _not_converged, _not_psd, _rayleigh_ritz
-from dhlb.linalg.backends import blas_guard, get_backend, pattern_dimension
+from dhlb.linalg.backends import available_backends, blas_guard, get_backend, pattern_dimension
+from dhlb.linalg.memory import InsufficientMemoryError
 
 __all__ = ["DENSE_MAX", "EigenResult", "backward_errors", "default_shift", "default_tol", "smallest_eigenpairs"]
 
@@ -167,8 +168,10 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
     InvalidParameterError
         ``k``, ``tol``, ``maxiter``, ``sigma``, ``block_size`` or ``factor_shift`` out of range.
     InsufficientMemoryError
-        The factorization would not fit in the available memory (the message names an iterative
-        backend that would).
+        The factorization would not fit in the available memory and no iterative backend is
+        installed (the message says what would fit).  With ``backend=None``/``"auto"`` and pyamg
+        installed the solver falls back to ``amg-lobpcg`` instead and says so in
+        :attr:`EigenResult.note`.
     ConvergenceError
         Not converged within ``maxiter``.
 
@@ -220,15 +223,28 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
     be = get_backend(backend, n=n, nnz=A.nnz, eigen=True, shifted=not default, dimension=lambda: pattern_dimension(A))
     with blas_guard():  # once per eigen solve: every factorization and solve below runs inside
         if hasattr(be, "eigensolve"):
-            if not default:
-                raise InvalidParameterError(f"backend {be.name!r} computes the smallest eigenvalues only; sigma= "
-                                            "needs a direct backend (e.g. backend='superlu' or 'cholmod')")
-            p = min(n, int(block_size) if block_size is not None else (k if k == 1 else k + max(2, k // 2)))
-            U = np.concatenate([v[:, None], _random_block(n, p - 1, complex_)], axis=1)
-            return _iterate_lobpcg(be, A, M, U, k, eps_shift, tol, maxiter)
-        fac, shift = _factorize_shifted(be, A, M, shift, eps_shift, default)
+            return _iterative(be, A, M, k, v, block_size, eps_shift, tol, maxiter, default, complex_)
+        try:
+            fac, shift = _factorize_shifted(be, A, M, shift, eps_shift, default)
+        except InsufficientMemoryError as err:
+            if not (auto and default and "amg-lobpcg" in available_backends()):
+                raise
+            res = _iterative(get_backend("amg-lobpcg"), A, M, k, v, block_size, eps_shift, tol, maxiter, default,
+                             complex_)
+            return replace(res, note=f"{be.name} would not fit in memory ({err}); solved by amg-lobpcg instead")
         res = _arpack(fac, A, M, k, shift, tol, maxiter, v, ncv, default, getattr(fac, "name", be.name))
     return replace(res, factor=fac, factorizations=1)
+
+
+def _iterative(be, A, M, k, v, block_size, eps_shift, tol, maxiter, default, complex_):
+    """An iterative backend's block method (LOBPCG) from ``v`` and random vectors."""
+    if not default:
+        raise InvalidParameterError(f"backend {be.name!r} computes the smallest eigenvalues only; sigma= needs a "
+                                    "direct backend (e.g. backend='superlu' or 'cholmod')")
+    n = A.shape[0]
+    p = min(n, int(block_size) if block_size is not None else (k if k == 1 else k + max(2, k // 2)))
+    U = np.concatenate([v[:, None], _random_block(n, p - 1, complex_)], axis=1)
+    return _iterate_lobpcg(be, A, M, U, k, eps_shift, tol, maxiter)
 
 
 class _CountingInverse(spla.LinearOperator):

@@ -136,7 +136,7 @@ def available_bytes() -> int:
     return max(0, min(figures)) if figures else 2**62
 
 
-def factor_bytes(n: int, nnz: int, *, complex_: bool, dimension: float) -> int:
+def factor_bytes(n: int, nnz: int, *, complex_: bool, dimension: float, triangles: int = 2) -> int:
     """Model of the peak bytes of a nested-dissection SuperLU factorization (see module docstring).
 
     Parameters
@@ -147,6 +147,8 @@ def factor_bytes(n: int, nnz: int, *, complex_: bool, dimension: float) -> int:
         Complex scalars (16 bytes) or real (8).
     dimension : float
         Growth dimension of the matrix graph (:func:`dhlb.linalg.pattern_dimension`).
+    triangles : {2, 1}
+        2 for an LU factorization that stores L and U (SuperLU), 1 for a Cholesky factor.
 
     Examples
     --------
@@ -154,7 +156,7 @@ def factor_bytes(n: int, nnz: int, *, complex_: bool, dimension: float) -> int:
     ...                                                                          complex_=True, dimension=2.0)
     True
     """
-    s = 16 if complex_ else 8
+    s = (16 if complex_ else 8) * triangles / 2
     n = max(int(n), 2)
     if dimension < 2.2:
         return int(s * 44 * n * math.log2(n))
@@ -162,7 +164,7 @@ def factor_bytes(n: int, nnz: int, *, complex_: bool, dimension: float) -> int:
 
 
 def check_factorization_memory(n: int, nnz: int, *, complex_: bool, dimension, backend: str,
-                               alternatives=()) -> int:
+                               alternatives=(), triangles: int = 2) -> int:
     """Raise :class:`InsufficientMemoryError` if the factorization would not fit; return the estimate.
 
     ``dimension`` may be a callable (computed only when the problem is large enough to matter);
@@ -174,9 +176,9 @@ def check_factorization_memory(n: int, nnz: int, *, complex_: bool, dimension, b
     True
     """
     if n < 20_000 and _LIMIT is None and _env_limit() is None:  # small: never the problem, skip the look-ups
-        return factor_bytes(n, nnz, complex_=complex_, dimension=2.0)
+        return factor_bytes(n, nnz, complex_=complex_, dimension=2.0, triangles=triangles)
     d = dimension() if callable(dimension) else dimension
-    need = factor_bytes(n, nnz, complex_=complex_, dimension=d)
+    need = factor_bytes(n, nnz, complex_=complex_, dimension=d, triangles=triangles)
     have = available_bytes()
     if need > have:
         alt = (f"; the iterative backend {', '.join(map(repr, alternatives))} needs O(n) memory and would fit"

@@ -96,7 +96,7 @@ def _sub(S, idx):
 
 def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None, lam: float = 0.0, *,
                     lumped: bool = False, reorient: bool = False, components: str = "all", backend=None,
-                    tol: float = 1e-10) -> DirectionField:
+                    tol: float | None = None) -> DirectionField:
     """The smoothest (or guidance-aligned) n-direction field of a triangle mesh.
 
     Parameters
@@ -115,8 +115,10 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
         ``(A − λ_t M)⁻¹ M`` oscillate (M is not an M-matrix): spurious ±1 pairs appear near
         the guidance; the lumped mass avoids them.
     reorient, components : passed to :func:`dhlb.surface.validate_surface`
-    backend : solver backend (see :mod:`dhlb.fem.solvers`)
-    tol : float, backward-error tolerance of the eigen solve
+    backend : solver backend (see :mod:`dhlb.linalg`)
+    tol : float, optional
+        Backward-error tolerance of the eigen solve; default :func:`dhlb.linalg.default_tol`, which scales
+        with the mesh so that the singularities are those of a tol = 1e-14 solve.
 
     Returns
     -------
@@ -174,7 +176,8 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
             uc = res.eigenvectors[:, 0]
             eigs.append(float(res.eigenvalues[0]))
             stats.append({"backend": res.backend, "iterations": int(res.iterations),
-                          "residual": float(res.residuals[0]), "converged": bool(res.converged)})
+                          "residual": float(res.residuals[0]), "converged": bool(res.converged),
+                          "factorizations": int(res.factorizations), "solves": int(res.solves), "note": res.note})
         else:
             q = guide.values[idx]
             qn = float(np.sqrt(max((q.conj() @ (Mc @ q)).real, 0.0)))
@@ -186,7 +189,8 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
             uc = ut / norm
             ts.append(1.0 / (1.0 + norm))
             used = get_backend(backend, n=Ac.shape[0], nnz=Ac.nnz, eigen=False).name   # what solve() used
-            stats.append({"backend": used, "iterations": 0, "residual": None, "converged": True})
+            stats.append({"backend": used, "iterations": 0, "residual": None, "converged": True,
+                          "factorizations": 1, "solves": 1, "note": ""})
         share = np.asarray(tb.geometry.volumes(2))[_faces_of(tb, idx)].sum() / area if len(comps) > 1 else 1.0
         u[idx] = uc * np.sqrt(share)
     t2 = time.perf_counter()
@@ -213,7 +217,9 @@ def _merge(stats: list[dict]) -> dict:
     if len(stats) == 1:
         return stats[0]
     out = dict(stats[0])
-    out["iterations"] = sum(int(st["iterations"]) for st in stats)
+    for key in ("iterations", "factorizations", "solves"):
+        out[key] = sum(int(st[key]) for st in stats)
+    out["note"] = "; ".join(st["note"] for st in stats if st["note"])
     res = [st["residual"] for st in stats if st["residual"] is not None]
     out["residual"] = max(res) if res else None
     out["converged"] = all(st["converged"] for st in stats)

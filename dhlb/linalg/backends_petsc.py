@@ -1,0 +1,462 @@
+"""Distributed backend ``petsc``: SLEPc eigensolvers and PETSc solves, complex scalars, under MPI.
+
+Run a script (or ``dhlb``) under ``mpirun -n P`` with ``backend="petsc"``; every rank runs the
+same Python code, and each call into this backend is *collective* (all ranks must make it, with
+the same matrices).  Needs petsc4py and slepc4py built with complex scalars and mpi4py (Debian:
+``python3-petsc4py-complex python3-slepc4py-complex python3-mpi4py``; see ``docs/mpi.md``).
+
+Distribution
+    The input matrices are scipy matrices held by every rank (every rank assembled them, or read
+    them).  Each rank copies the rows ``row_ranges(n, P)[rank]`` into a distributed PETSc ``AIJ``
+    matrix (contiguous, balanced blocks, PETSc's own default layout), so the PETSc solvers see a
+    row-partitioned matrix; results (eigenvectors, solutions) are gathered to every rank, so the
+    Python API is unchanged.  Before any collective work the ranks compare a fingerprint of their
+    inputs (shape, number of nonzeros, a hash of pattern and values); if they differ, or a rank
+    failed to prepare its part, every rank raises the same
+    :class:`~dhlb.errors.InvalidOperatorError` naming the ranks (no rank is left waiting).
+    An exception that escapes on one rank only (e.g. raised while validating input before this
+    backend is reached) would leave the others waiting in a collective call: with more than one
+    rank the backend installs :func:`install_abort_hook`, which prints the error once and calls
+    ``MPI_Abort``, ending all ranks.
+Eigenpairs (``eigensolve``)
+    SLEPc ``EPS``, Krylov–Schur, generalized Hermitian problem (``GHEP``) in shift-and-invert
+    mode at ``−ε`` (``ε`` the Gershgorin shift of :func:`dhlb.linalg.eigen.default_shift`), i.e.
+    on ``(A + εM)⁻¹ M``, whose largest eigenvalues are the smallest of ``A u = λ M u``; the shifted
+    matrix is factorized by MUMPS (distributed LU; SuperLU_dist if MUMPS is missing; PETSc's own
+    LU on one rank).  SLEPc's convergence test is set to ``EPS_CONV_NORM``,
+    ``‖A x − λ M x‖ / ((‖A‖ + |λ| ‖M‖) ‖x‖)``, the normwise backward error ``η`` of
+    :func:`~dhlb.linalg.smallest_eigenpairs`, which does the final Rayleigh–Ritz and the
+    backward-error test on the gathered vectors (and calls again, from them, if one misses it).
+Linear solves (``factorize``)
+    A ``KSP`` of type ``preonly`` with an LU factorization (same solver choice); ``solve(B)``
+    distributes ``B`` by rows and gathers ``X``.  A singular matrix (MUMPS reports a zero pivot)
+    raises :class:`~dhlb.errors.InvalidOperatorError`.
+
+Examples
+--------
+>>> row_ranges(10, 3)
+[(0, 4), (4, 7), (7, 10)]
+>>> import numpy as np, scipy.sparse as sp
+>>> K = sp.csr_matrix(np.array([[2.0, -1.0], [-1.0, 2.0]]))
+>>> x = PetscBackend().factorize(K).solve(np.array([1.0, 0.0])) if petsc_available() else np.array([2, 1]) / 3
+>>> x.real.round(6).tolist()
+[0.666667, 0.333333]
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import sys
+
+import numpy as np
+import scipy.sparse as sp
+
+from dhlb.errors import DhlbError, InvalidOperatorError, ShapeError
+
+__all__ = ["PetscBackend", "comm_rank_size", "install_abort_hook", "mpi_main", "petsc_available", "row_ranges"]
+
+_SOLVERS = ("mumps", "superlu_dist", "petsc")
+
+
+# ---------------------------------------------------------------------- availability, layout
+def petsc_available() -> bool:
+    """Whether petsc4py, slepc4py and mpi4py import and PETSc uses complex scalars.
+
+    Examples
+    --------
+    >>> isinstance(petsc_available(), bool)
+    True
+    """
+    for mod in ("petsc4py", "slepc4py", "mpi4py"):
+        try:
+            if importlib.util.find_spec(mod) is None:
+                return False
+        except (ImportError, ValueError):
+            return False
+    try:
+        from petsc4py import PETSc
+    except ImportError:  # pragma: no cover - a broken installation
+        return False
+    return np.dtype(PETSc.ScalarType).kind == "c"
+
+
+def comm_rank_size() -> tuple[int, int]:
+    """``(rank, size)`` of ``MPI_COMM_WORLD``; ``(0, 1)`` without mpi4py/PETSc.
+
+    Examples
+    --------
+    >>> rank, size = comm_rank_size()
+    >>> 0 <= rank < size
+    True
+    """
+    if not petsc_available():
+        return 0, 1
+    from petsc4py import PETSc
+
+    return PETSc.COMM_WORLD.rank, PETSc.COMM_WORLD.size
+
+
+def row_ranges(n: int, size: int) -> list[tuple[int, int]]:
+    """Balanced contiguous row blocks ``[(start, stop), ...]`` of ``n`` rows over ``size`` ranks.
+
+    The first ``n % size`` ranks get one row more: PETSc's ``PETSC_DECIDE`` layout.
+
+    Examples
+    --------
+    >>> row_ranges(5, 2)
+    [(0, 3), (3, 5)]
+    """
+    counts = np.full(size, n // size) + (np.arange(size) < n % size)
+    stops = np.cumsum(counts)
+    return [(int(b - c), int(b)) for b, c in zip(stops, counts)]
+
+
+_hook_installed = False
+
+
+def install_abort_hook() -> None:
+    """Make an uncaught exception on any MPI rank print once and end every rank (``MPI_Abort``).
+
+    Without it, a rank that fails outside a collective call leaves the others waiting forever.
+    Installed by :class:`PetscBackend` when more than one rank runs; harmless on one rank.
+
+    Examples
+    --------
+    >>> install_abort_hook()
+    """
+    global _hook_installed
+    if _hook_installed or comm_rank_size()[1] == 1:
+        return
+    previous = sys.excepthook
+
+    def hook(kind, value, tb):
+        from mpi4py import MPI
+
+        rank = MPI.COMM_WORLD.rank
+        if isinstance(value, DhlbError):
+            sys.stderr.write(f"dhlb (MPI rank {rank}): {kind.__name__}: {value}\n")
+        else:
+            previous(kind, value, tb)
+        sys.stderr.flush()
+        MPI.COMM_WORLD.Abort(1)
+
+    sys.excepthook = hook
+    _hook_installed = True
+
+
+# ---------------------------------------------------------------------- collective helpers
+def _world():
+    from petsc4py import PETSc
+
+    return PETSc.COMM_WORLD
+
+
+def _fingerprint(*mats) -> str:
+    h = hashlib.blake2b(digest_size=12)
+    for S in mats:
+        h.update(repr((S.shape, S.nnz, S.dtype.str)).encode())
+        for arr in (S.indptr, S.indices, S.data):
+            h.update(np.ascontiguousarray(arr).view(np.uint8))
+    return h.hexdigest()
+
+
+def _agree(what: str, prepare):
+    """Run ``prepare()`` on every rank; raise the same error on all ranks if any failed or inputs differ.
+
+    ``prepare`` returns ``(value, fingerprint)``; the fingerprints must agree across ranks.
+    """
+    comm = _world()
+    try:
+        value, fp = prepare()
+        status = ("ok", fp)
+    except DhlbError as err:
+        value, status = None, ("error", f"{type(err).__name__}: {err}")
+    if comm.size == 1:
+        if status[0] == "error":
+            raise InvalidOperatorError(f"{what}: {status[1]}")
+        return value
+    statuses = comm.tompi4py().allgather(status)
+    failed = [(r, msg) for r, (kind, msg) in enumerate(statuses) if kind == "error"]
+    if failed:
+        r, msg = failed[0]
+        raise InvalidOperatorError(f"{what}: MPI rank {r} of {comm.size} failed ({msg}); every rank stops")
+    fps = [fp for _, fp in statuses]
+    if len(set(fps)) > 1:
+        bad = [r for r, fp in enumerate(fps) if fp != fps[0]]
+        raise InvalidOperatorError(f"{what}: MPI ranks {bad} were given different matrices than rank 0; every rank "
+                                   "must call the petsc backend with the same A and M (build them the same way on "
+                                   "all ranks)")
+    return value
+
+
+def _check_square(S, name):
+    S = sp.csr_matrix(S)
+    if S.ndim != 2 or S.shape[0] != S.shape[1] or S.shape[0] == 0:
+        raise ShapeError(f"{name} must be a non-empty square matrix, got shape {S.shape}")
+    if not np.all(np.isfinite(S.data)):
+        raise InvalidOperatorError(f"{name} contains NaN or inf")
+    S = S.astype(np.complex128)
+    S.sum_duplicates()
+    S.sort_indices()
+    return S
+
+
+def _petsc_mat(S: sp.csr_matrix):
+    """The rows of this rank of the (globally held) CSR ``S`` as a distributed PETSc AIJ matrix."""
+    from petsc4py import PETSc
+
+    comm = _world()
+    n = S.shape[0]
+    r0, r1 = row_ranges(n, comm.size)[comm.rank]
+    ip = S.indptr[r0:r1 + 1]
+    csr = ((ip - ip[0]).astype(PETSc.IntType), S.indices[ip[0]:ip[-1]].astype(PETSc.IntType),
+           S.data[ip[0]:ip[-1]].astype(PETSc.ScalarType))
+    A = PETSc.Mat().createAIJ(size=((r1 - r0, n), (r1 - r0, n)), csr=csr, comm=comm)
+    A.assemble()
+    return A
+
+
+def _vec_from(A, x):
+    """A PETSc vector of ``A``'s row layout holding this rank's rows of the global array ``x``."""
+    v = A.createVecRight()
+    r0, r1 = v.getOwnershipRange()
+    v.setArray(np.asarray(x[r0:r1], dtype=np.complex128))
+    return v
+
+
+def _gather(v) -> np.ndarray:
+    """The global array of a distributed PETSc vector, on every rank."""
+    local = np.array(v.getArray(readonly=True), dtype=np.complex128)
+    comm = _world()
+    if comm.size == 1:
+        return local
+    return np.concatenate(comm.tompi4py().allgather(local))
+
+
+def _direct_pc(ksp, prefix: str):
+    """Set ``ksp`` to ``preonly`` + LU by the first available distributed direct solver; returns its name."""
+    from petsc4py import PETSc
+
+    ksp.setType("preonly")
+    pc = ksp.getPC()
+    pc.setType("lu")
+    size = _world().size
+    for solver in _SOLVERS:
+        if (solver == "petsc" and size > 1) or (solver != "petsc" and not PETSc.Sys.hasExternalPackage(solver)):
+            continue
+        pc.setFactorSolverType(solver)
+        if solver == "mumps":
+            PETSc.Options(prefix).setValue("mat_mumps_icntl_24", 1)  # null pivot detection: singular -> error
+        return solver
+    raise InvalidOperatorError("PETSc has no direct solver for a distributed matrix (neither MUMPS nor "
+                               "SuperLU_dist); rebuild PETSc with --download-mumps or run on one rank")
+
+
+def _raise_if_failed(ksp, what):
+    from petsc4py import PETSc
+
+    reason = ksp.getConvergedReason()
+    if reason < 0:
+        name = {v: k for k, v in vars(PETSc.KSP.ConvergedReason).items() if isinstance(v, int)}.get(reason, reason)
+        raise InvalidOperatorError(f"{what}: the PETSc solve failed ({name}); the matrix is singular or "
+                                   "numerically singular")
+
+
+# ---------------------------------------------------------------------- factor
+class _PetscFactor:
+    """``solve(B)`` with an LU factorization of a distributed matrix (MUMPS); collective."""
+
+    name = "petsc"
+
+    def __init__(self, K: sp.csr_matrix, prefix: str):
+        from petsc4py import PETSc
+
+        self.n, self.real = K.shape[0], not np.any(K.data.imag)
+        self.K = _petsc_mat(K)
+        self.ksp = PETSc.KSP().create(comm=_world())
+        self.ksp.setOptionsPrefix(prefix)
+        self.ksp.setOperators(self.K)
+        self.solver = _direct_pc(self.ksp, prefix)
+        self.name = f"petsc-{self.solver}"
+        self.ksp.setFromOptions()
+        try:
+            self.ksp.setUp()
+        except PETSc.Error as err:
+            raise InvalidOperatorError(f"the matrix to factorize is singular ({self.solver} failed: error "
+                                       f"code {err.ierr})") from err
+        self.ksp.setErrorIfNotConverged(False)
+        self._x = self.K.createVecLeft()
+        self._probe()
+
+    def _probe(self):
+        # MUMPS reports a failed factorization through the PC on the first solve, so solve once now
+        b = self.K.createVecRight()
+        b.set(1.0)
+        self.ksp.solve(b, self._x)
+        _raise_if_failed(self.ksp, "factorize")
+        if not np.all(np.isfinite(self._x.getArray(readonly=True))):
+            raise InvalidOperatorError("the matrix to factorize is singular (the factorization produced inf/NaN)")
+
+    def _solve1(self, b):
+        bv = _vec_from(self.K, b)
+        self.ksp.solve(bv, self._x)
+        _raise_if_failed(self.ksp, "solve")
+        return _gather(self._x)
+
+    def solve(self, B):
+        """Solve ``K X = B`` for ``B`` of shape ``(n,)`` or ``(n, r)`` (collective; ``X`` on every rank)."""
+        B = np.asarray(B)
+        if B.shape[:1] != (self.n,) or B.ndim > 2:
+            raise ShapeError(f"B must have shape ({self.n},) or ({self.n}, r), got {B.shape}")
+        X = self._solve1(B) if B.ndim == 1 else np.column_stack([self._solve1(B[:, j]) for j in range(B.shape[1])])
+        return X.real if self.real and not np.iscomplexobj(B) else X
+
+
+# ---------------------------------------------------------------------- backend
+class PetscBackend:
+    """SLEPc Krylov–Schur in shift-and-invert mode (MUMPS) and PETSc KSP solves, under MPI.
+
+    See the module docstring.  Every method is collective over ``MPI_COMM_WORLD``.
+    """
+
+    name = "petsc"
+    method = "slepc-krylovschur"
+
+    def __init__(self):
+        if not petsc_available():
+            raise InvalidOperatorError("the petsc backend needs petsc4py and slepc4py with complex scalars and "
+                                       "mpi4py (see docs/mpi.md)")
+        install_abort_hook()
+        self._eps = None
+        self._count = 0
+
+    def _prefix(self):
+        self._count += 1
+        return f"dhlb{id(self) % 100000}_{self._count}_"
+
+    def factorize(self, K, *, positive_definite: bool = False):
+        """A distributed LU factorization of ``K`` (``solve(B)``); collective.
+
+        ``positive_definite`` is accepted for the interface; MUMPS' LU does not report the
+        inertia of a complex Hermitian matrix, so definiteness is not checked here (the
+        eigensolver checks it through the eigenvalues it finds).
+        """
+        K = _agree("petsc factorize", lambda: (lambda S: (S, _fingerprint(S)))(_check_square(K, "K")))
+        return _PetscFactor(K, self._prefix())
+
+    def _setup_eps(self, A, M, shift, ncv):
+        from slepc4py import SLEPc
+
+        key = (_fingerprint(A, M), shift, ncv)
+        if self._eps is not None and self._eps[0] == key:
+            return self._eps[1]
+        prefix = self._prefix()
+        Ap, Mp = _petsc_mat(A), _petsc_mat(M)
+        E = SLEPc.EPS().create(comm=_world())
+        E.setOptionsPrefix(prefix)
+        E.setOperators(Ap, Mp)
+        E.setProblemType(SLEPc.EPS.ProblemType.GHEP)
+        E.setType(SLEPc.EPS.Type.KRYLOVSCHUR)
+        E.setWhichEigenpairs(SLEPc.EPS.Which.TARGET_REAL)
+        E.setTarget(-shift)
+        E.setConvergenceTest(SLEPc.EPS.Conv.NORM)
+        st = E.getST()
+        st.setType(SLEPc.ST.Type.SINVERT)
+        self.solver = _direct_pc(st.getKSP(), prefix)
+        E.setFromOptions()
+        self._eps = (key, E, Ap, Mp)
+        return E
+
+    def eigensolve(self, A, M, X, *, shift: float, tol: float, maxiter: int):
+        """Improve the block ``X`` towards the lowest eigenvectors of ``A u = λ M u``; ``(X, iterations)``.
+
+        ``shift`` is ``ε > 0``: the factorized matrix is ``A + εM``.  Collective; the returned
+        block (the converged Ritz vectors, completed by columns of ``X``) is on every rank.
+        """
+        from petsc4py import PETSc
+
+        def prepare():
+            Ac, Mc = _check_square(A, "A"), _check_square(M, "M")
+            Xa = np.asarray(X)
+            if Xa.ndim != 2 or Xa.shape[0] != Ac.shape[0] or Mc.shape != Ac.shape:
+                raise ShapeError(f"A {Ac.shape}, M {Mc.shape} and X {Xa.shape} do not match")
+            return (Ac, Mc, Xa), _fingerprint(Ac, Mc)
+
+        Ac, Mc, Xa = _agree("petsc eigensolve", prepare)
+        n, p = Xa.shape
+        ncv = min(n, max(2 * p + 1, p + 15))
+        E = self._setup_eps(Ac, Mc, float(shift), ncv)
+        Ap = self._eps[2]
+        E.setDimensions(nev=p, ncv=ncv)
+        E.setTolerances(tol=float(tol), max_it=int(maxiter))
+        E.setInitialSpace([_vec_from(Ap, Xa[:, j]) for j in range(p)])
+        try:
+            E.solve()
+        except PETSc.Error as err:
+            raise InvalidOperatorError(f"SLEPc failed (error code {err.ierr}): A + εM (ε = {shift:.3g}) is singular, "
+                                       "so A is not positive semidefinite or M is not positive definite") from err
+        nconv = min(E.getConverged(), p)
+        if nconv == 0 and E.getIterationNumber() >= maxiter:
+            return Xa, int(maxiter)
+        vr = Ap.createVecRight()
+        cols = []
+        for i in range(nconv):
+            E.getEigenpair(i, vr)
+            cols.append(_gather(vr))
+        out = np.column_stack(cols + [Xa[:, j] for j in range(nconv, p)]).astype(np.complex128)
+        if not np.iscomplexobj(Xa):
+            out = out.real if np.abs(out.imag).max() <= 1e-14 * np.abs(out).max() else out
+        return out, max(1, int(E.getIterationNumber()))
+
+
+# ---------------------------------------------------------------------- command line under MPI
+def mpi_main(argv=None) -> int:
+    """``dhlb`` under MPI: every rank runs the command, rank 0 alone writes outputs and prints.
+
+    Run as ``mpirun -n P python -m dhlb.linalg.backends_petsc field MESH --backend petsc -o OUT``.
+    Ranks other than 0 write their copy of the outputs into a private temporary directory
+    (deleted afterwards) and print nothing; the exit code is the largest over all ranks.
+
+    Examples
+    --------
+    >>> mpi_main(["--version"])  # doctest: +ELLIPSIS
+    dhlb ...
+    0
+    """
+    import contextlib
+    import io
+    import os
+    import tempfile
+
+    from dhlb.cli import build_parser, main
+    from dhlb.commands._common import run_command
+
+    rank, size = comm_rank_size()
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if size == 1:
+        return main(argv)
+    install_abort_hook()
+    if rank == 0:
+        code = main(argv)
+    else:
+        with tempfile.TemporaryDirectory() as tmp, contextlib.redirect_stdout(io.StringIO()), \
+                contextlib.redirect_stderr(io.StringIO()):
+            try:
+                args, extra = build_parser().parse_known_args(argv)
+            except SystemExit as exc:
+                args, extra, code = None, [], exc.code if isinstance(exc.code, int) else 2
+            if args is not None and not extra and getattr(args, "command", None):
+                out = getattr(args, "output", None)
+                if isinstance(out, str) and out not in ("", "-"):
+                    args.output = os.path.join(tmp, os.path.basename(os.path.normpath(out)) or "out")
+                code = run_command(args)
+            elif args is not None:
+                code = 2
+    from mpi4py import MPI
+
+    return int(MPI.COMM_WORLD.allreduce(int(code), op=MPI.MAX))
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(mpi_main())
