@@ -368,3 +368,15 @@ def test_aligned_field_reports_the_backend_it_used():
     res = direction_field(V, F, n=4, align="boundary", lam=-1.0)
     assert res.solver["backend"] in available_backends()
     assert direction_field(V, F, n=4, align="boundary", lam=-1.0, backend="superlu").solver["backend"] == "superlu"
+
+
+@pytest.mark.parametrize("path", [example_path("spot.obj"), os.path.join(os.path.dirname(__file__), "data",
+                                                                         "fertility.off")])
+def test_default_tolerance_gives_the_singularities_of_a_tight_solve(path):
+    """Issue 15 point 4: the scaled default tol places every singularity where a tol = 1e-14 solve does."""
+    V, F = read_surface(path)
+    default = direction_field(V, F, n=4)
+    tight = direction_field(V, F, n=4, tol=1e-14)
+    assert tight.solver["residual"] <= 1e-14 and default.solver["residual"] <= 1e-10
+    np.testing.assert_array_equal(default.indices.face_index, tight.indices.face_index)
+    assert np.count_nonzero(default.indices.face_index) > 0

@@ -292,7 +292,7 @@ def _arpack(fac, A, M, k, shift, tol, maxiter, v, ncv, default, name):
                 return EigenResult(lam, _fix_phase(U), op.count, eta, True, name, shift, ncv, "arpack",
                                    solves=op.count)
             v = U.sum(axis=1)
-        if op.count >= maxiter or arpack_tol < 1e3 * _EPS:
+        if op.count >= maxiter or arpack_tol < _EPS:
             part = EigenResult(np.full(k, np.nan) if lam is None else lam,
                                np.zeros((n, k)) if U is None else _fix_phase(U), op.count,
                                np.full(k, np.inf) if eta is None else eta, False, name, shift, ncv, "arpack",
