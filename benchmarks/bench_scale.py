@@ -95,9 +95,9 @@ def _load(file, levels):
 
 def laplace_time(V, F, backend, repeat=1):
     """Seconds for one (first, cold-cache) factorization + solve of ``L + εM`` (real cotangent Laplacian)."""
-    from dhlb.fem.backends import clear_cache, get_backend
-    from dhlb.fem.solvers import default_shift
     from dhlb.geometry import EuclideanComplex
+    from dhlb.linalg import default_shift
+    from dhlb.linalg.backends import clear_cache, get_backend
     from dhlb.surface import validate_surface
 
     geo = EuclideanComplex(validate_surface(V, F).complex, points=V)
@@ -122,7 +122,7 @@ def sp_eye(n):
 
 
 def child_lref():
-    from dhlb.fem.backends import available_backends
+    from dhlb.linalg.backends import available_backends
 
     name = "cholmod" if "cholmod" in available_backends() else "superlu"
     V, F = _load("stanford-bunny.obj", 0)
@@ -177,6 +177,79 @@ def child_tets(m, backend):
             "backend": s["solver"]["backend"], "requested": backend, "iterations": s["solver"]["iterations"],
             "generate": t_gen, **{k: float(v) for k, v in T.items() if k != "total"}, "e2e": float(T["total"]),
             "peak_mb": _rss_mb(), "filaments": int(s["n_filaments"])}
+
+
+def icosphere(level):
+    """The icosahedron midpoint-subdivided ``level`` times and projected to the unit sphere, in subdivision order."""
+    t = (1 + 5**0.5) / 2
+    V = np.array([[-1, t, 0], [1, t, 0], [-1, -t, 0], [1, -t, 0], [0, -1, t], [0, 1, t], [0, -1, -t], [0, 1, -t],
+                  [t, 0, -1], [t, 0, 1], [-t, 0, -1], [-t, 0, 1]], float)
+    F = np.array([[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4], [11, 10, 2],
+                  [10, 7, 6], [7, 1, 8], [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9], [4, 9, 5],
+                  [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1]])
+    for _ in range(level):
+        V, F = midpoint_subdivide(V, F, 1)
+        V = V / np.linalg.norm(V, axis=1)[:, None]
+    return V, F
+
+
+def child_icosphere(level, order, backend):
+    """Issue 15: the n = 4 field on an icosphere (subdivision or shuffled vertex order), its L_ref, peak memory."""
+    import scipy.sparse.linalg as spla
+
+    from dhlb.surface import direction_field
+
+    V, F = icosphere(level)
+    if order == "shuffled":
+        p = np.random.default_rng(1).permutation(len(V))
+        inv = np.empty_like(p)
+        inv[p] = np.arange(len(V))
+        V, F = V[p], inv[F]
+    t = time.perf_counter()
+    res = direction_field(V, F, n=4, backend=None if backend == "auto" else backend)
+    total = time.perf_counter() - t
+    rss = _rss_mb()
+    from dhlb.fem import bundle_matrices  # noqa: F401  (L_ref below: plain cotangent Laplacian, splu defaults)
+    from dhlb.geometry import EuclideanComplex
+    from dhlb.surface import validate_surface
+
+    geo = EuclideanComplex(validate_surface(V, F).complex, points=V)
+    L, M = geo.stiffness_matrix().tocsc(), geo.mass_matrix(lumped=True).tocsc()
+    t = time.perf_counter()
+    spla.splu((L + 1e-8 * M).tocsc()).solve(np.ones(len(V)))
+    lref = time.perf_counter() - t
+    return {"kind": "icosphere", "label": f"ico{level} {order}", "size": len(F), "backend": res.solver["backend"],
+            "e2e": total, "setup": res.timings["setup"], "solve": res.timings["solve"],
+            "indices": res.timings["indices"], "peak_mb": rss, "L_ref": lref, "solves": res.solver.get("solves"),
+            "note": res.solver.get("note", ""), "index_sum": int(res.index_sum)}
+
+
+def issue15(timeout, memory_limit="2.5G"):
+    """The table of issue 15 for icosphere levels 6 and 8 (default install: SuperLU) and a memory-limited run."""
+    print("issue 15 (default install, SuperLU): n = 4 field on icospheres", flush=True)
+    rows = {}
+    for args in (["6", "subdivision", "superlu"], ["6", "shuffled", "superlu"], ["8", "subdivision", "superlu"]):
+        r = run_child(["icosphere", *args], timeout)
+        rows[" ".join(args[:2])] = r
+        if "error" in r:
+            print(f"  ico{args[0]} {args[1]}: FAILED: {r['error']}", flush=True)
+            continue
+        print(f"  ico{args[0]} {args[1]:<12} {r['size']:>9} faces: {r['e2e']:7.2f} s (setup {r['setup']:.2f}, solve "
+              f"{r['solve']:.2f}, indices {r['indices']:.2f}; {r['solves']} solves), peak {r['peak_mb'] / 1024:.2f} GB, "
+              f"L_ref {r['L_ref']:.2f} s, ratio {r['e2e'] / r['L_ref']:.1f}", flush=True)
+    a, b = rows.get("6 subdivision", {}), rows.get("6 shuffled", {})
+    if "e2e" in a and "e2e" in b:
+        print(f"  subdivision order ÷ shuffled (level 6): {a['e2e'] / b['e2e']:.2f} (target ≤ 1.5)", flush=True)
+    env = dict(os.environ, DHLB_MEMORY_LIMIT=memory_limit)
+    cmd = [sys.executable, os.path.abspath(__file__), "--child", "icosphere", "8", "subdivision", "auto"]
+    out = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, check=False)
+    last = (out.stderr.strip().splitlines() or out.stdout.strip().splitlines() or ["?"])[-1]
+    if out.returncode == 0:
+        r = json.loads(out.stdout.strip().splitlines()[-1])
+        last = f"ran with backend {r['backend']}: {r['note']}"
+    print(f"  ico8 under DHLB_MEMORY_LIMIT={memory_limit}: exit {out.returncode}: {last[:300]}", flush=True)
+    rows["memory-limited"] = {"exit": out.returncode, "message": last}
+    return rows
 
 
 def run_child(args, timeout):
@@ -242,16 +315,21 @@ def main(argv=None):
     ap.add_argument("--timeout", type=float, default=600.0, help="seconds per child")
     ap.add_argument("--out", default=os.path.join(HERE, "bench_scale"), help="prefix of the .json/.png outputs")
     ap.add_argument("--child", nargs="+", help=argparse.SUPPRESS)
+    ap.add_argument("--issue15", action="store_true", help="only the icosphere table of issue 15")
     args = ap.parse_args(argv)
+    if args.issue15:
+        issue15(args.timeout)
+        return 0
     if args.child:
         kind, *rest = args.child
         r = (child_lref() if kind == "lref" else child_surface(rest[0], rest[1], rest[2] == "1") if kind == "surface"
+             else child_icosphere(int(rest[0]), rest[1], rest[2]) if kind == "icosphere"
              else child_tets(int(rest[0]), rest[1]))
         print(json.dumps(r))
         return 0
     if args.quick:
         args.max_faces, args.max_tets = min(args.max_faces, 100_000), min(args.max_tets, 200_000)
-    from dhlb.fem.backends import available_backends
+    from dhlb.linalg.backends import available_backends
 
     t_start = time.perf_counter()
     lref = run_child(["lref"], args.timeout)
