@@ -7,44 +7,18 @@ try:
 except PackageNotFoundError:  # pragma: no cover - running from a source tree
     __version__ = "0+unknown"
 
-from dhlb import errors
+import lazy_loader as _lazy
 
-__all__ = ["errors", "__version__"]
-
-from dhlb import examples, io
-from dhlb.bundles import (
-    HermitianLineBundle,
-    VectorBundle,
-    bundles_with_curvature,
-    check_integrality,
-    find_isomorphism,
-    flat_line_bundles,
-    index_form,
-    is_isomorphic,
-    line_bundle_with_curvature,
-)
-from dhlb.forms import Chain, Cochain, SolveResult, integrate_closed_1form, is_exact, solve_d
-from dhlb.geometry import EuclideanComplex
-from dhlb.topology import SimplicialComplex
-
-__all__ += [
-    "SimplicialComplex",
-    "examples",
-    "Chain",
-    "Cochain",
-    "SolveResult",
-    "integrate_closed_1form",
-    "is_exact",
-    "solve_d",
-    "HermitianLineBundle",
-    "VectorBundle",
-    "bundles_with_curvature",
-    "check_integrality",
-    "find_isomorphism",
-    "flat_line_bundles",
-    "index_form",
-    "is_isomorphic",
-    "line_bundle_with_curvature",
-    "EuclideanComplex",
-    "io",
-]
+# Lazy submodules (the scientific-Python pattern, SPEC 1): ``import dhlb`` loads almost nothing;
+# ``dhlb.fem``, ``dhlb.SimplicialComplex``, ... are imported on first access.
+_SUBMODULES = ["errors", "topology", "forms", "bundles", "geometry", "linalg", "fem", "surface", "stripes", "volume",
+               "io", "render", "examples", "cli", "commands"]
+_ATTRS = {
+    "topology": ["SimplicialComplex"],
+    "forms": ["Chain", "Cochain", "SolveResult", "integrate_closed_1form", "is_exact", "solve_d"],
+    "bundles": ["HermitianLineBundle", "VectorBundle", "bundles_with_curvature", "check_integrality",
+                "find_isomorphism", "flat_line_bundles", "index_form", "is_isomorphic", "line_bundle_with_curvature"],
+    "geometry": ["EuclideanComplex"],
+}
+__getattr__, __dir__, _names = _lazy.attach(__name__, submodules=_SUBMODULES, submod_attrs=_ATTRS)
+__all__ = ["__version__", "errors", "examples", "io", *[n for names in _ATTRS.values() for n in names]]

@@ -1,0 +1,28 @@
+"""`import dhlb` is light (lazy submodules) and every layer is reachable as an attribute."""
+
+import subprocess
+import sys
+
+import pytest
+
+
+def _run(code):
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
+
+
+def test_import_dhlb_loads_no_layer_and_no_scipy():
+    out = _run("import sys, dhlb; print(sorted(m for m in sys.modules if m.startswith('dhlb')), "
+               "'scipy' in sys.modules, 'numpy' in sys.modules)")
+    assert out == ["['dhlb']", "False", "False"]
+
+
+@pytest.mark.parametrize("attr", ["fem.mass_matrix", "linalg.smallest_eigenpairs", "surface.direction_field",
+                                  "stripes.stripe_pattern", "volume.vortex_filaments", "SimplicialComplex",
+                                  "EuclideanComplex", "errors.DhlbError", "io.read_surface"])
+def test_layers_are_attributes(attr):
+    import dhlb
+
+    obj = dhlb
+    for part in attr.split("."):
+        obj = getattr(obj, part)
+    assert callable(obj)
