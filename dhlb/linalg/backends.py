@@ -184,7 +184,8 @@ class SuperLUBackend:
     mode with diagonal pivots, i.e. as ``L D Lᴴ`` in LU form; small matrices (below
     :data:`~dhlb.linalg.ordering.ND_MIN` unknowns) use SuperLU's minimum degree on ``Kᵀ + K``.
     With ``positive_definite=True`` no pivoting is allowed and, by Sylvester's law of inertia,
-    ``K`` is positive definite iff all pivots ``D`` are positive, which is checked; otherwise an
+    ``K`` is positive definite iff all pivots ``D`` are positive, which is checked (up to
+    :data:`PIVOT_CHECK_MAX` unknowns); otherwise an
     off-diagonal pivot is taken when a diagonal one is below 1 % of its column.  Before
     factorizing, the memory the factor will need is estimated (:mod:`dhlb.linalg.memory`);
     a factorization that would not fit, or that runs out of memory inside SuperLU, raises
@@ -218,13 +219,22 @@ class SuperLUBackend:
                 "backend (backend='amg-lobpcg', pip install pyamg) or a machine with more memory",
                 needed=need, available=available_bytes()) from err
         fac = _PermutedLU(lu, q)
-        if positive_definite and np.array_equal(lu.perm_r, lu.perm_c):
+        if positive_definite and n <= PIVOT_CHECK_MAX and np.array_equal(lu.perm_r, lu.perm_c):
             piv = lu.U.diagonal().real
             fac._neg = int(np.sum(piv < 0))
             if not np.all(piv > 0):
                 raise InvalidOperatorError(f"the matrix is not positive definite ({int(np.sum(piv <= 0))} "
                                            "non-positive pivots in its L D Lᴴ factorization)")
         return fac
+
+
+PIVOT_CHECK_MAX = 100_000
+"""Up to this many unknowns ``positive_definite=True`` is proved by the signs of the pivots.
+
+SuperLU hands out ``U`` only as a copy (measured: 0.8 s and 0.25 GB at 164k unknowns, half the
+time of the factorization itself); above this size the eigensolver's Rayleigh–Ritz check
+(no eigenvalue below the shift) and :func:`dhlb.linalg.solve`'s ``xᴴb > 0`` check remain.
+"""
 
 
 def _fitting_alternatives():
