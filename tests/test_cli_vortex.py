@@ -21,8 +21,12 @@ def dhlb_vortex(argv, capsys):
     parser = argparse.ArgumentParser(prog="dhlb")
     sub = parser.add_subparsers(dest="command")
     vortex.register(sub)
-    code = run_command(parser.parse_args(["vortex", *argv]))
+    try:
+        code = run_command(parser.parse_args(["vortex", *argv]))
+    except SystemExit as exc:  # a usage error found by argparse (bad value): exit 2, one line
+        code = exc.code
     out, err = capsys.readouterr()
+    err = "\n".join(line for line in err.splitlines() if not line.startswith(("usage:", " ")))
     return code, out, err
 
 
@@ -111,12 +115,12 @@ def test_errors_and_exit_codes(tmp_path, capsys):
     cases = [
         (["--box", "2", "--velocity", str(bad)], 1, "shape (27, 3)"),
         (["--box", "2", "--velocity", str(nan)], 1, "vertex 4"),
-        (["--box", "2", "--hbar", "0"], 1, "hbar"),
-        (["--box", "2", "--hbar", "-1"], 1, "hbar"),
+        (["--box", "2", "--hbar", "0"], 2, "--hbar: '0' is out of range"),  # usage errors (issue 19)
+        (["--box", "2", "--hbar", "-1"], 2, "hbar"),
         (["--box", "2", "-o", str(tmp_path / "out.txt")], 2, ".ply or .obj"),
         (["--box", "2", "--velocity", "vortex-street"], 2, "--velocity must be"),
         (["--box", "2", "--velocity", str(tmp_path / "missing.npy")], 2, "no such file"),
-        (["--box", "0"], 2, "N >= 1"),
+        (["--box", "0"], 2, "--box: 0 is out of range"),
         ([str(tmp_path / "missing.mesh")], 2, "no such file"),
         ([str(tmp_path / "x.mesh"), "--box", "3"], 2, "either TETMESH or --box"),
     ]

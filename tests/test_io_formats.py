@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from dhlb.errors import MeshParseError
 from dhlb.io import load, read_gmsh, read_medit, read_obj, read_off, read_ply, read_simplices, read_vtk
 
 
@@ -118,11 +119,15 @@ Triangles
 1 2 3 0
 2 4 3 0
 End
-trailing text is ignored after End
+
+# a comment after End is fine
 """
     V, cells = read_medit(write(tmp_path, "a.mesh", text))
     assert V.tolist() == [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
     assert cells[2].tolist() == [[0, 1, 2], [1, 3, 2]]
+    # data after End is an error (issue 19: it usually means a wrong declared count)
+    with pytest.raises(MeshParseError, match="line 20: unexpected data after 'End'"):
+        read_medit(write(tmp_path, "b.mesh", text + "trailing text\n"))
 
 
 GMSH22 = """$MeshFormat

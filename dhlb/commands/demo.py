@@ -77,16 +77,19 @@ def run(args) -> int:
     from dhlb.commands import _demo_steps as steps
     from dhlb.render.gallery import write_gallery
 
+    only = STEPS if args.only is None else tuple(s.strip() for s in args.only.split(","))
+    if not any(only) or not all(only):
+        raise UsageError(f"--only {args.only!r} names no step (or has an empty item); give a comma-separated "
+                         f"list of {', '.join(STEPS)}")
+    bad = [s for s in only if s not in STEPS]
+    if bad:
+        raise UsageError(f"unknown step(s) {', '.join(bad)}; choose from {', '.join(STEPS)}")
     out = args.output
     if out in (None, "-"):
         raise UsageError("dhlb demo writes files: give a directory with -o OUT")
     if os.path.exists(out) and not os.path.isdir(out):
         raise UsageError(f"{out}: exists and is not a directory")
     os.makedirs(out, exist_ok=True)
-    only = STEPS if args.only is None else tuple(s.strip() for s in args.only.split(",") if s.strip())
-    bad = [s for s in only if s not in STEPS]
-    if bad:
-        raise UsageError(f"unknown step(s) {', '.join(bad)}; choose from {', '.join(STEPS)}")
     progress = _Progress(args.quiet or args.json)
     t0 = time.perf_counter()
     records = []

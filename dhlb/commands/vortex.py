@@ -12,8 +12,17 @@ import warnings
 
 import numpy as np
 
-from dhlb.commands._common import UsageError, add_command, resolve_input
-from dhlb.errors import DhlbWarning, InvalidParameterError
+from dhlb.commands._common import (
+    UsageError,
+    add_command,
+    check_outputs,
+    finite_float,
+    int_in_range,
+    nonempty_text,
+    resolve_input,
+)
+from dhlb.errors import DhlbWarning, InvalidParameterError, ResourceLimitError
+from dhlb.io.atomic import atomic_write
 
 __all__ = ["NAME", "SUMMARY", "demo_velocity", "format_report", "register", "run", "write_polylines_obj",
            "write_polylines_ply"]
@@ -22,6 +31,7 @@ NAME = "vortex"
 SUMMARY = "vortex filaments of a velocity field in a tet mesh (zero set of the least-energy section)"
 
 DEMOS = ("ring", "linked-rings", "trefoil")
+MAX_FILAMENTS_PER_CURVE = 100  # |circulation| / (2 pi hbar) for a demo field; more cannot be resolved
 
 _DESCRIPTION = """\
 Compute the vortex filaments of a velocity field v on a tetrahedral mesh (Weissmann, Pinkall,
@@ -54,17 +64,22 @@ def register(subparsers) -> None:
     """Add the ``vortex`` parser to ``subparsers``."""
     p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
     p.add_argument("mesh", nargs="?", metavar="TETMESH", help="tetrahedral mesh file (.mesh .msh .vtk)")
-    p.add_argument("--box", type=int, metavar="N", help="use the cube [-1, 1]^3 with N cells per axis instead")
+    p.add_argument("--box", type=int_in_range(1, 100_000), metavar="N",
+                   help="use the cube [-1, 1]^3 with N cells per axis instead (memory is checked first)")
     p.add_argument("--format", dest="fmt", metavar="FMT", help="mesh format if the extension does not say it")
-    p.add_argument("--velocity", default="ring", metavar="FIELD",
+    p.add_argument("--velocity", default="ring", metavar="FIELD", type=nonempty_text,
                    help="ring, linked-rings, trefoil, or FILE.npy with one vector per vertex (default: ring)")
-    p.add_argument("--hbar", type=float, default=1.0, metavar="H", help="hbar > 0: circulation per filament / 2 pi")
+    p.add_argument("--hbar", type=finite_float(0, low_open=True), default=1.0, metavar="H",
+                   help="hbar > 0: circulation per filament / 2 pi")
     p.add_argument("--circulation", type=float, default=2 * np.pi, metavar="G",
                    help="circulation of each demo curve (default 2 pi)")
-    p.add_argument("--core", type=float, metavar="A", help="core radius of the demo fields (default 0.08 rho)")
-    p.add_argument("--order", type=int, default=4, metavar="Q", help="Gauss-Legendre nodes per edge (default 4)")
+    p.add_argument("--core", type=finite_float(0, low_open=True), metavar="A",
+                   help="core radius of the demo fields (default 0.08 rho)")
+    p.add_argument("--order", type=int_in_range(1, 64), default=4, metavar="Q",
+                   help="Gauss-Legendre nodes per edge (default 4)")
     p.add_argument("--backend", metavar="B", help="linear-algebra backend of the eigen solver (default: dhlb's)")
-    p.add_argument("--tol", type=float, default=1e-9, metavar="TOL", help="eigen solver tolerance (default 1e-9)")
+    p.add_argument("--tol", type=finite_float(0, 1, low_open=True, high_open=True), default=1e-9, metavar="TOL",
+                   help="eigen solver tolerance (default 1e-9)")
     p.add_argument("--no-png", action="store_true", help="with -o: do not render the PNG picture")
     p.set_defaults(func=run)
 
@@ -134,7 +149,7 @@ def write_polylines_obj(path, filaments) -> str:
         lines.append("l " + " ".join(map(str, idx)))
         base += P.shape[0]
     out = os.fspath(path)
-    with open(out, "w", encoding="utf-8") as fh:
+    with atomic_write(out, "w", encoding="utf-8") as fh:
         fh.write("\n".join(lines) + "\n")
     return out
 
@@ -163,7 +178,7 @@ def write_polylines_ply(path, filaments) -> str:
               "property int filament", f"element edge {len(edges)}", "property int vertex1", "property int vertex2",
               "end_header"]
     out = os.fspath(path)
-    with open(out, "w", encoding="utf-8") as fh:
+    with atomic_write(out, "w", encoding="utf-8") as fh:
         fh.write("\n".join(header + verts + edges) + "\n")
     return out
 
@@ -172,6 +187,7 @@ def write_polylines_ply(path, filaments) -> str:
 def _mesh(args):
     """``(V, T, name)``: the box as a TetMesh (``T`` None), or the arrays of TETMESH (validated later)."""
     from dhlb.volume import box_tet_mesh
+    from dhlb.volume.meshes import VORTEX_BYTES_PER_CELL, check_box_memory
 
     if args.mesh is not None and args.box is not None:
         raise UsageError("give either TETMESH or --box N, not both")
@@ -179,6 +195,10 @@ def _mesh(args):
         n = 12 if args.box is None else args.box
         if n < 1:
             raise UsageError(f"--box needs N >= 1, got {n}")
+        try:  # the whole run's memory, estimated before any work
+            check_box_memory(n, per_cell=VORTEX_BYTES_PER_CELL, name="--box")
+        except ResourceLimitError as exc:
+            raise UsageError(str(exc)) from None
         return box_tet_mesh(n, lower=-1.0, upper=1.0), None, f"box {n}"
     from dhlb.io import read_volume
 
@@ -190,6 +210,12 @@ def _mesh(args):
 def _velocity(args, V, T):
     spec = args.velocity
     if spec in DEMOS:
+        per_curve = abs(args.circulation) / (2 * np.pi * args.hbar)
+        if per_curve > MAX_FILAMENTS_PER_CURVE:
+            raise UsageError(
+                f"--circulation {args.circulation:g} with --hbar {args.hbar:g} asks for about {per_curve:.3g} "
+                f"filaments per demo curve (|circulation| / 2 pi hbar); at most {MAX_FILAMENTS_PER_CURVE} are "
+                "allowed: lower --circulation or raise --hbar")
         P = V.points if T is None else np.asarray(V)[np.unique(np.asarray(T))]
         field, _ = demo_velocity(spec, P, circulation=args.circulation, core_radius=args.core)
         return field, f"{spec} (circulation {args.circulation:.6g}, core radius {field.core_radius:.4g})"
@@ -211,13 +237,10 @@ def _outputs(args, result, meta) -> list[str]:
     stem, ext = os.path.splitext(out)
     if ext.lower() not in (".ply", ".obj"):
         raise UsageError(f"-o must name a .ply or .obj file for the filament polylines, got {out!r}")
-    try:
-        written = [(write_polylines_ply if ext.lower() == ".ply" else write_polylines_obj)(out, result.filaments)]
-        with open(stem + ".json", "w", encoding="utf-8") as fh:
-            json.dump({**meta, **result.to_dict()}, fh, indent=1)
-        written.append(stem + ".json")
-    except OSError as exc:
-        raise UsageError(f"cannot write {exc.filename or out}: {exc.strerror}") from None
+    written = [(write_polylines_ply if ext.lower() == ".ply" else write_polylines_obj)(out, result.filaments)]
+    with atomic_write(stem + ".json", "w", encoding="utf-8") as fh:
+        json.dump({**meta, **result.to_dict()}, fh, indent=1)
+    written.append(stem + ".json")
     if not args.no_png:
         try:
             from dhlb.render.filaments_png import render_filaments_png
@@ -264,6 +287,11 @@ def run(args) -> int:
         ext = os.path.splitext(args.output)[1].lower()
         if ext not in (".ply", ".obj"):  # fail before the computation
             raise UsageError(f"-o must name a .ply or .obj file for the filament polylines, got {args.output!r}")
+        stem = os.path.splitext(args.output)[0]
+        derived = [args.output, stem + ".json"] + ([] if args.no_png else [stem + ".png"])
+        check_outputs(derived, args)  # never over the mesh or the velocity file
+        if not os.path.isdir(os.path.dirname(os.path.abspath(args.output))):
+            raise UsageError(f"cannot write {args.output}: the folder does not exist")
     V, T, mesh_name = _mesh(args)
     velocity, vname = _velocity(args, V, T)
     result = vortex_filaments(V, T, velocity, args.hbar, order=args.order, backend=args.backend, tol=args.tol)

@@ -13,6 +13,7 @@ Examples
 0
 """
 
+from dhlb.io.atomic import atomic_write, refuse_overwrite
 from dhlb.io.compact import compact_mesh
 from dhlb.io.examples import EXAMPLES, example_path
 from dhlb.io.formats import FORMATS, format_of
@@ -52,6 +53,8 @@ __all__ = [
     "compact_mesh",
     "example_path",
     "EXAMPLES",
+    "atomic_write",
+    "refuse_overwrite",
     "format_of",
     "FORMATS",
 ]

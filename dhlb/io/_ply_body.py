@@ -207,6 +207,7 @@ def _need(data: bytes, pos: int, nbytes: int, elem: _Element, path: str, instanc
     if pos + nbytes > len(data):
         which = f" (at instance {instance} of {elem.count})" if instance is not None else ""
         raise MeshParseError(
-            f"the file is truncated inside element '{elem.name}'{which}: {pos + nbytes - len(data)} bytes missing",
+            f"the file is truncated inside element '{elem.name}'{which}: {pos + nbytes - len(data)} bytes "
+            f"missing at byte {len(data)} (the header declares {elem.count})",
             path,
         )

@@ -20,6 +20,8 @@ from dhlb.errors import InvalidSimplexError, MeshParseError, NonFiniteError
 __all__ = [
     "no_gc",
     "read_text",
+    "decode_text",
+    "strip_bom",
     "content_lines",
     "to_array",
     "to_flat_int",
@@ -59,11 +61,47 @@ def no_gc(func: Callable[_P, _R]) -> Callable[_P, _R]:
 def read_text(path) -> str:
     """Return the text of ``path`` (undecodable bytes become U+FFFD, so parsing reports them).
 
+    A leading UTF-8 byte-order mark is dropped; a UTF-16/32 one raises
+    :class:`~dhlb.errors.MeshParseError`.
+
     Raises ``FileNotFoundError`` / ``IsADirectoryError`` / ``PermissionError`` as usual.
     """
     with open(os.fspath(path), "rb") as fh:
         data = fh.read()
-    return data.decode("utf-8", errors="replace")
+    return decode_text(data, os.fspath(path))
+
+
+def strip_bom(data: bytes, path: str) -> bytes:
+    r"""``data`` without a leading UTF-8 byte-order mark; a UTF-16/32 mark is an error.
+
+    Examples
+    --------
+    >>> strip_bom(b"\xef\xbb\xbfOFF", "m.off")
+    b'OFF'
+    >>> strip_bom(b"\xff\xfeO\x00", "m.off")
+    Traceback (most recent call last):
+    ...
+    dhlb.errors.MeshParseError: m.off, line 1: the file is UTF-16 or UTF-32 encoded (byte-order mark ...
+    """
+    if data.startswith(b"\xef\xbb\xbf"):
+        return data[3:]
+    if data.startswith((b"\xff\xfe", b"\xfe\xff", b"\x00\x00\xfe\xff")):
+        raise MeshParseError(
+            "the file is UTF-16 or UTF-32 encoded (byte-order mark at byte 0); save it as ASCII or UTF-8",
+            path, 1,
+        )
+    return data
+
+
+def decode_text(data: bytes, path: str) -> str:
+    r"""Decode file bytes as UTF-8 after :func:`strip_bom` (undecodable bytes become U+FFFD).
+
+    Examples
+    --------
+    >>> decode_text(b"\xef\xbb\xbfv 0 0 0\r\n", "m.obj").splitlines()
+    ['v 0 0 0']
+    """
+    return strip_bom(data, path).decode("utf-8", errors="replace")
 
 
 def content_lines(text: str, comment: str | None = "#"):

@@ -23,6 +23,7 @@ from dhlb.io._text import (
     read_text,
     to_array,
 )
+from dhlb.io.atomic import atomic_write
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
@@ -327,5 +328,5 @@ def write_gmsh(
             out.append(format_number_rows(np.column_stack([np.arange(tag, tag + len(T)), T + 1]), "%d"))
             tag += len(T)
     out.append("$EndElements\n")
-    with open(os.fspath(path), "w", encoding="ascii") as fh:
+    with atomic_write(path, "w", encoding="ascii") as fh:
         fh.write("".join(out))

@@ -23,6 +23,7 @@ from dhlb.io._text import (
     read_text,
     to_array,
 )
+from dhlb.io.atomic import atomic_write
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
@@ -67,7 +68,8 @@ def read_medit(path: str | os.PathLike[str]) -> tuple[np.ndarray, dict[int, np.n
     ------
     MeshParseError
         Unknown layout, unreadable value, a row with the wrong number of values, an index out of
-        range or repeated within a cell, a non-simplicial section; the message names the line.
+        range or repeated within a cell, a non-simplicial section, data after ``End``; the message
+        names the line. A leading UTF-8 byte-order mark and CRLF line ends are accepted.
     NonFiniteError
         A vertex has a NaN or infinite coordinate.
 
@@ -89,6 +91,16 @@ def read_medit(path: str | os.PathLike[str]) -> tuple[np.ndarray, dict[int, np.n
         any_line = True
         key = toks[0]
         if key == "End":
+            if len(toks) > 1:
+                raise MeshParseError(f"unexpected values after End: {' '.join(toks[1:])!r}", path, line)
+            extra = next(lines, None)
+            if extra is not None:
+                raise MeshParseError(
+                    f"unexpected data after 'End' (line {line}): {' '.join(extra[1])[:40]!r}; remove it or "
+                    "check the declared counts",
+                    path,
+                    extra[0],
+                )
             break
         if not key[0].isalpha() or key.lower() in ("nan", "inf", "infinity"):
             raise MeshParseError(f"expected a keyword such as 'Vertices', found {key!r}", path, line)
@@ -189,7 +201,7 @@ def write_medit(path: str | os.PathLike[str], V: ArrayLike, cells: ArrayLike | M
     [[0, 1, 2, 3]]
     """
     V, blocks = normalize_cells(V, cells, dims=(1, 2, 3))
-    with open(os.fspath(path), "w", encoding="ascii") as fh:
+    with atomic_write(path, "w", encoding="ascii") as fh:
         fh.write(f"MeshVersionFormatted 2\nDimension 3\n\nVertices\n{len(V)}\n")
         fh.write(format_number_rows(V, "%r").replace("\n", " 0\n"))
         for k, T in sorted(blocks.items()):

@@ -15,7 +15,16 @@ import numpy as np
 
 from dhlb.errors import MeshParseError, ShapeError
 from dhlb.io._ply_body import ascii_element, binary_element
-from dhlb.io._text import check_cells, check_finite, fan_triangulate, format_number_rows, no_gc, prepare_write
+from dhlb.io._text import (
+    check_cells,
+    check_finite,
+    fan_triangulate,
+    format_number_rows,
+    no_gc,
+    prepare_write,
+    strip_bom,
+)
+from dhlb.io.atomic import atomic_write
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
@@ -109,7 +118,8 @@ def read_ply(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
     ------
     MeshParseError
         Bad header, truncated body, unreadable value, missing ``x y z`` or face list, index out
-        of range. ASCII errors name the line; binary errors name the element instance.
+        of range, data after the declared elements. ASCII errors name the line; binary errors
+        name the element instance and the byte offset. A leading UTF-8 byte-order mark is skipped.
     NonFiniteError
         A vertex has a NaN or infinite coordinate.
 
@@ -126,7 +136,7 @@ def read_ply(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
     """
     path = os.fspath(path)
     with open(path, "rb") as fh:
-        data = fh.read()
+        data = strip_bom(fh.read(), path)
     if not data.strip():
         raise MeshParseError("the file is empty", path)
     order, elements, body, n_header = _parse_header(data, path)
@@ -157,6 +167,13 @@ def read_ply(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
         pos = body
         for e in elements:
             parsed[e.name], pos = binary_element(data, pos, e, order, path)
+        if data[pos:].strip(b" \t\r\n"):
+            raise MeshParseError(
+                f"{len(data) - pos} bytes of unexpected data after the last declared element "
+                f"'{elements[-1].name}' (from byte {pos}); the header declares fewer elements than the file "
+                "holds, or the file is corrupt",
+                path,
+            )
     v = parsed["vertex"]
     V = np.column_stack([np.asarray(v[c], dtype=np.float64) for c in "xyz"]).reshape(-1, 3)
     flat, sizes, line_of_face = parsed["face"][flist[0].name]
@@ -221,7 +238,7 @@ def write_ply(
         + "".join(f"property double {k}\n" for k in extra)
         + f"element face {len(F)}\nproperty list uchar int vertex_indices\nend_header\n"
     )
-    with open(os.fspath(path), "wb") as fh:
+    with atomic_write(path, "wb") as fh:
         fh.write(header.encode("ascii"))
         if not binary:
             fh.write(format_number_rows(V, "%r").encode("ascii"))

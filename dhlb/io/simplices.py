@@ -13,6 +13,7 @@ import numpy as np
 
 from dhlb.errors import InvalidSimplexError, MeshParseError
 from dhlb.io._text import content_lines, no_gc, read_text, to_array
+from dhlb.io.atomic import atomic_write
 
 if TYPE_CHECKING:
     from collections.abc import Iterable, Sequence
@@ -124,5 +125,5 @@ def write_simplices(
         if not row or any(isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0 for v in row):
             raise InvalidSimplexError(f"simplex #{i} {s!r} must be a non-empty tuple of non-negative integers")
         lines.append(" ".join(str(int(v)) for v in row))
-    with open(os.fspath(path), "w", encoding="ascii") as fh:
+    with atomic_write(path, "w", encoding="ascii") as fh:
         fh.write("".join(line + "\n" for line in lines))

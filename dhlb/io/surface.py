@@ -26,6 +26,7 @@ from dhlb.io._text import (
     to_array,
     to_flat_int,
 )
+from dhlb.io.atomic import atomic_write
 from dhlb.io.formats import format_of
 from dhlb.io.ply import read_ply, write_ply
 from dhlb.io.volume import read_cells, write_cells
@@ -148,7 +149,7 @@ def write_obj(path: str | os.PathLike[str], V: ArrayLike, F: ArrayLike) -> None:
     True
     """
     V, F = prepare_write(V, F, min_corners=3)
-    with open(os.fspath(path), "w", encoding="ascii") as fh:
+    with atomic_write(path, "w", encoding="ascii") as fh:
         fh.write("# written by dhlb\n")
         fh.write(format_number_rows(V, "%r", prefix="v "))
         fh.write(format_number_rows(F + 1, "%d", prefix="f "))
@@ -264,7 +265,7 @@ def write_off(path: str | os.PathLike[str], V: ArrayLike, F: ArrayLike) -> None:
     """
     V, F = prepare_write(V, F, min_corners=3)
     sized = np.column_stack([np.full(len(F), F.shape[1], dtype=np.int64), F])
-    with open(os.fspath(path), "w", encoding="ascii") as fh:
+    with atomic_write(path, "w", encoding="ascii") as fh:
         fh.write(f"OFF\n{len(V)} {len(F)} 0\n")
         fh.write(format_number_rows(V, "%r"))
         fh.write(format_number_rows(sized, "%d"))

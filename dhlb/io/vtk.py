@@ -21,6 +21,7 @@ from dhlb.io._text import (
     read_text,
     to_array,
 )
+from dhlb.io.atomic import atomic_write
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
@@ -257,5 +258,5 @@ def write_vtk(path: str | os.PathLike[str], V: ArrayLike, cells: ArrayLike | Map
     out.append(f"CELL_TYPES {m}\n")
     for k, T in sorted(blocks.items()):
         out.append(f"{_VTK_TYPE_OF_DIM[k]}\n" * len(T))
-    with open(os.fspath(path), "w", encoding="ascii") as fh:
+    with atomic_write(path, "w", encoding="ascii") as fh:
         fh.write("".join(out))

@@ -16,32 +16,61 @@ from dhlb.errors import (
     EmptyComplexError,
     InconsistentOrientationError,
     InvalidSimplexError,
+    InvalidTypeError,
     NonFiniteError,
     NonManifoldError,
     NonOrientableError,
+    RaggedInputError,
     ShapeError,
 )
 from dhlb.geometry.simplex import SimplexStack
 from dhlb.topology.complex import SimplicialComplex
 from dhlb.topology.manifold import interior_pairs, is_consistently_oriented, manifold_report
 
-__all__ = ["check_faces", "check_geometry", "check_manifold", "fast_topology", "orient", "parse"]
+__all__ = ["check_faces", "check_geometry", "check_manifold", "fast_topology", "length_scale", "orient", "parse"]
 
 
 def _face(F, r) -> str:
     return f"face {int(r)} (vertices {', '.join(str(int(v)) for v in F[r])})"
 
 
+def _array(values, name: str) -> np.ndarray:
+    """``np.asarray(values)`` with ragged rows and non-numeric entries as typed errors."""
+    try:
+        arr = np.asarray(values)
+    except (ValueError, TypeError):  # numpy >= 1.24: ragged nested sequences
+        raise RaggedInputError(f"{name} has rows of different lengths; every row of {name} needs "
+                               f"{3 if name == 'F' else '2 or 3'} entries") from None
+    if arr.dtype == object:
+        lengths = {len(r) if hasattr(r, "__len__") else -1 for r in values} if arr.ndim == 1 else set()
+        if len(lengths) > 1:
+            raise RaggedInputError(f"{name} has rows of different lengths {sorted(lengths)}; every row needs "
+                                   f"{3 if name == 'F' else '2 or 3'} entries")
+    if np.iscomplexobj(arr):
+        raise InvalidTypeError(f"{name} is complex (dtype {arr.dtype}); give real "
+                               f"{'indices' if name == 'F' else 'coordinates'} (e.g. {name}.real)")
+    if arr.dtype.kind in "USV" and arr.ndim == 2:
+        raise InvalidTypeError(f"{name} holds {arr.dtype} values, not numbers; convert it with np.asarray(..., "
+                               f"dtype={'int' if name == 'F' else 'float'}) first")
+    return arr
+
+
 def parse(V, F) -> tuple[np.ndarray, np.ndarray]:
+    V = _array(V, "V")
     try:
         P = np.asarray(V, dtype=np.float64)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ShapeError("V must be a numeric array of shape (n, 3) (or (n, 2) for a planar mesh)") from None
     if P.ndim != 2 or P.shape[1] not in (2, 3):
         raise ShapeError(f"V must have shape (n, 3) (or (n, 2) for a planar mesh), got {P.shape}")
     if P.shape[1] == 2:
         P = np.column_stack([P, np.zeros(len(P))])
-    T = np.asarray(F)
+    T = _array(F, "F")
+    if T.dtype == object and T.ndim == 2 and all(isinstance(v, (int, np.integer)) for v in T.ravel()):
+        big = [int(v) for v in T.ravel() if not -(2**62) < int(v) < 2**62]
+        if big:
+            raise InvalidSimplexError(f"F refers to vertex {big[0]}, outside V (rows 0 .. {len(P) - 1})")
+        T = T.astype(np.int64)
     if T.dtype == object or not (np.issubdtype(T.dtype, np.integer) or np.issubdtype(T.dtype, np.floating)):
         raise InvalidSimplexError(f"F must be an integer array of shape (m, 3), got dtype {T.dtype}")
     if T.ndim != 2 or T.shape[1] != 3:
@@ -53,6 +82,11 @@ def parse(V, F) -> tuple[np.ndarray, np.ndarray]:
         if np.any(bad):
             r = int(np.argmax(bad))
             raise InvalidSimplexError(f"face {r} has non-integer vertex indices {T[r].tolist()}")
+        huge = np.any(np.abs(T) >= 2.0**62, axis=1)  # would wrap around in int64
+        if np.any(huge):
+            r = int(np.argmax(huge))
+            raise InvalidSimplexError(f"face {r} (vertices {T[r].tolist()}) refers to a vertex outside V "
+                                      f"(rows 0 .. {len(P) - 1})")
     T = T.astype(np.int64)
     bad = np.any((T < 0) | (T >= len(P)), axis=1)
     if np.any(bad):
@@ -85,6 +119,31 @@ def check_faces(P, T) -> None:
                                   f"{how}; remove one of them")
 
 
+def length_scale(points) -> float:
+    """A power of two in ``(h, 2h]``, ``h`` the largest half-extent of the bounding box of ``points`` (1 if flat/empty).
+
+    Dividing coordinates by it is exact (only the exponent changes), so results computed in
+    these units convert back without rounding.
+
+    Examples
+    --------
+    >>> s = length_scale(np.array([[0.0, 0, 0], [3e-150, 0, 0]]))   # half extent 1.5e-150
+    >>> bool(1 < s / 1.5e-150 <= 2), float(np.log2(s)).is_integer()
+    (True, True)
+    >>> length_scale(np.array([[0.0, 0, 0], [1.0, 2, 0]]))
+    2.0
+    """
+    P = np.asarray(points, dtype=np.float64)
+    if P.size == 0 or not np.all(np.isfinite(P)):
+        return 1.0
+    lo, hi = P.min(axis=0), P.max(axis=0)
+    half = np.max(hi / 2 - lo / 2)  # no overflow near the largest floats
+    if not half > 0 or not np.isfinite(half):
+        return 1.0
+    _, e = np.frexp(half)
+    return float(np.ldexp(1.0, int(e)))
+
+
 def check_geometry(P, T, rows) -> None:
     used = np.nonzero(np.bincount(T.ravel(), minlength=len(P)))[0]
     bad = ~np.isfinite(P[used]).all(axis=1)
@@ -92,13 +151,16 @@ def check_geometry(P, T, rows) -> None:
         v = int(used[np.argmax(bad)])
         raise NonFiniteError(f"vertex {v} has a NaN or infinite coordinate {P[v].tolist()} "
                              f"({int(bad.sum())} used vertices affected); give finite coordinates")
-    st = SimplexStack.from_points(P[T])
+    # the degeneracy test is scale free: work in units of a power of two near the mesh size
+    # (exact), so that a mesh in 1e-150 or 1e+150 units does not underflow / overflow
+    scale = length_scale(P[used])
+    st = SimplexStack.from_points(P[T] / scale)
     deg = np.nonzero(~st.positive_definite)[0]
     if deg.size:
         r = int(deg[0])
         raise DegenerateSimplexError(
             f"{deg.size} face(s) have zero area, first face {int(rows[r])} (vertices "
-            f"{', '.join(str(int(v)) for v in T[r])}) with area {st.volumes[r]:.3g}; "
+            f"{', '.join(str(int(v)) for v in T[r])}) with area {st.volumes[r] * scale**2:.3g}; "
             "remove or repair them (collinear vertices)")
 
 

@@ -114,9 +114,36 @@ class SurfaceMesh:
         return self.complex.vertex_labels
 
     @cached_property
+    def length_scale(self) -> float:
+        """A power of two near the half-size of the mesh's bounding box (the internal length unit).
+
+        Computations whose floating-point range depends on the unit (areas, Gram determinants)
+        should use :attr:`unit_points` = ``points / length_scale`` and convert lengths back by
+        multiplying with it: dividing by a power of two is exact, so the result does not depend
+        on whether the mesh is given in 1e-150 or 1e+150 units.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from dhlb.surface import validate_surface
+        >>> V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]); F = [[0, 1, 2]]
+        >>> a, b = validate_surface(V, F), validate_surface(V * 1e-150, F)
+        >>> a.length_scale, float(b.unit_points.max()), bool(np.isclose(a.corner_angles, b.corner_angles).all())
+        (1.0, 1.636695303948071, True)
+        """
+        return checks.length_scale(self.points)
+
+    @cached_property
+    def unit_points(self) -> np.ndarray:
+        """``points / length_scale`` (exact): coordinates of size about 1, whatever the unit."""
+        P = self.points / self.length_scale
+        P.setflags(write=False)
+        return P
+
+    @cached_property
     def corner_angles(self) -> np.ndarray:
         """``(m, 3)`` Euclidean angle at each corner of each (oriented) face."""
-        Q = self.points[self.faces]
+        Q = self.unit_points[self.faces]  # angles are scale free; unit points avoid under/overflow
         E = np.roll(Q, -1, axis=1) - Q  # E[:, p]: the edge from corner p to corner p + 1
         twice_area = np.linalg.norm(np.cross(E[:, 0], E[:, 1]), axis=-1)  # |e1 × e2| at every corner
         dot = -np.einsum("fpk,fpk->fp", E, np.roll(E, 1, axis=1))  # <E[p], -E[p - 1]>
@@ -213,8 +240,34 @@ class SurfaceMesh:
         raise ShapeError(f"{what} must have one row per row of the input V ({self.n_input_vertices}) or per "
                          f"compact vertex ({self.n_vertices}), got shape {arr.shape}")
 
+    @cached_property
+    def input_vertex_used(self) -> np.ndarray:
+        """``(n_input_vertices,)`` bool: True for the rows of the input V that some face uses.
+
+        Outputs in input order (:meth:`to_input`) hold ``fill`` (NaN) on the other rows; writers
+        store this mask next to them (key ``vertex_used`` in ``.npz`` files) so that a NaN row is
+        never mistaken for a failure.
+
+        Examples
+        --------
+        >>> import warnings
+        >>> from dhlb.surface import validate_surface
+        >>> with warnings.catch_warnings():
+        ...     warnings.simplefilter("ignore")
+        ...     mesh = validate_surface([[0, 0, 0], [9, 9, 9], [1, 0, 0], [0, 1, 0]], [[0, 2, 3]])
+        >>> mesh.input_vertex_used.tolist(), mesh.to_input([1.0, 2.0, 3.0]).tolist()
+        ([True, False, True, True], [1.0, nan, 2.0, 3.0])
+        """
+        used = np.zeros(self.n_input_vertices, dtype=bool)
+        used[self.vertex_labels] = True
+        used.setflags(write=False)
+        return used
+
     def to_input(self, values: ArrayLike, fill: Any = np.nan) -> np.ndarray:
-        """Scatter per-vertex values (compact order) back to one row per row of the input V."""
+        """Scatter per-vertex values (compact order) back to one row per row of the input V.
+
+        Rows of V that no face uses (see :attr:`input_vertex_used`) get ``fill`` (NaN by default).
+        """
         arr = np.asarray(values)
         out = np.full((self.n_input_vertices,) + arr.shape[1:], fill, dtype=np.result_type(arr, np.asarray(fill)))
         out[self.vertex_labels] = arr

@@ -28,6 +28,9 @@ def _check_labels(values: np.ndarray, where) -> np.ndarray:
     if values.dtype == bool:
         raise InvalidSimplexError(f"{where()}: vertex labels must be integers, not booleans")
     if np.issubdtype(values.dtype, np.integer):
+        if values.dtype == np.uint64 and np.any(values >= np.uint64(2**63)):
+            raise InvalidSimplexError(f"{where()}: vertex label {int(values.max())} is too large (labels must be "
+                                      "< 2**63); renumber the vertices")
         out = values.astype(np.int64)
     elif np.issubdtype(values.dtype, np.floating):
         if not np.all(np.isfinite(values)):
@@ -35,10 +38,17 @@ def _check_labels(values: np.ndarray, where) -> np.ndarray:
         if np.any(values != np.round(values)):
             first = values[values != np.round(values)][0]
             raise InvalidSimplexError(f"{where()}: vertex labels must be integers (found {first!r})")
+        if np.any(np.abs(values) >= 2.0**63):
+            raise InvalidSimplexError(f"{where()}: vertex label {np.abs(values).max():g} is too large (labels must "
+                                      "be < 2**63); renumber the vertices")
         out = values.astype(np.int64)
     elif values.dtype == object and all(
         isinstance(v, numbers.Integral) and not isinstance(v, bool) for v in values.ravel()
     ):
+        huge = [int(v) for v in values.ravel() if not -(2**63) <= int(v) < 2**63]
+        if huge:
+            raise InvalidSimplexError(f"{where()}: vertex label {huge[0]} is too large (labels must fit in 64 bits, "
+                                      f"< 2**63); renumber the vertices")
         out = values.astype(np.int64)
     else:
         raise InvalidSimplexError(f"{where()}: vertex labels must be integers (got dtype {values.dtype})")

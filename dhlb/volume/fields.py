@@ -61,6 +61,19 @@ def _polyline(curve, closed: bool, i: int) -> np.ndarray:
     return C
 
 
+def _core_square(core_radius) -> float:
+    """``a²`` of a core radius, checked: a real number, ``0 <= a`` and ``a²`` finite (``a < 1e154``)."""
+    import numbers
+
+    if isinstance(core_radius, (bool, np.bool_, str, bytes)) or not isinstance(core_radius, numbers.Real):
+        raise InvalidParameterError(f"core_radius must be a real number >= 0, got {core_radius!r}")
+    a = float(core_radius)
+    if not (np.isfinite(a) and a >= 0 and np.isfinite(a * a)):
+        raise InvalidParameterError(f"core_radius must be a finite number in [0, 1e154) (its square must be "
+                                    f"finite), got {core_radius!r}")
+    return a * a
+
+
 def segment_velocity(
     x: ArrayLike,
     q1: ArrayLike,
@@ -96,7 +109,7 @@ def segment_velocity(
     A, B = _points(q1, "q1"), _points(q2, "q2")
     if A.shape != B.shape:
         raise ShapeError(f"q1 and q2 must have the same shape, got {A.shape} and {B.shape}")
-    a2 = float(core_radius) ** 2
+    a2 = _core_square(core_radius)
     G = np.broadcast_to(np.asarray(circulation, dtype=np.float64), (A.shape[0],))
     E = B - A
     E2 = np.einsum("ij,ij->i", E, E)
@@ -158,9 +171,8 @@ class FilamentField:
         cl = np.broadcast_to(np.asarray(closed, dtype=bool), (k,))
         if not np.isfinite(G).all():
             raise NonFiniteError(f"circulations must be finite, got {G.tolist()}")
+        _core_square(core_radius)
         a = float(core_radius)
-        if not (np.isfinite(a) and a >= 0):
-            raise InvalidParameterError(f"core_radius must be a finite number >= 0, got {core_radius!r}")
         q1, q2, g = [], [], []
         for i, (C, c) in enumerate(zip(curves, cl)):
             C = _polyline(C, bool(c), i)

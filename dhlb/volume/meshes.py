@@ -31,6 +31,7 @@ from dhlb.errors import (
     InvalidParameterError,
     NonFiniteError,
     NonManifoldError,
+    ResourceLimitError,
     ShapeError,
 )
 from dhlb.examples import cube_nd, tet_mesh
@@ -43,7 +44,8 @@ if TYPE_CHECKING:
 
     from numpy.typing import ArrayLike
 
-__all__ = ["TetMesh", "signed_volumes", "check_tet_mesh", "box_tet_mesh", "ball_tet_mesh"]
+__all__ = ["TetMesh", "signed_volumes", "check_tet_mesh", "box_tet_mesh", "ball_tet_mesh", "box_memory_estimate",
+           "check_box_memory"]
 
 DEFAULT_RTOL = 1e-10
 """A tetrahedron with ``|vol| <= rtol · L³`` (``L`` its longest edge) counts as degenerate."""
@@ -275,6 +277,95 @@ def _vec3(value, name: str) -> np.ndarray:
     return arr
 
 
+BOX_BYTES_PER_CELL = 7_000
+"""Peak bytes per cell of :func:`box_tet_mesh` (measured 5.8 kB at 52³ cells, rounded up)."""
+VORTEX_BYTES_PER_CELL = 12_000
+"""Peak bytes per cell of ``dhlb vortex --box`` end to end (measured 9.3–9.7 kB at 28³ … 52³ cells)."""
+_BASE_BYTES = 100_000_000  # the interpreter with numpy, scipy and dhlb imported (measured 66 MB)
+
+
+def _cells(m) -> tuple[int, int]:
+    """``(m as given, number of cells)`` for an int or 3 ints, checked to be integers >= 1."""
+    ms = [m] if np.ndim(m) == 0 else list(np.asarray(m).ravel())
+    if len(ms) not in (1, 3):
+        raise InvalidParameterError(f"m must be one integer or three, got {m!r}")
+    for v in ms:
+        if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, np.integer)) or v < 1:
+            raise InvalidParameterError(f"the number of cells per axis must be an integer >= 1, got {m!r}")
+    cells = int(ms[0]) ** 3 if len(ms) == 1 else int(ms[0]) * int(ms[1]) * int(ms[2])
+    return m, cells
+
+
+def box_memory_estimate(m: int | Sequence[int], *, per_cell: int = BOX_BYTES_PER_CELL) -> int:
+    """Estimated peak bytes of a box mesh with ``m`` cells per axis (``per_cell`` bytes a cell + imports).
+
+    ``per_cell`` is :data:`BOX_BYTES_PER_CELL` for :func:`box_tet_mesh` alone and
+    :data:`VORTEX_BYTES_PER_CELL` for the whole vortex pipeline on it (mesh, bundle, matrices,
+    sparse factorization, extraction); both are measured peaks rounded up, the growth is linear
+    in the number of cells in the measured range.
+
+    Examples
+    --------
+    >>> box_memory_estimate(400) / 1e9 > 400                      # --box 400: hundreds of GB
+    True
+    >>> box_memory_estimate(12, per_cell=VORTEX_BYTES_PER_CELL) < 200e6
+    True
+    """
+    _, cells = _cells(m)
+    return _BASE_BYTES + int(per_cell) * cells
+
+
+def _available_bytes() -> int:
+    try:
+        from dhlb.linalg.memory import available_bytes
+    except ImportError:  # pragma: no cover - the linear-algebra layer is always there
+        import os
+
+        return int(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_AVPHYS_PAGES"))
+    return int(available_bytes())
+
+
+def check_box_memory(m: int | Sequence[int], *, per_cell: int = BOX_BYTES_PER_CELL, name: str = "m",
+                     available: int | None = None) -> int:
+    """Refuse a box size whose estimated memory exceeds what is available; return the estimate.
+
+    Parameters
+    ----------
+    m : int or 3 ints
+        Cells per axis.
+    per_cell : int
+        Bytes per cell of the work planned (see :func:`box_memory_estimate`).
+    name : str
+        How the message calls the parameter (``"m"``, ``"--box"``).
+    available : int, optional
+        Bytes available (default: free memory, cgroup and ``RLIMIT_AS`` room, and the
+        ``DHLB_MEMORY_LIMIT`` environment variable, whichever is least).
+
+    Raises
+    ------
+    InvalidParameterError
+        ``m`` is not a positive integer (or three).
+    ResourceLimitError
+        The estimate exceeds ``available``; the message gives both and the largest ``m`` that fits.
+
+    Examples
+    --------
+    >>> check_box_memory(400, available=8 * 10**9)
+    Traceback (most recent call last):
+    ...
+    dhlb.errors.ResourceLimitError: m = 400 needs about 450 GB of memory (estimate), more than the 8 GB allowed; ...
+    """
+    _, cells = _cells(m)
+    need = box_memory_estimate(m, per_cell=per_cell)
+    room = _available_bytes() if available is None else int(available)
+    if need > room:
+        largest = int(max(0.0, (room - _BASE_BYTES) / per_cell) ** (1 / 3))
+        fits = f"at most {largest} cells per axis fit" if largest >= 1 else "not even one cell fits"
+        raise ResourceLimitError(name, m if np.ndim(m) == 0 else list(np.asarray(m).ravel()), need, room,
+                                 f"{fits} ({cells} cells asked; set DHLB_MEMORY_LIMIT to change the budget)")
+    return need
+
+
 def box_tet_mesh(
     m: int | Sequence[int] = 4, lower: ArrayLike = (0.0, 0.0, 0.0), upper: ArrayLike = (1.0, 1.0, 1.0)
 ) -> TetMesh:
@@ -294,12 +385,19 @@ def box_tet_mesh(
     -------
     TetMesh
 
+    Raises
+    ------
+    InvalidParameterError, ResourceLimitError
+        ``m`` is not a positive integer, or its estimated memory (:func:`check_box_memory`)
+        exceeds what is available — refused before any work.
+
     Examples
     --------
     >>> mesh = box_tet_mesh(3, lower=-1.0, upper=1.0)
     >>> mesh.tets.shape, float(mesh.points.min()), round(float(mesh.volumes.sum()), 12)
     ((162, 4), -1.0, 8.0)
     """
+    check_box_memory(m)
     lo, hi = _vec3(lower, "lower"), _vec3(upper, "upper")
     if np.any(hi <= lo):
         raise InvalidParameterError(f"the box needs lower < upper on every axis, got lower={lo.tolist()}, "

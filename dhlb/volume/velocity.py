@@ -44,10 +44,12 @@ if TYPE_CHECKING:
     from dhlb.bundles.hermitian import HermitianLineBundle
     from dhlb.topology.complex import SimplicialComplex
 
-__all__ = ["DEFAULT_ORDER", "gauss_legendre", "edge_circulation", "velocity_bundle"]
+__all__ = ["DEFAULT_ORDER", "MAX_ORDER", "gauss_legendre", "edge_circulation", "velocity_bundle"]
 
 DEFAULT_ORDER = 4
 """Default number of Gauss–Legendre nodes per edge (exact for degree <= 7 along the edge)."""
+MAX_ORDER = 64
+"""Largest accepted number of Gauss–Legendre nodes per edge (exact for degree 127)."""
 
 
 def gauss_legendre(order: int) -> tuple[np.ndarray, np.ndarray]:
@@ -61,6 +63,9 @@ def gauss_legendre(order: int) -> tuple[np.ndarray, np.ndarray]:
     """
     if isinstance(order, (bool, np.bool_)) or not isinstance(order, (int, np.integer)) or order < 1:
         raise InvalidParameterError(f"the quadrature order must be an integer >= 1, got {order!r}")
+    if order > MAX_ORDER:  # leggauss builds an order x order matrix: 60000 nodes would need 29 GB
+        raise InvalidParameterError(f"the quadrature order must be at most {MAX_ORDER} (exact for polynomials of "
+                                    f"degree {2 * MAX_ORDER - 1} along an edge), got {order}")
     x, w = np.polynomial.legendre.leggauss(int(order))
     return (x + 1) / 2, w / 2
 
@@ -168,10 +173,12 @@ def edge_circulation(
 
 
 def _check_hbar(hbar) -> float:
-    try:
-        h = float(hbar)
-    except (TypeError, ValueError):
-        raise InvalidParameterError(f"hbar must be a positive number, got {hbar!r}") from None
+    import numbers
+
+    if isinstance(hbar, (bool, np.bool_)) or not isinstance(hbar, numbers.Real):
+        what = "complex" if isinstance(hbar, numbers.Complex) else type(hbar).__name__
+        raise InvalidParameterError(f"hbar must be a real number > 0, got {what} {hbar!r}")
+    h = float(hbar)
     if not (np.isfinite(h) and h > 0):
         raise InvalidParameterError(f"hbar must be a finite number > 0 (it sets the filament spacing), got {hbar!r}")
     return h

@@ -54,11 +54,18 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import DhlbWarning, NonFiniteError, ShapeError, UnresolvedFluxWarning
+from dhlb.errors import (
+    DhlbWarning,
+    InvalidParameterError,
+    InvalidTypeError,
+    NonFiniteError,
+    ShapeError,
+    UnresolvedFluxWarning,
+)
 from dhlb.volume.filaments import extract_filaments
 from dhlb.volume.linking import gauss_linking_integral
 from dhlb.volume.meshes import TetMesh, check_tet_mesh
-from dhlb.volume.velocity import DEFAULT_ORDER, _check_hbar, velocity_bundle
+from dhlb.volume.velocity import DEFAULT_ORDER, _check_hbar, gauss_legendre, velocity_bundle
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
@@ -219,6 +226,21 @@ def _per_vertex_velocity(velocity, n_rows: int, rows: np.ndarray) -> np.ndarray:
     return arr
 
 
+def _check_options(order, tol, placement, orientation) -> None:
+    """Every option of :func:`vortex_filaments` checked before any work (typed errors naming it)."""
+    import numbers
+
+    gauss_legendre(order)  # integer in 1 .. MAX_ORDER
+    if isinstance(tol, (bool, np.bool_)) or not isinstance(tol, numbers.Real):
+        raise InvalidTypeError(f"tol must be a real number in (0, 1), got {type(tol).__name__} {tol!r}")
+    if not (np.isfinite(tol) and 0 < tol < 1):
+        raise InvalidParameterError(f"tol must be a finite number in (0, 1), got {tol!r}")
+    for name, value, allowed in (("placement", placement, ("balanced", "vertex")),
+                                 ("orientation", orientation, ("fix", "require"))):
+        if not isinstance(value, str) or value not in allowed:
+            raise InvalidParameterError(f"{name} must be one of {', '.join(map(repr, allowed))}, got {value!r}")
+
+
 def _warn_flux(X, points, Om) -> int:
     big = np.abs(Om) > np.pi
     nbig = int(big.sum())
@@ -283,7 +305,10 @@ def vortex_filaments(
     Raises
     ------
     InvalidParameterError
-        ``hbar`` not a finite number > 0; bad ``order``, ``tol``, ``placement`` or ``orientation``.
+        ``hbar`` not a finite number > 0; bad ``order`` (1 .. 64), ``tol`` (in (0, 1)), ``placement``
+        or ``orientation`` — checked before any work.
+    InvalidTypeError
+        ``hbar`` or ``tol`` is not a real number (a string, a complex number).
     ShapeError, NonFiniteError
         ``V``/``T`` malformed; a velocity array not of shape (n, 3), not real, or NaN/inf (the
         vertex is named); a callable returning the wrong shape or NaN/inf (the edge and point are
@@ -311,10 +336,11 @@ def vortex_filaments(
     >>> len(res.filaments), res.filaments[0].closed
     (1, True)
     """
+    h = _check_hbar(hbar)
+    _check_options(order, tol, placement, orientation)
     from dhlb.fem import bundle_matrices, smallest_eigenpairs
     from dhlb.geometry import EuclideanComplex
 
-    h = _check_hbar(hbar)
     timings = {}
     t0 = t = time.perf_counter()
     if isinstance(V, TetMesh):
