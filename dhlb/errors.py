@@ -18,30 +18,28 @@ InvalidSimplexError
 from __future__ import annotations
 
 __all__ = [
-    "DhlbError",
-    "InvalidSimplexError",
-    "EmptyComplexError",
-    "RaggedInputError",
-    "SimplexNotFoundError",
-    "NonFiniteError",
-    "MeshParseError",
-    "NonManifoldError",
-    "NonOrientableError",
-    "InconsistentOrientationError",
-    "DegenerateSimplexError",
-    "UnreferencedVertexError",
-    "NotClosedError",
-    "NotExactError",
-    "NotAPathError",
-    "InvalidConnectionError",
-    "CurvatureMismatchError",
-    "IntegralityError",
-    "SectionZeroError",
+    # base classes
+    "DhlbError", "DhlbWarning",
+    # any layer: values, shapes, types, parameters
+    "NonFiniteError", "ShapeError", "InvalidTypeError", "InvalidParameterError", "ResourceLimitError",
+    # topology: simplices, complexes, manifolds
+    "InvalidSimplexError", "EmptyComplexError", "RaggedInputError", "SimplexNotFoundError", "NonManifoldError",
+    "NonOrientableError", "InconsistentOrientationError", "DegenerateSimplexError", "UnreferencedVertexError",
+    "UnreferencedVertexWarning", "InvalidMatrixError",
+    # forms
+    "InvalidCochainError", "NotClosedError", "NotExactError", "NotAPathError",
+    # bundles
+    "InvalidConnectionError", "CurvatureMismatchError", "IntegralityError", "SectionZeroError",
+    # geometry
     "InvalidMetricError",
-    "ConvergenceError",
-    "UnreferencedVertexWarning",
-    "DhlbWarning",
-    "InvalidCochainError",
+    # linear algebra
+    "InvalidOperatorError", "ConvergenceError", "InsufficientMemoryError",
+    # applications
+    "CurveIntersectionError", "UnresolvedFluxWarning",
+    # files
+    "MeshParseError", "OutputError", "OverwriteError",
+    # helpers for messages
+    "format_bytes", "differing_digits",
 ]
 
 
@@ -145,7 +143,42 @@ class InvalidMetricError(DhlbError, ValueError):
 
 
 class ConvergenceError(DhlbError, RuntimeError):
-    """An iterative solver did not reach its tolerance."""
+    """An iterative solver did not reach its tolerance.
+
+    Attributes
+    ----------
+    result : object or None
+        The partial result (e.g. an :class:`~dhlb.linalg.EigenResult` with ``converged=False``).
+
+    Examples
+    --------
+    >>> ConvergenceError("not converged", result=None).result is None
+    True
+    """
+
+    def __init__(self, message: str, *, result=None):
+        super().__init__(message)
+        self.result = result
+
+
+class InsufficientMemoryError(DhlbError, MemoryError):
+    """A factorization (or another step) would need more memory than is available.
+
+    Attributes
+    ----------
+    needed, available : int
+        The estimate and the available bytes, as in the message.
+
+    Examples
+    --------
+    >>> err = InsufficientMemoryError("too big", needed=2**33, available=2**30)
+    >>> isinstance(err, MemoryError), err.needed // err.available
+    (True, 8)
+    """
+
+    def __init__(self, message: str, *, needed: int = 0, available: int = 0):
+        super().__init__(message)
+        self.needed, self.available = int(needed), int(available)
 
 
 class DhlbWarning(UserWarning):
@@ -164,7 +197,6 @@ class InvalidOperatorError(DhlbError, ValueError):
     """A matrix is not Hermitian, not (semi)definite, or singular where the operation needs otherwise."""
 
 
-__all__ += ["ShapeError", "InvalidOperatorError"]
 
 
 class InvalidMatrixError(DhlbError, ValueError):
@@ -174,14 +206,12 @@ class InvalidMatrixError(DhlbError, ValueError):
     """
 
 
-__all__.append("InvalidMatrixError")
 
 
 class InvalidParameterError(DhlbError, ValueError):
     """A numeric parameter (a dimension, a grid size, a lens-space pair, ...) is out of its range."""
 
 
-__all__.append("InvalidParameterError")
 
 
 class InvalidCochainError(DhlbError, ValueError):
@@ -196,7 +226,6 @@ class CurveIntersectionError(DhlbError, ValueError):
     """Two curves whose linking number is asked for intersect (or touch to rounding accuracy)."""
 
 
-__all__.append("CurveIntersectionError")
 
 
 class UnresolvedFluxWarning(DhlbWarning):
@@ -207,7 +236,6 @@ class UnresolvedFluxWarning(DhlbWarning):
     """
 
 
-__all__.append("UnresolvedFluxWarning")
 
 
 # --------------------------------------------------------------------------- outputs and budgets
@@ -285,8 +313,6 @@ class InvalidTypeError(DhlbError, TypeError, ValueError):
     """
 
 
-__all__ += ["OutputError", "OverwriteError", "ResourceLimitError", "InvalidTypeError", "format_bytes",
-            "differing_digits"]
 
 
 def format_bytes(n: float) -> str:

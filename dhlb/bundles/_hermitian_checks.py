@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhlb.bundles._util import coboundary, simplex_name, wrap_angle
-from dhlb.errors import CurvatureMismatchError, InvalidConnectionError, NonFiniteError, NotClosedError
+from dhlb.errors import CurvatureMismatchError, InvalidConnectionError, NonFiniteError, NotClosedError, differing_digits
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -104,9 +104,10 @@ def checked_curvature(X: SimplicialComplex, r: np.ndarray, curvature: ArrayLike,
         badc = np.abs(mis) > atol * np.maximum(1.0, np.abs(Om))
         if np.any(badc):
             t = int(np.argmax(badc))
+            so, sh = differing_digits(Om[t], hol[t])
             raise CurvatureMismatchError(
                 f"triangle {simplex_name(X, 2, t)}: exp(iΩ) does not match the holonomy r_ij r_jk r_ki of "
-                f"the connection: Ω = {Om[t]:.6g}, holonomy angle = {hol[t]:.6g}, mismatch = {mis[t]:.3g} (mod 2π)"
+                f"the connection: Ω = {so}, holonomy angle = {sh}, mismatch = {mis[t]:.3g} (mod 2π)"
             )
     if X.dim >= 3 and X.n_simplices(3):
         dOm, scale = coboundary(X, 2, Om)

@@ -24,6 +24,7 @@ from dhlb.errors import (
     NonFiniteError,
     NotClosedError,
     ShapeError,
+    differing_digits,
 )
 
 __all__ = ["local_edges", "local_triangles", "curvature_tensor", "local_gauge_connection"]
@@ -222,9 +223,10 @@ def parse_connection(connection, m: int, n: int, arr: np.ndarray) -> np.ndarray:
         bad = np.abs(hol - np.exp(1j * arr[:, t])) > HOLONOMY_ATOL
         if bad.any():
             s = int(np.argmax(bad))
+            sh, so = differing_digits(np.angle(hol[s]), np.angle(np.exp(1j * arr[s, t])))
             raise CurvatureMismatchError(
-                f"simplex {s}, local triangle {(a, b, c)}: holonomy r_ab r_bc r_ca = {hol[s]:.6g} "
-                f"but exp(iΩ) = {np.exp(1j * arr[s, t]):.6g}; the curvature must satisfy "
+                f"simplex {s}, local triangle {(a, b, c)}: the holonomy r_ab r_bc r_ca has angle {sh} "
+                f"but Ω = {arr[s, t]!r} has angle {so} (mod 2π); the curvature must satisfy "
                 "r_ij r_jk r_ki = exp(iΩ_ijk) (docs/conventions.md)")
     return r
 

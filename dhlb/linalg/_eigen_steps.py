@@ -129,12 +129,10 @@ def _not_psd(lam0, shift):
 
 
 def _not_converged(res, maxiter, tol, p):
-    err = ConvergenceError(f"smallest_eigenpairs: not converged after {maxiter} iterations "
-                           f"(largest backward error {res.residuals.max():.3g} > tol = {tol:.3g}); for a "
-                           f"clustered spectrum raise block_size (now {p}) above the cluster size, else increase "
-                           "maxiter, loosen tol, or pass a better v0")
-    err.result = res
-    return err
+    return ConvergenceError(f"smallest_eigenpairs: not converged after {maxiter} iterations "
+                            f"(largest backward error {res.residuals.max():.3g} > tol = {tol:.3g}); for a "
+                            f"clustered spectrum raise block_size (now {p}) above the cluster size, else increase "
+                            "maxiter, loosen tol, or pass a better v0", result=res)
 
 
 def _iterate_lobpcg(be, A, M, U, k, eps_shift, tol, maxiter):

@@ -32,32 +32,12 @@ import math
 import os
 import resource
 
-from dhlb.errors import DhlbError
+from dhlb.errors import InsufficientMemoryError
 
 __all__ = ["InsufficientMemoryError", "available_bytes", "check_factorization_memory", "factor_bytes",
            "set_memory_limit"]
 
 _LIMIT: int | None = None
-
-
-class InsufficientMemoryError(DhlbError, MemoryError):
-    """A factorization (or another step) would need more memory than is available.
-
-    Attributes
-    ----------
-    needed, available : int
-        The estimate and the available bytes, as in the message.
-
-    Examples
-    --------
-    >>> err = InsufficientMemoryError("too big", needed=2**33, available=2**30)
-    >>> isinstance(err, MemoryError), err.needed // err.available
-    (True, 8)
-    """
-
-    def __init__(self, message: str, *, needed: int = 0, available: int = 0):
-        super().__init__(message)
-        self.needed, self.available = int(needed), int(available)
 
 
 def set_memory_limit(nbytes: int | None) -> None:
