@@ -36,8 +36,8 @@ __all__ = [
     "InvalidOperatorError", "ConvergenceError", "InsufficientMemoryError",
     # applications
     "CurveIntersectionError", "UnresolvedFluxWarning",
-    # files
-    "MeshParseError", "OutputError", "OverwriteError",
+    # files and pictures
+    "MeshParseError", "OutputError", "OverwriteError", "ViewerUnavailableError",
     # helpers for messages
     "format_bytes", "differing_digits",
 ]
@@ -260,6 +260,16 @@ class OutputError(DhlbError, OSError):
 
     def __str__(self) -> str:  # OSError would print its args tuple
         return str(self.args[0]) if self.args else ""
+
+
+class ViewerUnavailableError(DhlbError, RuntimeError):
+    """No way to show a picture here: no display for a window, or no EGL/OpenGL for a headless screenshot.
+
+    Examples
+    --------
+    >>> isinstance(ViewerUnavailableError("no display; pass screenshot="), RuntimeError)
+    True
+    """
 
 
 class OverwriteError(DhlbError, ValueError):

@@ -138,3 +138,20 @@ def test_prescribed_singularity_errors(argv, code, message, tmp_path, capsys):
 
     got, _, err = cli([example_path("spot.obj"), *argv, "-o", tmp_path / "e", "--no-png"], capsys)
     assert got == code and re.search(message, err), err
+
+
+def test_npz_documents_unreferenced_vertices_and_vtu_output(tmp_path):
+    """Issue 19 point 9 and issue 23: the .npz says which rows are NaN; -o OUT.vtu also writes a ParaView file."""
+    meshio = pytest.importorskip("meshio")
+    from dhlb.cli import main
+
+    V = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1], [5, 5, 5]])
+    F = [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]]
+    src = tmp_path / "oct.obj"
+    src.write_text("".join(f"v {x} {y} {z}\n" for x, y, z in V) + "".join(f"f {a+1} {b+1} {c+1}\n" for a, b, c in F))
+    assert main(["field", str(src), "--n", "1", "-o", str(tmp_path / "out.vtu"), "--no-png", "-q"]) == 0
+    data = np.load(tmp_path / "out.npz")
+    assert data["vertex_used"].tolist() == [True] * 6 + [False]
+    assert np.isnan(data["directions"][6]).all() and "NaN" in str(data["note"])
+    m = meshio.read(tmp_path / "out.vtu")
+    assert m.points.shape[0] >= 6 and "index" in m.cell_data

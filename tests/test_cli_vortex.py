@@ -145,3 +145,14 @@ def test_demo_fields_are_centred_in_the_box(name):
     allc = np.concatenate(curves)
     assert np.all(allc > P[0]) and np.all(allc < P[1])
     assert field.core_radius == pytest.approx(0.08)
+
+
+def test_vtu_output_opens_with_meshio(tmp_path):
+    """Issue 23: dhlb vortex -o OUT.vtu writes the tet mesh with ψ, |ψ| and the velocity, and the filaments beside it."""
+    meshio = pytest.importorskip("meshio")
+    from dhlb.cli import main
+
+    assert main(["vortex", "--box", "8", "-o", str(tmp_path / "v.vtu"), "--no-png", "-q"]) == 0
+    m = meshio.read(tmp_path / "v.vtu")
+    assert {"psi", "psi_abs", "velocity"} <= set(m.point_data) and "tetra" in m.cells_dict
+    assert (tmp_path / "v-filaments.vtp").exists()

@@ -12,7 +12,7 @@ import pytest
 
 PACKAGES = ["dhlb", "dhlb.topology", "dhlb.forms", "dhlb.bundles", "dhlb.geometry", "dhlb.fem", "dhlb.surface",
             "dhlb.stripes", "dhlb.volume", "dhlb.io", "dhlb.render", "dhlb.examples", "dhlb.linalg",
-            "dhlb.strategies"]
+            "dhlb.strategies", "dhlb.conformal"]
 
 
 def _public_objects():

@@ -23,7 +23,7 @@ if TYPE_CHECKING:
 __all__ = ["COMMAND_MODULES", "iter_commands"]
 
 #: module names under dhlb.commands, in the order ``dhlb --help`` lists them
-COMMAND_MODULES = ("info", "field", "stripes", "vortex", "demo")
+COMMAND_MODULES = ("info", "field", "stripes", "vortex", "conformal", "view", "demo")
 
 
 def iter_commands() -> Iterator[ModuleType]:

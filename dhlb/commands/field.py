@@ -126,6 +126,12 @@ def read_singularities(values):
     return out
 
 
+FIELD_NPZ_NOTE = ("u, directions, frames, vertex_used: one row per row of the input V; rows with vertex_used == False "
+                  "belong to vertices that no face uses and hold NaN. face_index: one entry per row of the input F. "
+                  "vertex_rows: the input rows of the mesh's vertices. singular_*: faces (input rows), indices "
+                  "(of the n-th power field) and points of the singularities.")
+
+
 def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
     """Write OUT.ply, OUT.npz (and OUT.png) for the field ``res`` of the input ``(V, F)``; return the paths.
 
@@ -150,10 +156,14 @@ def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
 
     write_ply(paths["ply"], V, F, binary=True, vertex_properties=props)
     sing = res.singularities
-    np.savez_compressed(
-        paths["npz"], u=mesh.to_input(res.u, fill=np.nan + 0j), directions=D, frames=mesh.to_input(res.frames),
-        face_index=res.input_face_index(), singular_faces=sing.input_faces, singular_index=sing.index,
-        singular_points=sing.points, vertex_rows=mesh.vertex_labels)
+    from dhlb.io.atomic import atomic_write
+
+    with atomic_write(paths["npz"], "wb") as fh:  # NaN rows for unreferenced vertices: said by vertex_used and note
+        np.savez_compressed(
+            fh, u=mesh.to_input(res.u, fill=np.nan + 0j), directions=D, frames=mesh.to_input(res.frames),
+            face_index=res.input_face_index(), singular_faces=sing.input_faces, singular_index=sing.index,
+            singular_points=sing.points, vertex_rows=mesh.vertex_labels, vertex_used=used,
+            note=np.array(FIELD_NPZ_NOTE))
     if png:
         from dhlb.render import render_field_png
 
@@ -170,7 +180,8 @@ def run(args) -> int:
     if not args.output or args.output == "-":
         raise UsageError("give the output base path with -o OUT (writes OUT.ply, OUT.npz, OUT.json, OUT.png)")
     out = args.output
-    for ext in (".ply", ".npz", ".json", ".png"):
+    vtu = out.lower().endswith(".vtu")  # also write the surface with its directions and indices for ParaView
+    for ext in (".ply", ".npz", ".json", ".png", ".vtu"):
         out = out.removesuffix(ext)
     parent = os.path.dirname(os.path.abspath(out))
     if not os.path.isdir(parent):
@@ -196,6 +207,10 @@ def run(args) -> int:
         print(f"dhlb field: note: {note}", file=sys.stderr)
     summary = res.to_json()
     paths = write_field(out, res, V, F, png=not args.no_png)
+    if vtu:
+        from dhlb.io.meshio_bridge import field_to_vtu
+
+        paths["vtu"] = field_to_vtu(res, out + ".vtu")
     t3 = time.perf_counter()
     summary["timings"] = dict(summary["timings"], io=t1 - t0, output=t3 - t2, end_to_end=t3 - t0)
     summary["files"] = paths

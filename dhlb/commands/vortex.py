@@ -230,14 +230,24 @@ def _velocity(args, V, T):
     return arr, f"{spec} (per-vertex)"  # checked against the mesh's rows by vortex_filaments
 
 
-def _outputs(args, result, meta) -> list[str]:
+OUTPUT_EXTENSIONS = (".ply", ".obj", ".vtu")
+"""``-o`` extensions: filament polylines (.ply, .obj) or the tet mesh with ψ, |ψ|, velocity for ParaView (.vtu)."""
+
+
+def _outputs(args, result, meta, velocity=None) -> list[str]:
     out = args.output
     if not out or out == "-":
         return []
     stem, ext = os.path.splitext(out)
-    if ext.lower() not in (".ply", ".obj"):
-        raise UsageError(f"-o must name a .ply or .obj file for the filament polylines, got {out!r}")
-    written = [(write_polylines_ply if ext.lower() == ".ply" else write_polylines_obj)(out, result.filaments)]
+    if ext.lower() not in OUTPUT_EXTENSIONS:
+        raise UsageError(f"-o must name a .ply or .obj file (filament polylines) or a .vtu file (ParaView), "
+                         f"got {out!r}")
+    if ext.lower() == ".vtu":
+        from dhlb.io.meshio_bridge import vortex_to_vtu
+
+        written = vortex_to_vtu(result, out, velocity)
+    else:
+        written = [(write_polylines_ply if ext.lower() == ".ply" else write_polylines_obj)(out, result.filaments)]
     with atomic_write(stem + ".json", "w", encoding="utf-8") as fh:
         json.dump({**meta, **result.to_dict()}, fh, indent=1)
     written.append(stem + ".json")
@@ -285,10 +295,12 @@ def run(args) -> int:
 
     if args.output and args.output != "-":
         ext = os.path.splitext(args.output)[1].lower()
-        if ext not in (".ply", ".obj"):  # fail before the computation
-            raise UsageError(f"-o must name a .ply or .obj file for the filament polylines, got {args.output!r}")
+        if ext not in OUTPUT_EXTENSIONS:  # fail before the computation
+            raise UsageError(f"-o must name a .ply or .obj file (filament polylines) or a .vtu file (ParaView), "
+                             f"got {args.output!r}")
         stem = os.path.splitext(args.output)[0]
-        derived = [args.output, stem + ".json"] + ([] if args.no_png else [stem + ".png"])
+        derived = ([args.output, stem + ".json"] + ([] if args.no_png else [stem + ".png"])
+                   + ([stem + "-filaments.vtp"] if ext == ".vtu" else []))
         check_outputs(derived, args)  # never over the mesh or the velocity file
         if not os.path.isdir(os.path.dirname(os.path.abspath(args.output))):
             raise UsageError(f"cannot write {args.output}: the folder does not exist")
@@ -296,7 +308,7 @@ def run(args) -> int:
     velocity, vname = _velocity(args, V, T)
     result = vortex_filaments(V, T, velocity, args.hbar, order=args.order, backend=args.backend, tol=args.tol)
     meta = {"mesh": mesh_name, "velocity": vname, "hbar": float(args.hbar)}
-    meta["written"] = _outputs(args, result, meta)
+    meta["written"] = _outputs(args, result, meta, velocity)
     data = result.to_dict()
     text = json.dumps({**data, **meta}, indent=1) if args.json else format_report(meta, data)
     print(text)

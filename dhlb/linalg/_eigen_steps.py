@@ -152,6 +152,8 @@ def _iterate_lobpcg(be, A, M, U, k, eps_shift, tol, maxiter):
         if lam[0] < -eps_shift:
             raise _not_psd(lam[0], -eps_shift)
         if np.all(eta <= tol):
-            return EigenResult(lam, _fix_phase(Uk), its, eta, True, be.name, -eps_shift, p, "lobpcg")
-    raise _not_converged(EigenResult(lam, _fix_phase(Uk), its, eta, False, be.name, -eps_shift, p, "lobpcg"),
+            return EigenResult(lam, _fix_phase(Uk), its, eta, True, be.name, -eps_shift, p,
+                               getattr(be, "method", "lobpcg"))
+    raise _not_converged(EigenResult(lam, _fix_phase(Uk), its, eta, False, be.name, -eps_shift, p,
+                                     getattr(be, "method", "lobpcg")),
                          maxiter, tol, p)

@@ -24,6 +24,7 @@ name            method                                                          
 ``cholmod``     CHOLMOD supernodal ``L Lᴴ``, complex Hermitian directly                  scikit-sparse
 ``cholespy``    CHOLMOD inside cholespy, real only: the real 2N embedding of ``K``        cholespy
 ``amg-lobpcg``  LOBPCG preconditioned by smoothed-aggregation AMG; O(N) memory           pyamg
+``petsc``       SLEPc Krylov–Schur, shift-and-invert by MUMPS, under MPI                 petsc4py, slepc4py
 =============== ======================================================================== ==============
 
 Symbolic analysis (fill-reducing ordering) is computed once per sparsity pattern and reused: the
@@ -254,10 +255,14 @@ _REGISTRY = {
     "cholmod": (_lazy("dhlb.linalg.backends_cholesky", "CholmodBackend"), ("sksparse",)),
     "cholespy": (_lazy("dhlb.linalg.backends_cholesky", "CholespyBackend"), ("cholespy",)),
     "amg-lobpcg": (_lazy("dhlb.linalg.backends_amg", "AMGLobpcgBackend"), ("pyamg",)),
+    "petsc": (_lazy("dhlb.linalg.backends_petsc", "PetscBackend"), ("petsc4py", "slepc4py", "mpi4py")),
 }
 _INSTALL = {"sksparse": "apt-get install libsuitesparse-dev && pip install 'scikit-sparse<0.5' (SuiteSparse 5) "
                         "or pip install scikit-sparse (SuiteSparse >= 7)",
-            "cholespy": "pip install cholespy", "pyamg": "pip install pyamg"}
+            "cholespy": "pip install cholespy", "pyamg": "pip install pyamg",
+            "petsc4py": "Debian 12: .ci/mpi-setup.sh (python3-petsc4py-complex python3-slepc4py-complex "
+                        "python3-mpi4py; see docs/mpi.md)",
+            "slepc4py": "see docs/mpi.md", "mpi4py": "apt-get install python3-mpi4py (see docs/mpi.md)"}
 
 
 def _importable(module: str) -> bool:

@@ -16,8 +16,9 @@ Distribution
     :class:`~dhlb.errors.InvalidOperatorError` naming the ranks (no rank is left waiting).
     An exception that escapes on one rank only (e.g. raised while validating input before this
     backend is reached) would leave the others waiting in a collective call: with more than one
-    rank the backend installs :func:`install_abort_hook`, which prints the error once and calls
-    ``MPI_Abort``, ending all ranks.
+    rank, importing this module installs :func:`install_abort_hook`, which prints the error once
+    and calls ``MPI_Abort``, ending all ranks.  Import it (or register the backend) before any
+    per-rank work, or run the script as ``python -m mpi4py script.py``, which does the same.
 Eigenpairs (``eigensolve``)
     SLEPc ``EPS``, Krylov–Schur, generalized Hermitian problem (``GHEP``) in shift-and-invert
     mode at ``−ε`` (``ε`` the Gershgorin shift of :func:`dhlb.linalg.eigen.default_shift`), i.e.
@@ -263,6 +264,17 @@ def _raise_if_failed(ksp, what):
                                    "numerically singular")
 
 
+def _factor_stats(ksp, solver) -> dict:
+    """Size of the factor and flops of the factorization as reported by MUMPS (empty for other solvers)."""
+    if solver != "mumps":
+        return {"solver": solver}
+    F = ksp.getPC().getFactorMatrix()
+    entries = F.getMumpsInfog(29)  # negative: millions of entries
+    return {"solver": solver, "factor_entries": float(entries if entries >= 0 else -entries * 1e6),
+            "factor_flops": float(F.getMumpsRinfog(3)),
+            "peak_mb_max_rank": float(F.getMumpsInfog(21)), "peak_mb_total": float(F.getMumpsInfog(22))}
+
+
 # ---------------------------------------------------------------------- factor
 class _PetscFactor:
     """``solve(B)`` with an LU factorization of a distributed matrix (MUMPS); collective."""
@@ -290,11 +302,17 @@ class _PetscFactor:
         self._probe()
 
     def _probe(self):
-        # MUMPS reports a failed factorization through the PC on the first solve, so solve once now
+        # MUMPS reports a failed factorization through the PC on the first solve, so solve once now;
+        # with null-pivot detection (ICNTL(24) = 1) it counts the null pivots in INFOG(28)
         b = self.K.createVecRight()
         b.set(1.0)
         self.ksp.solve(b, self._x)
         _raise_if_failed(self.ksp, "factorize")
+        if self.solver == "mumps":
+            null = self.ksp.getPC().getFactorMatrix().getMumpsInfog(28)
+            if null > 0:
+                raise InvalidOperatorError(f"the matrix to factorize is singular (MUMPS found {null} null "
+                                           "pivot(s))")
         if not np.all(np.isfinite(self._x.getArray(readonly=True))):
             raise InvalidOperatorError("the matrix to factorize is singular (the factorization produced inf/NaN)")
 
@@ -318,6 +336,17 @@ class PetscBackend:
     """SLEPc Krylov–Schur in shift-and-invert mode (MUMPS) and PETSc KSP solves, under MPI.
 
     See the module docstring.  Every method is collective over ``MPI_COMM_WORLD``.
+
+    Examples
+    --------
+    >>> import numpy as np, scipy.sparse as sp
+    >>> from dhlb.linalg import smallest_eigenpairs
+    >>> n = 500
+    >>> A = sp.diags([-np.ones(n - 1), np.r_[1, 2 * np.ones(n - 2), 1], -np.ones(n - 1)], [-1, 0, 1])
+    >>> be = PetscBackend() if petsc_available() else None            # None: the default backend
+    >>> lam = smallest_eigenpairs(A, sp.identity(n), k=2, backend=be).eigenvalues
+    >>> np.allclose(lam, 2 - 2 * np.cos(np.pi * np.arange(2) / n), atol=1e-12)
+    True
     """
 
     name = "petsc"
@@ -330,6 +359,7 @@ class PetscBackend:
         install_abort_hook()
         self._eps = None
         self._count = 0
+        self.stats: dict = {}
 
     def _prefix(self):
         self._count += 1
@@ -396,6 +426,7 @@ class PetscBackend:
         except PETSc.Error as err:
             raise InvalidOperatorError(f"SLEPc failed (error code {err.ierr}): A + εM (ε = {shift:.3g}) is singular, "
                                        "so A is not positive semidefinite or M is not positive definite") from err
+        self.stats = _factor_stats(E.getST().getKSP(), self.solver)
         nconv = min(E.getConverged(), p)
         if nconv == 0 and E.getIterationNumber() >= maxiter:
             return Xa, int(maxiter)
@@ -408,6 +439,10 @@ class PetscBackend:
         if not np.iscomplexobj(Xa):
             out = out.real if np.abs(out.imag).max() <= 1e-14 * np.abs(out).max() else out
         return out, max(1, int(E.getIterationNumber()))
+
+
+if petsc_available():  # under mpirun -n P > 1: from the import on, a failure on one rank ends all ranks
+    install_abort_hook()
 
 
 # ---------------------------------------------------------------------- command line under MPI
@@ -431,7 +466,10 @@ def mpi_main(argv=None) -> int:
 
     from dhlb.cli import build_parser, main
     from dhlb.commands._common import run_command
+    from dhlb.linalg.backends import _REGISTRY, register_backend
 
+    if "petsc" not in _REGISTRY:
+        register_backend("petsc", PetscBackend, ("petsc4py", "slepc4py", "mpi4py"))
     rank, size = comm_rank_size()
     argv = list(sys.argv[1:] if argv is None else argv)
     if size == 1:

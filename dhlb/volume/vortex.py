@@ -147,6 +147,16 @@ class VortexResult:
                 f"{s['n_tets']} tets, ħ = {s['hbar']:.4g}, λ = {self.eigenvalue:.6g}, "
                 f"{self.timings['total']:.3g} s)")
 
+    def show(self, *, screenshot=None, **kwargs):
+        """Show the result in polyscope (``pip install 'dhlb[view]'``), or render it to ``screenshot`` (PNG).
+
+        See :func:`dhlb.render.view.show`; raises ``ImportError`` or
+        :class:`~dhlb.errors.ViewerUnavailableError` saying what is missing.
+        """
+        from dhlb.render.view import show
+
+        return show(self, screenshot=screenshot, **kwargs)
+
     def to_dict(self) -> dict:
         """A JSON-ready dict.
 

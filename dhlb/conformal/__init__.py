@@ -1,0 +1,35 @@
+"""Close-to-conformal deformations of volumes (seed part 3 §2.4): a quaternionic bundle on tet meshes.
+
+Layer 5 (an application beside :mod:`dhlb.surface`, :mod:`dhlb.stripes` and :mod:`dhlb.volume`);
+imports only the layers below (topology, bundles, geometry, fem) and the tet meshes of
+:mod:`dhlb.volume`.
+
+* :func:`conformal_deformation` → :class:`ConformalResult` (deformed points, unit quaternions φ,
+  λ₁, per-tet distortion and scale error);
+* target factors: :func:`point_charge_factor`, :func:`mobius_factor`, :class:`ConformalFactor`;
+* building blocks: :func:`quaternion_bundle` (the SU(2) connection as a
+  :class:`dhlb.bundles.VectorBundle`), :func:`edge_gradients`, :func:`tet_distortion`;
+* :mod:`dhlb.conformal.quaternion`: quaternion algebra, H ≅ C², H ≅ R⁴ (SO(4)).
+
+Examples
+--------
+>>> from dhlb.volume import ball_tet_mesh
+>>> from dhlb.conformal import conformal_deformation, mobius_factor
+>>> res = conformal_deformation(ball_tet_mesh(3), None, mobius_factor((0.0, 0.0, 3.0), 2.5))
+>>> res.statistics["inverted_tets"], bool(abs(res.eigenvalue) < 1e-4), bool(res.statistics["distortion_mean"] < 1.3)
+(0, True, True)
+"""
+from dhlb.conformal import quaternion
+from dhlb.conformal.deformation import (
+    ConformalResult,
+    conformal_deformation,
+    edge_gradients,
+    quaternion_bundle,
+    tet_distortion,
+)
+from dhlb.conformal.factors import ConformalFactor, mobius_factor, point_charge_factor
+
+__all__ = [
+    "ConformalFactor", "ConformalResult", "conformal_deformation", "edge_gradients", "mobius_factor",
+    "point_charge_factor", "quaternion", "quaternion_bundle", "tet_distortion",
+]

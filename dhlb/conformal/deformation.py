@@ -1,0 +1,599 @@
+r"""Close-to-conformal deformations of tetrahedral meshes (seed part 3 §2.4; Chern, Pinkall, Schröder 2015).
+
+Given a tet mesh of a domain ``M ⊂ R³ = Im H`` and a target log conformal factor ``u``, find
+``f: M → R³`` with ``|df(X)| ≈ e^u |X|``.  Exact solutions (Möbius maps) have
+``df(X) = e^u φ̄ X φ`` with a unit quaternion field ``φ`` that is *parallel* for the metric
+connection ``∇_X ψ = dψ(X) + ½ (grad u × X) ψ`` on ``M × H`` (derived, with the curvature of ∇,
+in ``proofs/derive_conformal_quaternion.py``).  :func:`conformal_deformation` runs
+
+========== =====================================================================================
+phase      what
+========== =====================================================================================
+mesh       :func:`dhlb.volume.check_tet_mesh` (validate, orient), connectedness, charges outside
+factor     ``u`` at the vertices and ``g_ij`` = grad u on every edge (at its midpoint for a
+           :class:`~dhlb.conformal.ConformalFactor`, central differences of a plain callable,
+           recovered from vertex values for an array: see :func:`edge_gradients`)
+bundle     :func:`quaternion_bundle`: the complex rank-2 hermitian :class:`dhlb.bundles.VectorBundle`
+           with ``η_ij = exp(−½ g_ij × e_ij)`` ∈ SU(2) (H ≅ C², right complex structure)
+solve      :func:`dhlb.fem.connection_laplacian` + :func:`dhlb.fem.connection_mass` (lumped),
+           :func:`dhlb.fem.smallest_eigenpairs`; ``φ = ψ/|ψ|``
+map        ``E_ij = e^{(u_i+u_j)/2} φ̄_ij e_ij φ_ij`` (φ_ij: φ_i and φ_j transported to the edge
+           midpoint and averaged), then ``min Σ w_ij |f_j − f_i − E_ij|²`` (cotan weights): one
+           Poisson solve ``L f = D₀ᵀ W E`` with three right-hand sides, vertex 0 pinned
+           (:func:`dhlb.fem.solve`); ``f`` is translated so that its centroid is that of the input
+quality    per tet: deformation gradient ``F``, ``distortion = σ_max/σ_min``,
+           ``scale_error = log(mean σ) − u``
+========== =====================================================================================
+
+Examples
+--------
+>>> import numpy as np
+>>> from dhlb.volume import ball_tet_mesh
+>>> from dhlb.conformal import conformal_deformation, mobius_factor
+>>> mesh = ball_tet_mesh(4)
+>>> res = conformal_deformation(mesh, None, mobius_factor((2.5, 0.0, 0.0), 2.0))
+>>> res.points.shape, res.phi.shape, bool(abs(res.eigenvalue) < 1e-5)
+((321, 3), (321, 4), True)
+>>> bool(res.statistics["distortion_mean"] < 1.25), res.statistics["inverted_tets"]   # = the exact map's P1 interpolant
+(True, 0)
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from dhlb.conformal.factors import ConformalFactor
+from dhlb.conformal.quaternion import from_c2, imag, qconj, qexp, qmul, su2_matrix
+from dhlb.errors import (
+    InvalidParameterError,
+    NonFiniteError,
+    NonManifoldError,
+    SectionZeroError,
+    ShapeError,
+)
+from dhlb.volume.meshes import TetMesh, check_tet_mesh
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike
+
+    from dhlb.bundles import VectorBundle
+
+__all__ = ["ConformalResult", "conformal_deformation", "edge_gradients", "quaternion_bundle", "tet_distortion"]
+
+DEFAULT_TOL = 1e-10
+"""Default backward-error tolerance of the eigen solve."""
+
+
+def _smallest_pair(A, M, tol, backend):
+    """The smallest eigenpair of ``A ψ = λ M ψ`` when A may be slightly indefinite.
+
+    The plain connection energy ``Σ w_ij |ψ_j − η_ij ψ_i|²`` is PSD for the trivial bundle but not
+    in general when some cotangent weights are negative (obtuse dihedral angles, e.g. in
+    :func:`dhlb.volume.ball_tet_mesh`): then λ₁ can be slightly negative and
+    :func:`dhlb.fem.smallest_eigenpairs` with its default shift refuses.  We then search near
+    ``σ = −τ`` and certify that no eigenvalue lies below the one found by a Cholesky/LDLᴴ
+    factorization of ``A − (λ − δ) M`` (:func:`dhlb.fem.solve` with ``positive_definite=True``
+    checks the pivots), raising τ tenfold until both hold.
+
+    TODO(engine): ``smallest_eigenpairs`` should offer this itself (an option such as
+    ``psd=False``: find the lower end of the spectrum of a Hermitian A, certified by inertia).
+    """
+    from dhlb.errors import InvalidOperatorError
+    from dhlb.fem import smallest_eigenpairs, solve
+
+    try:
+        return smallest_eigenpairs(A, M, k=1, tol=tol, backend=backend)
+    except InvalidOperatorError as err:
+        if "not positive semidefinite" not in str(err):
+            raise
+    scale = float(abs(A).sum(axis=1).max() / M.diagonal().real.min())  # Gershgorin bound of |λ|
+    tau = np.sqrt(np.finfo(float).eps) * scale
+    rhs = np.random.default_rng(0).standard_normal(A.shape[0])
+    for _ in range(16):
+        res = smallest_eigenpairs(A, M, k=1, tol=tol, sigma=-tau, backend=backend)
+        lam = float(res.eigenvalues[0])
+        delta = 1e-9 * scale + 1e-6 * abs(lam)
+        try:
+            solve(A, M, lam - delta, rhs, backend=backend, positive_definite=True)
+            return res
+        except InvalidOperatorError:
+            tau = max(10 * tau, 2 * abs(lam))
+    raise InvalidOperatorError("could not certify the smallest eigenvalue of the quaternionic connection "
+                               "Laplacian (it is far from positive semidefinite: is the mesh very poor?)")
+
+
+@dataclass(frozen=True, eq=False)
+class ConformalResult:
+    """What :func:`conformal_deformation` computed.
+
+    Attributes
+    ----------
+    points : (N, 3) float64
+        The deformed vertices ``f`` (compact vertex order of ``mesh.complex``; equal to the input
+        row order unless the input had unused vertices).
+    phi : (N, 4) float64
+        The unit quaternion ``φ = ψ/|ψ|`` per vertex (w, x, y, z); ``df(X) ≈ e^u φ̄ X φ``.
+    eigenvalue : float
+        ``λ₁ = ψᴴAψ / ψᴴMψ``, the connection energy of ψ (0 iff the discrete connection has a
+        parallel section).
+    distortion : (m,) float64
+        Per tet (rows of ``mesh.tets``): ``σ_max/σ_min`` of the deformation gradient (1: conformal).
+    scale_error : (m,) float64
+        Per tet: ``log(mean σ) − u`` with ``u`` the mean of its vertex values.
+    u : (N,) float64
+        The target log conformal factor at the vertices.
+    statistics : dict
+        Counts, the solver report, ``inverted_tets`` (``det F <= 0``), distortion / scale-error
+        summaries, ``max_edge_angle`` (largest ``|½ g × e|``, the rotation angle of a transport).
+    timings : dict
+        Seconds per phase: ``mesh``, ``factor``, ``bundle``, ``solve``, ``map``, ``quality``, ``total``.
+    mesh : TetMesh
+    bundle : VectorBundle
+        The complex rank-2 bundle (:func:`quaternion_bundle`).
+    edge_gradient : (n_1, 3) float64
+        The value of grad u used on every canonical edge.
+
+    Examples
+    --------
+    >>> from dhlb.volume import box_tet_mesh
+    >>> res = conformal_deformation(box_tet_mesh(2), None, 0.5)            # u = 1/2: scale by e^{1/2}
+    >>> bool(abs(res.distortion.max() - 1) < 1e-9), sorted(res.to_json())[:4]
+    (True, ['distortion', 'eigenvalue', 'phi', 'points'])
+    """
+
+    points: np.ndarray
+    phi: np.ndarray
+    eigenvalue: float
+    distortion: np.ndarray
+    scale_error: np.ndarray
+    u: np.ndarray
+    statistics: dict
+    timings: dict
+    mesh: TetMesh = field(repr=False)
+    bundle: Any = field(repr=False)
+    edge_gradient: np.ndarray = field(repr=False)
+
+    def __repr__(self) -> str:
+        s = self.statistics
+        return (f"ConformalResult({s['n_vertices']} vertices, {s['n_tets']} tets, λ₁ = {self.eigenvalue:.4g}, "
+                f"distortion mean {s['distortion_mean']:.4g} max {s['distortion_max']:.4g}, "
+                f"{self.timings['total']:.3g} s)")
+
+    def to_json(self) -> dict:
+        """A JSON-ready dict of the result.
+
+        Keys ``points``, ``tets``, ``phi``, ``u``, ``distortion``, ``scale_error``, ``eigenvalue``,
+        ``statistics``, ``timings``.
+
+        Examples
+        --------
+        >>> import json
+        >>> from dhlb.volume import box_tet_mesh
+        >>> d = conformal_deformation(box_tet_mesh(1), None, 0.0).to_json()
+        >>> len(d["points"]), len(d["tets"]), len(json.dumps(d)) > 100
+        (8, 6, True)
+        """
+        return {
+            "points": self.points.tolist(),
+            "tets": self.mesh.tets.tolist(),
+            "phi": self.phi.tolist(),
+            "u": self.u.tolist(),
+            "distortion": self.distortion.tolist(),
+            "scale_error": self.scale_error.tolist(),
+            "eigenvalue": float(self.eigenvalue),
+            "statistics": self.statistics,
+            "timings": dict(self.timings),
+        }
+
+    def save(self, path: str | os.PathLike[str]) -> list[str]:
+        """Write the deformed mesh: ``.json`` (:meth:`to_json`), ``.mesh``/``.msh``/``.vtk`` (tets), or ``.npz``.
+
+        Parameters
+        ----------
+        path : str or path-like
+            The extension chooses the format.
+
+        Returns
+        -------
+        list of str
+            The paths written.
+
+        Examples
+        --------
+        >>> import os, tempfile
+        >>> from dhlb.io import read_volume
+        >>> from dhlb.volume import box_tet_mesh
+        >>> res = conformal_deformation(box_tet_mesh(1), None, 0.0)
+        >>> with tempfile.TemporaryDirectory() as d:
+        ...     paths = res.save(os.path.join(d, "f.vtk"))
+        ...     print(read_volume(paths[0])[1].shape)
+        (6, 4)
+        """
+        out = os.fspath(path)
+        ext = os.path.splitext(out)[1].lower()
+        if ext == ".json":
+            with open(out, "w", encoding="utf-8") as fh:
+                json.dump(self.to_json(), fh)
+        elif ext == ".npz":
+            np.savez(out, points=self.points, tets=self.mesh.tets, phi=self.phi, u=self.u,
+                     distortion=self.distortion, scale_error=self.scale_error, eigenvalue=self.eigenvalue)
+        elif ext in (".mesh", ".msh", ".vtk"):
+            from dhlb.io import write_volume  # the io layer is below the applications
+
+            write_volume(out, self.points, self.mesh.tets)
+        else:
+            raise InvalidParameterError(f"cannot save a conformal deformation as {ext or 'a file without extension'!r}"
+                                        f" ({out}); use .json, .npz, .mesh, .msh or .vtk")
+        return [out]
+
+
+# ---------------------------------------------------------------------------- checks
+def _check_connected(mesh: TetMesh) -> None:
+    n, labels = mesh.complex.connected_components()
+    if n <= 1:
+        return
+    counts = np.bincount(labels, minlength=n)
+    tet_comp = labels[mesh.tets[:, 0]]
+    tcounts = np.bincount(tet_comp, minlength=n)
+    parts = "; ".join(f"component {c}: {int(counts[c])} vertices, {int(tcounts[c])} tets (first tet #"
+                      f"{int(np.argmax(tet_comp == c))})" for c in range(min(n, 6)))
+    raise NonManifoldError(
+        f"the tet mesh has {n} connected components ({parts}{'; ...' if n > 6 else ''}). The least-energy "
+        "section would live on one component only and the map is defined per component up to its own rigid "
+        "motion: deform each component separately (split with mesh.complex.connected_components())."
+    )
+
+
+def _inside(mesh: TetMesh, x: np.ndarray, rtol: float = 1e-12) -> np.ndarray:
+    """Whether each point of ``x`` lies in a (closed) tetrahedron of ``mesh``."""
+    P, T = mesh.points, mesh.tets
+    p0 = P[T[:, 0]]
+    B = np.stack([P[T[:, 1]] - p0, P[T[:, 2]] - p0, P[T[:, 3]] - p0], axis=2)  # (m, 3, 3) columns
+    Binv = np.linalg.inv(B)
+    out = np.zeros(x.shape[0], bool)
+    for k, a in enumerate(x):
+        lam = np.einsum("mij,mj->mi", Binv, a - p0)
+        bary = np.concatenate([1 - lam.sum(1, keepdims=True), lam], axis=1)
+        out[k] = bool(np.any(bary.min(axis=1) >= -rtol))
+    return out
+
+
+def _check_singularities(mesh: TetMesh, factor: ConformalFactor, rows: np.ndarray) -> None:
+    S = factor.singularities
+    if S.shape[0] == 0:
+        return
+    inside = _inside(mesh, S)
+    if not np.any(inside):
+        return
+    k = int(np.argmax(inside))
+    d = np.linalg.norm(mesh.points - S[k], axis=1)
+    v = int(np.argmin(d))
+    raise InvalidParameterError(
+        f"{factor.labels[k]} lies inside the mesh, where u is singular (nearest vertex: row {int(rows[v])} at "
+        f"{np.round(mesh.points[v], 6).tolist()}, distance {d[v]:.3g}); {int(inside.sum())} of "
+        f"{S.shape[0]} singular points are inside. Move the charges outside the solid."
+    )
+
+
+# ---------------------------------------------------------------------------- u and its gradient
+def _vertex_values(u, mesh: TetMesh, n_rows: int, rows: np.ndarray) -> np.ndarray:
+    P = mesh.points
+    N = P.shape[0]
+    if isinstance(u, (bool, np.bool_)):
+        raise InvalidParameterError("u must be a number, an array of one value per vertex or a callable, got a bool")
+    if callable(u):
+        try:
+            val = np.asarray(u(P.copy()))
+        except (TypeError, ValueError, IndexError) as exc:
+            raise ShapeError(f"the callable u failed on an ({N}, 3) array of points: {exc}") from exc
+        if val.shape not in ((N,), (N, 1)):
+            raise ShapeError(f"the callable u must map ({N}, 3) points to ({N},) values, returned shape {val.shape}")
+        if np.iscomplexobj(val):
+            raise ShapeError("the callable u must return real values, got complex ones")
+        val = val.reshape(N).astype(np.float64)
+        bad = ~np.isfinite(val)
+        if np.any(bad):
+            v = int(np.argmax(bad))
+            raise NonFiniteError(f"u({np.round(P[v], 6).tolist()}) = {val[v]} at vertex row {int(rows[v])} is not "
+                                 f"finite ({int(bad.sum())} vertices); is a singularity of u inside the mesh?")
+        return val
+    try:
+        arr = np.asarray(u)
+    except (TypeError, ValueError):
+        raise ShapeError("u must be a number, an array of one value per vertex or a callable") from None
+    if arr.dtype == object or not (np.issubdtype(arr.dtype, np.number)) or np.iscomplexobj(arr):
+        raise ShapeError(f"u must be real numbers, got dtype {arr.dtype}")
+    arr = arr.astype(np.float64)
+    if arr.ndim == 0:
+        if not np.isfinite(arr):
+            raise NonFiniteError(f"the constant u = {float(arr)} is not finite")
+        return np.full(N, float(arr))
+    if arr.shape != (n_rows,):
+        raise ShapeError(f"u must have one value per vertex row of the mesh, shape ({n_rows},), got {arr.shape}")
+    bad = ~np.isfinite(arr)
+    if np.any(bad):
+        v = int(np.argmax(bad))
+        raise NonFiniteError(f"u[{v}] = {arr[v]} is not finite ({int(bad.sum())} entries); give finite values")
+    return arr[rows]
+
+
+def edge_gradients(mesh: TetMesh, u: Any, values: np.ndarray | None = None) -> np.ndarray:
+    """The value of ``grad u`` on every canonical edge ``i < j`` of ``mesh.complex`` (shape ``(n_1, 3)``).
+
+    * a :class:`~dhlb.conformal.ConformalFactor`: its exact gradient at the edge midpoint;
+    * another callable: central differences of ``u`` at the midpoint, step ``δ = ε^{1/3}·diam``
+      (error ``O(δ²)``);
+    * vertex values (``values``; ``u`` is then ignored): the volume-weighted average of the P1
+      tet gradients at each vertex (gradient recovery), averaged over the two ends.  This is
+      second-order accurate at vertices whose star is point-symmetric (Kuhn/Freudenthal grids)
+      and first-order in general, so the holonomy of the discrete connection then matches the
+      curvature only to first order on irregular meshes; prefer a callable when you have one.
+
+    Only the component of ``g`` orthogonal to the edge enters the transport ``exp(−½ g × e)``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.volume import box_tet_mesh
+    >>> mesh = box_tet_mesh(2)
+    >>> g = edge_gradients(mesh, None, values=mesh.points @ [1.0, 2.0, 3.0])    # linear u: exact
+    >>> bool(np.allclose(g, [1.0, 2.0, 3.0]))
+    True
+    """
+    X, P = mesh.complex, mesh.points
+    E = X.simplices(1)
+    mid = 0.5 * (P[E[:, 0]] + P[E[:, 1]])
+    if values is None and isinstance(u, ConformalFactor):
+        g = u.gradient(mid)
+    elif values is None:
+        diam = float(np.linalg.norm(P.max(0) - P.min(0)))
+        d = np.finfo(float).eps ** (1 / 3) * max(diam, 1e-300)
+        g = np.empty_like(mid)
+        for c in range(3):
+            step = np.zeros(3)
+            step[c] = d
+            up, dn = (np.asarray(u(mid + step), dtype=np.float64), np.asarray(u(mid - step), dtype=np.float64))
+            if up.shape != (mid.shape[0],) or dn.shape != (mid.shape[0],):
+                raise ShapeError(f"the callable u must map (m, 3) points to (m,) values, returned shape {up.shape}")
+            g[:, c] = (up - dn) / (2 * d)
+    else:
+        T = mesh.tets
+        p0 = P[T[:, 0]]
+        B = np.stack([P[T[:, 1]] - p0, P[T[:, 2]] - p0, P[T[:, 3]] - p0], axis=1)  # rows e_k
+        du = values[T[:, 1:]] - values[T[:, :1]]
+        Gt = np.linalg.solve(B, du[:, :, None])[:, :, 0]                           # B G = du
+        vol = np.abs(np.linalg.det(B)) / 6.0
+        N = P.shape[0]
+        acc = np.zeros((N, 3))
+        wsum = np.bincount(T.ravel(), weights=np.repeat(vol, 4), minlength=N)
+        for c in range(3):
+            acc[:, c] = np.bincount(T.ravel(), weights=np.repeat(vol * Gt[:, c], 4), minlength=N)
+        gv = acc / wsum[:, None]
+        g = 0.5 * (gv[E[:, 0]] + gv[E[:, 1]])
+    g = np.asarray(g, dtype=np.float64)
+    if g.shape != mid.shape:
+        raise ShapeError(f"the gradient of u must have shape {mid.shape}, got {g.shape}")
+    bad = ~np.isfinite(g).all(axis=1)
+    if np.any(bad):
+        e = int(np.argmax(bad))
+        raise NonFiniteError(f"grad u at the midpoint {np.round(mid[e], 6).tolist()} of edge {E[e].tolist()} is "
+                             "not finite; is a singularity of u inside the mesh?")
+    return g
+
+
+def quaternion_bundle(mesh: TetMesh, edge_gradient: np.ndarray) -> VectorBundle:
+    """The hermitian rank-2 bundle ``M × H ≅ M × C²`` with ``η_ij = exp(−½ g_ij × e_ij)`` (left multiplication).
+
+    ``e_ij = x_j − x_i`` on the canonical edge ``i < j``; a parallel section satisfies
+    ``ψ_j = η_ij ψ_i`` (the exact transport of ``∇ψ = dψ + ½ (g × dx) ψ`` for ``g`` constant on the
+    edge).  Left multiplication by quaternions is C-linear for the right complex structure
+    ``J q = q i``, so in the coordinates of :func:`~dhlb.conformal.quaternion.to_c2` each
+    transport is the SU(2) matrix of :func:`~dhlb.conformal.quaternion.su2_matrix`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.volume import box_tet_mesh
+    >>> mesh = box_tet_mesh(1)
+    >>> E = quaternion_bundle(mesh, np.tile([0.0, 0.0, 1.0], (mesh.complex.n_simplices(1), 1)))
+    >>> E.rank, E.field, E.metric, E.is_flat()     # constant grad u = g: curvature ½ g (g·(X × Y)) ≠ 0
+    (2, 'C', True, False)
+    """
+    from dhlb.bundles import VectorBundle
+
+    X, P = mesh.complex, mesh.points
+    E = X.simplices(1)
+    e = P[E[:, 1]] - P[E[:, 0]]
+    eta = qexp(imag(-0.5 * np.cross(edge_gradient, e)))
+    return VectorBundle(X, su2_matrix(eta), "C", metric=True)
+
+
+def tet_distortion(P: ArrayLike, T: ArrayLike, F: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Singular values of the affine map of every tet ``P[T] → F[T]``: ``(σ (m, 3) descending, det (m,), J (m, 3, 3))``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> P = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    >>> s, det, _ = tet_distortion(P, [[0, 1, 2, 3]], P * [2.0, 1.0, 1.0])
+    >>> s.tolist(), det.tolist()
+    ([[2.0, 1.0, 1.0]], [2.0])
+    """
+    P, F = np.asarray(P, dtype=np.float64), np.asarray(F, dtype=np.float64)
+    T = np.asarray(T, dtype=np.int64)
+    D = np.stack([P[T[:, k]] - P[T[:, 0]] for k in (1, 2, 3)], axis=2)
+    Df = np.stack([F[T[:, k]] - F[T[:, 0]] for k in (1, 2, 3)], axis=2)
+    J = Df @ np.linalg.inv(D)
+    return np.linalg.svd(J, compute_uv=False), np.linalg.det(J), J
+
+
+# ---------------------------------------------------------------------------- the pipeline
+def _mid_phi(phi: np.ndarray, E: np.ndarray, e: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """``φ`` at the edge midpoints: φ_i transported forward and φ_j backward by half the edge, averaged."""
+    half = qexp(imag(-0.25 * np.cross(g, e)))
+    s = qmul(half, phi[E[:, 0]]) + qmul(qconj(half), phi[E[:, 1]])
+    n = np.linalg.norm(s, axis=1)
+    bad = n < 1e-8
+    if np.any(bad):
+        k = int(np.argmax(bad))
+        raise SectionZeroError(f"φ turns by about π along edge {E[k].tolist()}: the section is not resolved there "
+                               "(refine the mesh where grad u is large)")
+    return s / n[:, None]
+
+
+def conformal_deformation(
+    P: ArrayLike | TetMesh,
+    T: ArrayLike | None,
+    u: Any,
+    *,
+    backend: Any = None,
+    tol: float = DEFAULT_TOL,
+    orientation: str = "fix",
+) -> ConformalResult:
+    """Close-to-conformal deformation of a tet mesh with target log conformal factor ``u`` (module docstring).
+
+    Parameters
+    ----------
+    P : (n, 3) float array, or TetMesh
+        Vertex positions, or a validated :class:`~dhlb.volume.TetMesh` (then ``T`` must be None).
+    T : (m, 4) int array or None
+        Tetrahedra (rows of ``P``), any orientation.
+    u : number, (n,) array, callable or ConformalFactor
+        The target ``log`` of the conformal factor: a constant, one value per row of ``P``, a
+        callable ``(k, 3) → (k,)``, or a :class:`~dhlb.conformal.ConformalFactor` (e.g.
+        :func:`~dhlb.conformal.point_charge_factor`, :func:`~dhlb.conformal.mobius_factor`),
+        whose exact gradient is used and whose singular points must lie outside the mesh.
+    backend : str or backend object, optional
+        Linear-algebra backend of :func:`dhlb.fem.smallest_eigenpairs` and :func:`dhlb.fem.solve`.
+    tol : float
+        Backward-error tolerance of the eigen solve.
+    orientation : {"fix", "require"}
+        :func:`~dhlb.volume.check_tet_mesh`: re-orient negatively oriented tets, or raise.
+
+    Returns
+    -------
+    ConformalResult
+
+    Raises
+    ------
+    ShapeError, NonFiniteError
+        ``u`` of the wrong length or shape, NaN/inf values, a callable returning the wrong shape
+        or non-finite values (the vertex is named); malformed ``P``/``T``.
+    DegenerateSimplexError, InconsistentOrientationError, NonManifoldError
+        Flat tets, folded (inverted) tets, a non-manifold mesh (the element is named), or a
+        disconnected mesh (the components are listed).
+    InvalidParameterError
+        A singular point of ``u`` (a charge) inside the mesh: the charge and the nearest vertex
+        are named; bad ``tol``.
+    SectionZeroError
+        The least-energy section vanishes at a vertex (u varies too fast for the mesh).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.volume import ball_tet_mesh
+    >>> from dhlb.conformal import point_charge_factor
+    >>> res = conformal_deformation(ball_tet_mesh(2), None, point_charge_factor([[0, 0, 1.6, 0.8]]))
+    >>> bool(res.eigenvalue > 0), bool(res.distortion.mean() > 1), res.statistics["inverted_tets"]
+    (True, True, 0)
+    """
+    from dhlb.fem import connection_laplacian, connection_mass, cotan_edge_weights, solve
+    from dhlb.geometry import EuclideanComplex
+
+    if not (np.isscalar(tol) and np.isfinite(tol) and tol > 0):
+        raise InvalidParameterError(f"tol must be a finite number > 0, got {tol!r}")
+    timings: dict[str, float] = {}
+    t0 = t = time.perf_counter()
+
+    def lap(name):
+        nonlocal t
+        now = time.perf_counter()
+        timings[name] = now - t
+        t = now
+
+    if isinstance(P, TetMesh):
+        if T is not None:
+            raise ShapeError("pass either a TetMesh as P (and T=None) or the arrays P and T")
+        mesh, n_rows, rows = P, P.points.shape[0], np.arange(P.points.shape[0])
+    else:
+        mesh = check_tet_mesh(P, T, orientation=orientation)
+        n_rows, rows = np.shape(P)[0], np.asarray(mesh.complex.vertex_labels)
+    _check_connected(mesh)
+    if isinstance(u, ConformalFactor):
+        _check_singularities(mesh, u, rows)
+    X, Pm = mesh.complex, mesh.points
+    lap("mesh")
+
+    uv = _vertex_values(u, mesh, n_rows, rows)
+    if callable(u):
+        g = edge_gradients(mesh, u)
+    else:
+        g = edge_gradients(mesh, None, values=uv)
+    lap("factor")
+
+    bundle = quaternion_bundle(mesh, g)
+    geo = EuclideanComplex(X, points=Pm)
+    E = X.simplices(1)
+    e = Pm[E[:, 1]] - Pm[E[:, 0]]
+    lap("bundle")
+
+    A = connection_laplacian(bundle, geo)
+    M = connection_mass(geo, 2)
+    res = _smallest_pair(A, M, tol, backend)
+    psi = res.eigenvectors[:, 0]
+    lam = float(np.real(np.vdot(psi, A @ psi)) / np.real(np.vdot(psi, M @ psi)))
+    q = from_c2(psi.reshape(-1, 2))
+    nq = np.linalg.norm(q, axis=1)
+    small = nq <= 1e-12 * nq.max()
+    if np.any(small):
+        v = int(np.argmax(small))
+        raise SectionZeroError(f"the least-energy section vanishes at vertex row {int(rows[v])} "
+                               f"({np.round(Pm[v], 6).tolist()}): u varies too fast for this mesh; refine it")
+    phi = q / nq[:, None]
+    lap("solve")
+
+    pm = _mid_phi(phi, E, e, g)
+    target = np.exp(0.5 * (uv[E[:, 0]] + uv[E[:, 1]]))[:, None] * qmul(qconj(pm), qmul(imag(e), pm))[:, 1:]
+    w = cotan_edge_weights(geo)
+    N = Pm.shape[0]
+    b = np.zeros((N, 3))
+    for c in range(3):
+        b[:, c] = (np.bincount(E[:, 1], weights=w * target[:, c], minlength=N)
+                   - np.bincount(E[:, 0], weights=w * target[:, c], minlength=N))
+    L = geo.stiffness_matrix().tocsr()
+    Ml = geo.mass_matrix(lumped=True).tocsr()
+    f = np.zeros((N, 3))
+    if N > 1:
+        # translation fixed by pinning vertex 0 (f_0 = 0): L restricted to the other vertices is PD
+        f[1:] = solve(L[1:, 1:], Ml[1:, 1:], 0.0, b[1:], backend=backend, positive_definite=True)
+    mass = Ml.diagonal()
+    f += (mass @ Pm - mass @ f) / mass.sum()
+    lap("map")
+
+    sig, det, _ = tet_distortion(Pm, mesh.tets, f)
+    with np.errstate(divide="ignore"):
+        distortion = np.where(sig[:, 2] > 0, sig[:, 0] / np.where(sig[:, 2] > 0, sig[:, 2], 1.0), np.inf)
+        scale_error = np.log(sig.mean(axis=1)) - uv[mesh.tets].mean(axis=1)
+    lap("quality")
+    timings["total"] = time.perf_counter() - t0
+    stats = {
+        "n_vertices": int(N), "n_edges": int(E.shape[0]), "n_tets": int(mesh.tets.shape[0]),
+        "u": (getattr(u, "name", "callable") if callable(u) else "array" if np.ndim(u) else
+              f"constant {float(np.asarray(u)):g}"),
+        "inverted_tets": int(np.sum(det <= 0)),
+        "distortion_mean": float(np.mean(distortion)), "distortion_max": float(np.max(distortion)),
+        "scale_error_rms": float(np.sqrt(np.mean(scale_error**2))),
+        "scale_error_max": float(np.max(np.abs(scale_error))),
+        "max_edge_angle": float(0.5 * np.linalg.norm(np.cross(g, e), axis=1).max()) if E.size else 0.0,
+        "solver": {"backend": res.backend, "iterations": int(res.iterations), "converged": bool(res.converged),
+                   "residual": float(np.max(res.residuals)), "shift": float(res.shift), "method": res.method},
+    }
+    return ConformalResult(f, phi, lam, distortion, scale_error, uv, stats, timings, mesh, bundle, g)

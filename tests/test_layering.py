@@ -1,0 +1,116 @@
+"""The layering of the package, written once and enforced: imports point down only, applications are independent.
+
+Each top-level package of ``dhlb`` has a rank; a module may import (at any place in the file, also
+inside functions) only packages of a lower rank, or its own — except that the presentation methods
+of results (``show``, ``_repr_png_``, ``_repr_html_``) may call the ``render`` layer at run time.  Applications share a rank and must not
+import each other.  ``KNOWN`` lists the imports that still break the rule, each with the reason; the
+re-layering removes them and the test then requires their removal (a listed import that is gone
+fails too, so the list cannot go stale).
+"""
+
+from __future__ import annotations
+
+import ast
+import pathlib
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[1] / "dhlb"
+
+RANK = {
+    "errors": 0, "_progress": 0,                 # leaves: exceptions; an optional progress bar
+    "topology": 1, "examples": 1,                 # layer 1 (examples: named complexes, built on topology only)
+    "forms": 2, "io": 2,                          # layer 2; io: file formats ↔ arrays (topology only)
+    "bundles": 3,
+    "geometry": 4, "linalg": 4,                   # layer 4: Euclidean complexes; sparse solvers
+    "fem": 5,
+    "surface": 6, "stripes": 6, "volume": 6, "conformal": 6,   # applications
+    "strategies": 7, "render": 7,                 # around it
+    "commands": 8, "cli": 9, "__main__": 10,
+}
+APPLICATIONS = {"surface", "stripes", "volume", "conformal"}
+
+KNOWN = {
+    ("stripes", "surface"): "stripe_pattern builds its line field with surface.direction_field and reads the "
+                            "surface half-edge tables (the mesh layer of issue 17 will hold those)",
+    ("surface", "stripes"): "surface re-exports stripe_pattern for old scripts (a deprecated alias)",
+    ("conformal", "volume"): "tet meshes (TetMesh, box/ball generators) live in dhlb.volume until the mesh layer",
+    ("linalg", "cli"): "the petsc backend's MPI entry point runs the command line (belongs in commands)",
+    ("linalg", "commands"): "the petsc backend's MPI entry point runs the command line (belongs in commands)",
+}
+
+
+PRESENTATION = {"show", "_repr_png_", "_repr_html_"}
+"""Methods by which a result presents itself (notebooks, the viewer): they may defer to ``render`` at call time."""
+
+
+def _nodes(tree):
+    """Every node except the bodies of presentation methods."""
+    stack = [tree]
+    while stack:
+        node = stack.pop()
+        yield node
+        stack.extend(child for child in ast.iter_child_nodes(node)
+                     if not (isinstance(child, ast.FunctionDef) and child.name in PRESENTATION))
+
+
+def imports_of(path: pathlib.Path) -> set[str]:
+    """Top-level ``dhlb`` packages imported anywhere in the file (absolute imports), presentation methods aside."""
+    out = set()
+    for node in _nodes(ast.parse(path.read_text(encoding="utf-8"))):
+        names = ([node.module] if isinstance(node, ast.ImportFrom) and node.module and node.level == 0
+                 else [a.name for a in node.names] if isinstance(node, ast.Import) else [])
+        for name in names:
+            parts = name.split(".")
+            if parts[0] == "dhlb" and len(parts) > 1:
+                out.add(parts[1])
+            if isinstance(node, ast.ImportFrom) and node.module == "dhlb":
+                out.update(a.name for a in node.names)
+    return out
+
+
+def violations(edges) -> set[tuple[str, str]]:
+    """The (importer, imported) pairs that point up or across applications."""
+    bad = set()
+    for src, dst in edges:
+        if src == dst or dst not in RANK or src not in RANK:
+            continue
+        if RANK[dst] > RANK[src] or (RANK[dst] == RANK[src] and (src in APPLICATIONS or dst in APPLICATIONS
+                                                                  or RANK[src] in (2, 4))):
+            bad.add((src, dst))
+    return bad
+
+
+def package_edges() -> set[tuple[str, str]]:
+    edges = set()
+    for path in ROOT.rglob("*.py"):
+        rel = path.relative_to(ROOT).parts
+        src = rel[0].removesuffix(".py")
+        if src == "__init__":
+            continue
+        edges |= {(src, dst) for dst in imports_of(path)}
+    return edges
+
+
+def test_every_package_has_a_rank():
+    packages = {p.name.removesuffix(".py") for p in ROOT.iterdir()
+                if (p.is_dir() and (p / "__init__.py").exists()) or (p.suffix == ".py" and p.name != "__init__.py")}
+    assert packages <= set(RANK), f"give these a layer in RANK: {sorted(packages - set(RANK))}"
+
+
+def test_imports_point_down_and_applications_are_independent():
+    bad = violations(package_edges())
+    new = {e: "?" for e in bad if e not in KNOWN}
+    assert not new, f"imports against the layering (import from a lower layer only): {sorted(new)}"
+    fixed = sorted(set(KNOWN) - bad)
+    assert not fixed, f"these known exceptions are gone: remove them from KNOWN: {fixed}"
+
+
+@pytest.mark.parametrize(("src", "code"), [("topology", "from dhlb.fem import mass_matrix"),
+                                           ("surface", "import dhlb.volume.vortex"),
+                                           ("linalg", "def f():\n    from dhlb.geometry import EuclideanComplex")])
+def test_an_upward_import_is_caught(tmp_path, src, code):
+    """The check can fail: a deliberately added upward (or sideways) import is reported."""
+    path = tmp_path / "mod.py"
+    path.write_text(code, encoding="utf-8")
+    assert violations({(src, dst) for dst in imports_of(path)})
