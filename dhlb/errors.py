@@ -33,7 +33,7 @@ __all__ = [
     # geometry
     "InvalidMetricError",
     # linear algebra
-    "InvalidOperatorError", "ConvergenceError", "InsufficientMemoryError",
+    "InvalidOperatorError", "NotSemidefiniteError", "ConvergenceError", "InsufficientMemoryError",
     # applications
     "CurveIntersectionError", "UnresolvedFluxWarning",
     # files and pictures
@@ -197,6 +197,19 @@ class InvalidOperatorError(DhlbError, ValueError):
     """A matrix is not Hermitian, not (semi)definite, or singular where the operation needs otherwise."""
 
 
+
+
+class NotSemidefiniteError(InvalidOperatorError):
+    """A matrix that must be positive semidefinite has an eigenvalue below the tolerance (found or proved).
+
+    Raised by :func:`dhlb.linalg.smallest_eigenpairs` with its default ``psd=True``; pass
+    ``psd=False`` for the smallest pairs of an indefinite matrix.
+
+    Examples
+    --------
+    >>> issubclass(NotSemidefiniteError, InvalidOperatorError)
+    True
+    """
 
 
 class InvalidMatrixError(DhlbError, ValueError):

@@ -340,3 +340,26 @@ def test_solve_positive_definite_checks_lambda(backend):
         np.testing.assert_allclose((A - lam * M) @ xi, b, atol=1e-9)
     with pytest.raises(InvalidOperatorError, match="λ = 0"):
         solve(A, M, 0.0, b, backend=backend, positive_definite=True)   # singular: not PD either
+
+
+# ---------------------------------------------------------------------- indefinite A (psd=False)
+@pytest.mark.parametrize("complex_", [False, True])
+def test_indefinite_pencil_lowest_pairs_certified_by_inertia(complex_):
+    """psd=False: the k algebraically smallest pairs, also when some lie far below the default shift."""
+    n = 1200
+    rng = np.random.default_rng(3)
+    d = np.sort(rng.uniform(1.0, 50.0, n))
+    d[:3] = [-40.0, -2e-7, 0.5]                        # one far below, one just below −ε, one above
+    Q = sp.diags(np.exp(1j * rng.uniform(0, 2 * np.pi, n)) if complex_ else np.ones(n))
+    A = (Q @ sp.diags(d) @ Q.conj().T + 1e-3 * path_laplacian(n)).tocsr()
+    M = sp.identity(n, format="csr")
+    exact = np.linalg.eigvalsh(A.toarray())[:4]
+    with pytest.raises(InvalidOperatorError, match="not positive semidefinite"):
+        smallest_eigenpairs(A, M, k=2)
+    res = smallest_eigenpairs(A, M, k=4, psd=False)
+    np.testing.assert_allclose(res.eigenvalues, exact, rtol=1e-9, atol=1e-12)
+    assert res.converged and res.factorizations >= 2          # −ε saw 2 below, the nearest search missed −40
+    shifted = smallest_eigenpairs(A + 41.0 * M, M, k=1, psd=False)       # PSD now: one factorization suffices
+    assert shifted.factorizations == 1 and shifted.eigenvalues[0] == pytest.approx(exact[0] + 41.0, rel=1e-9)
+    with pytest.raises(InvalidParameterError, match="psd"):
+        smallest_eigenpairs(A, M, k=1, psd="no")

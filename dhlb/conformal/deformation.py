@@ -77,37 +77,17 @@ def _smallest_pair(A, M, tol, backend):
 
     The plain connection energy ``Σ w_ij |ψ_j − η_ij ψ_i|²`` is PSD for the trivial bundle but not
     in general when some cotangent weights are negative (obtuse dihedral angles, e.g. in
-    :func:`dhlb.volume.ball_tet_mesh`): then λ₁ can be slightly negative and
-    :func:`dhlb.fem.smallest_eigenpairs` with its default shift refuses.  We then search near
-    ``σ = −τ`` and certify that no eigenvalue lies below the one found by a Cholesky/LDLᴴ
-    factorization of ``A − (λ − δ) M`` (:func:`dhlb.fem.solve` with ``positive_definite=True``
-    checks the pivots), raising τ tenfold until both hold.
-
-    TODO(engine): ``smallest_eigenpairs`` should offer this itself (an option such as
-    ``psd=False``: find the lower end of the spectrum of a Hermitian A, certified by inertia).
+    :func:`dhlb.volume.ball_tet_mesh`): then λ₁ can be slightly negative.  The engine's default
+    (any backend, e.g. AMG-LOBPCG on large meshes) is tried first; if it proves A indefinite, the
+    engine's ``psd=False`` mode finds the smallest pair certified by the inertia of ``A − σM``.
     """
-    from dhlb.errors import InvalidOperatorError
-    from dhlb.fem import smallest_eigenpairs, solve
+    from dhlb.errors import NotSemidefiniteError
+    from dhlb.fem import smallest_eigenpairs
 
     try:
         return smallest_eigenpairs(A, M, k=1, tol=tol, backend=backend)
-    except InvalidOperatorError as err:
-        if "not positive semidefinite" not in str(err):
-            raise
-    scale = float(abs(A).sum(axis=1).max() / M.diagonal().real.min())  # Gershgorin bound of |λ|
-    tau = np.sqrt(np.finfo(float).eps) * scale
-    rhs = np.random.default_rng(0).standard_normal(A.shape[0])
-    for _ in range(16):
-        res = smallest_eigenpairs(A, M, k=1, tol=tol, sigma=-tau, backend=backend)
-        lam = float(res.eigenvalues[0])
-        delta = 1e-9 * scale + 1e-6 * abs(lam)
-        try:
-            solve(A, M, lam - delta, rhs, backend=backend, positive_definite=True)
-            return res
-        except InvalidOperatorError:
-            tau = max(10 * tau, 2 * abs(lam))
-    raise InvalidOperatorError("could not certify the smallest eigenvalue of the quaternionic connection "
-                               "Laplacian (it is far from positive semidefinite: is the mesh very poor?)")
+    except NotSemidefiniteError:
+        return smallest_eigenpairs(A, M, k=1, tol=tol, backend=backend, psd=False)
 
 
 @dataclass(frozen=True, eq=False)

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg as sla
 
-from dhlb.errors import ConvergenceError, InvalidOperatorError
+from dhlb.errors import ConvergenceError, InvalidOperatorError, NotSemidefiniteError
 from dhlb.linalg._checks import eta as _eta
 from dhlb.linalg._checks import fix_phase as _fix_phase
 from dhlb.linalg._checks import norm1 as _norm1
@@ -124,7 +124,7 @@ def _rayleigh_ritz(A, M, W, k, shift, normA, normM):
 
 
 def _not_psd(lam0, shift):
-    return InvalidOperatorError(f"A is not positive semidefinite: found the eigenvalue {lam0:.6g} "
+    return NotSemidefiniteError(f"A is not positive semidefinite: found the eigenvalue {lam0:.6g} "
                                 f"< -ε = {shift:.3g}; pass sigma= to search near a chosen value")
 
 

@@ -195,14 +195,18 @@ class SuperLUBackend:
 
     name = "superlu"
 
-    def factorize(self, K, *, positive_definite: bool = False):
-        """Factorize ``K``; raises :class:`InvalidOperatorError` if it is singular (or not PD when asked)."""
+    def factorize(self, K, *, positive_definite: bool = False, inertia: bool = False):
+        """Factorize ``K``; raises :class:`InvalidOperatorError` if it is singular (or not PD when asked).
+
+        ``inertia=True`` forbids pivoting off the diagonal, so that the factor's
+        ``negative_pivots`` counts the negative eigenvalues of ``K`` (Sylvester's law of inertia).
+        """
         K = canonical_csc(K)
         n = K.shape[0]
         complex_ = K.dtype.kind == "c"
         need = check_factorization_memory(n, K.nnz, complex_=complex_, dimension=lambda: pattern_dimension(K),
                                           backend=self.name, alternatives=_fitting_alternatives())
-        kw = {"diag_pivot_thresh": 0.0 if positive_definite else 0.01, "options": {"SymmetricMode": True}}
+        kw = {"diag_pivot_thresh": 0.0 if positive_definite or inertia else 0.01, "options": {"SymmetricMode": True}}
         key = pattern_key(self.name, K)
         try:
             with blas_guard():

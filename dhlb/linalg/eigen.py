@@ -53,7 +53,14 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from dhlb.errors import ConvergenceError, InvalidOperatorError, InvalidParameterError, NonFiniteError, ShapeError
+from dhlb.errors import (
+    ConvergenceError,
+    InvalidOperatorError,
+    InvalidParameterError,
+    NonFiniteError,
+    NotSemidefiniteError,
+    ShapeError,
+)
 from dhlb.linalg._checks import eta as _eta
 from dhlb.linalg._checks import fix_phase as _fix_phase
 from dhlb.linalg._checks import norm1 as _norm1
@@ -123,7 +130,7 @@ def default_tol(n: int) -> float:
 
 def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: int = 1000, sigma=None,
                         v0=None, backend=None, block_size: int | None = None,
-                        factor_shift: str = "auto") -> EigenResult:
+                        factor_shift: str = "auto", psd: bool = True) -> EigenResult:
     """The ``k`` smallest eigenpairs of ``A u = λ M u`` (A Hermitian PSD, M Hermitian PD).
 
     Parameters
@@ -155,6 +162,12 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
         choose; ``"floor"`` factorizes ``A + εM`` (``σ = −ε``), so that :attr:`EigenResult.factor`
         approximates ``A⁻¹`` — for callers that go on iterating with ``A⁻¹`` (e.g. the
         unit-modulus stripe section).
+    psd : bool
+        ``True`` (default): ``A`` must be positive semidefinite, and an eigenvalue below ``−ε``
+        is an error.  ``False``: ``A`` may be indefinite; the ``k`` algebraically smallest pairs
+        are returned, certified by inertia: SuperLU's ``L D Lᴴ`` pivots count the eigenvalues
+        below the shift, and the shift is lowered (refactorizing) until ARPACK has found all of
+        them.  Direct backends only (SuperLU is used for the inertia).
 
     Returns
     -------
@@ -195,6 +208,8 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
         raise InvalidParameterError(f"tol must be a positive number, got {tol!r}")
     if not (isinstance(maxiter, (int, np.integer)) and maxiter >= 1):
         raise InvalidParameterError(f"maxiter must be a positive integer, got {maxiter!r}")
+    if not isinstance(psd, (bool, np.bool_)):
+        raise InvalidParameterError(f"psd must be True or False, got {psd!r}")
     if factor_shift not in ("auto", "floor"):
         raise InvalidParameterError(f"factor_shift must be 'auto' or 'floor', got {factor_shift!r}")
     default = sigma is None
@@ -211,7 +226,10 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
     if not auto:
         get_backend(backend)  # an unknown or uninstalled name is an error even when the dense path answers
     if (auto and n <= DENSE_MAX) or ncv >= n - 1:
-        return _dense(A, M, k, shift, default, tol, complex_)
+        return _dense(A, M, k, shift, default and psd, tol, complex_)
+    if default and not psd:
+        with blas_guard():
+            return _lowest_of_indefinite(A, M, k, eps_shift, tol, maxiter, v, ncv)
     if v0 is not None and np.ndim(v0) == 2 and np.shape(v0)[1] >= k:  # a warm start that may already pass
         _, _, lam, U, eta = _rayleigh_ritz(A, M, np.asarray(v0), k, shift, _norm1(A), _norm1(M))
         if np.all(eta <= tol) and not (default and lam[0] < shift):
@@ -234,6 +252,54 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
             return replace(res, note=f"{be.name} would not fit in memory ({err}); solved by amg-lobpcg instead")
         res = _arpack(fac, A, M, k, shift, tol, maxiter, v, ncv, default, getattr(fac, "name", be.name))
     return replace(res, factor=fac, factorizations=1)
+
+
+def _lowest_of_indefinite(A, M, k, eps_shift, tol, maxiter, v, ncv, tries=12):
+    """The ``k`` smallest pairs of an indefinite pencil, certified by the inertia of ``A − σM``.
+
+    ``ν`` negative pivots of the ``L D Lᴴ`` factorization of ``A − σM`` (Sylvester) mean exactly
+    ``ν`` eigenvalues below ``σ``.  ARPACK asks for the ``ν + k`` nearest to ``σ``; when ``ν`` of
+    them lie below ``σ`` every eigenvalue below ``σ`` has been found, and the ``k`` smallest of
+    what was found are the ``k`` smallest of the pencil.  Otherwise ``σ`` is lowered below the
+    lowest eigenvalue found, by ten times its distance to ``σ`` and then a hundred, ... (never
+    below a Gershgorin bound of the spectrum), and the pencil refactorized.
+    """
+    from dhlb.linalg.backends import SuperLUBackend
+
+    n, normA, normM = A.shape[0], _norm1(A), _norm1(M)
+    shift, solves = -eps_shift, 0
+    d = M.diagonal().real                              # Gershgorin: every eigenvalue is >= floor
+    floor = -1.01 * float(np.max(abs(A).sum(axis=1).A1 / d)) / float(min(1.0, np.min(d) / np.max(d))) - eps_shift
+    for attempt in range(1, tries + 1):
+        try:
+            fac = SuperLUBackend().factorize((A - shift * M).tocsc(), inertia=True)
+        except InvalidOperatorError:  # σ is (numerically) an eigenvalue: step off it
+            shift -= eps_shift
+            continue
+        nu = fac.negative_pivots
+        if nu == 0:
+            res = _arpack(fac, A, M, k, shift, tol, maxiter, v, ncv, False, fac.name)
+            return replace(res, factor=fac, factorizations=attempt, solves=solves + res.solves)
+        nev = min(n - 2, nu + k)
+        op = _CountingInverse(fac, n, np.complex128 if np.iscomplexobj(v) else np.float64)
+        arpack_tol, X = 10 * tol, None
+        while True:
+            X = _eigsh(A, M, nev, shift, op, v, max(ncv, min(n - 1, 2 * nev + 1)), arpack_tol, maxiter)
+            if X is None:
+                break
+            _, _, lam_all, _, _ = _rayleigh_ritz(A, M, X, X.shape[1], shift, normA, normM)
+            _, _, lam, U, eta = _rayleigh_ritz(A, M, X, k, -np.inf, normA, normM)
+            if int(np.sum(lam_all < shift)) < nu or np.all(eta <= tol) or arpack_tol < _EPS:
+                break
+            v, arpack_tol = U.sum(axis=1), arpack_tol / 100
+        solves += op.count
+        if X is not None and int(np.sum(lam_all < shift)) == nu and np.all(eta <= tol):
+            return EigenResult(lam, _fix_phase(U), solves, eta, True, fac.name, shift, ncv, "arpack",
+                               factorizations=attempt, solves=solves, factor=fac)
+        low = min(float(lam_all.min()) if X is not None else shift, shift)
+        shift = max(low - max(abs(shift - low), eps_shift) * 10.0**attempt, floor)
+    raise ConvergenceError(f"smallest_eigenpairs(psd=False): the {k} smallest eigenvalues were not certified "
+                           f"after {tries} shifts (last shift {shift:.6g}); is A far from semidefinite?")
 
 
 def _iterative(be, A, M, k, v, block_size, eps_shift, tol, maxiter, default, complex_):
@@ -395,9 +461,9 @@ def _factorize_shifted(be, A, M, shift, eps_shift, default):
         try:
             return be.factorize((A + eps_shift * M).tocsc(), positive_definite=True), shift
         except InvalidOperatorError as err:
-            raise InvalidOperatorError(f"A + εM (ε = {eps_shift:.3g}) is not positive definite, so A is not "
-                                       f"positive semidefinite ({err}); pass sigma= to search near a chosen "
-                                       "value") from err
+            raise NotSemidefiniteError(f"A + εM (ε = {eps_shift:.3g}) is not positive definite, so A is not "
+                                       f"positive semidefinite ({err}); pass psd=False for the smallest pairs of "
+                                       "an indefinite A, or sigma= to search near a chosen value") from err
     try:
         return be.factorize((A - shift * M).tocsc()), shift
     except InvalidOperatorError:  # σ is exactly an eigenvalue: step off it

@@ -42,7 +42,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import DhlbWarning, InvalidOperatorError, InvalidParameterError
+from dhlb.errors import DhlbWarning, InvalidParameterError, NotSemidefiniteError
 from dhlb.fem import select_backend, smallest_eigenpairs
 from dhlb.stripes.energy import ENERGIES, stripe_matrices
 from dhlb.stripes.oneform import StripeForm, stripe_form
@@ -316,9 +316,7 @@ def _solve(form, energy, lumped, branch_weight, backend, tol, block_size, sectio
     try:
         res = smallest_eigenpairs(A, M, 1, tol=tol, backend=backend, block_size=block_size, factor_shift=shift)
         indefinite = False
-    except InvalidOperatorError as err:
-        if "not positive semidefinite" not in str(err):
-            raise
+    except NotSemidefiniteError:
         res, indefinite = _indefinite(A, M, tol, backend, block_size), True
     t2 = time.perf_counter()
     x, it = _section(section, A, M, res.eigenvectors[:, 0], res, cplx, tol, iterations, seed, unit_tol)
