@@ -19,3 +19,6 @@ settings.register_profile(
 settings.register_profile("dev", deadline=None, max_examples=200,
                           suppress_health_check=[HealthCheck.too_slow])
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
+# tests/mpi holds scripts run under mpirun by tests/test_linalg_petsc.py (they need mpi4py), not test modules
+collect_ignore = ["mpi"]

@@ -16,6 +16,8 @@ Examples
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from dhlb.errors import InvalidConnectionError
@@ -41,17 +43,25 @@ def check_prime(p) -> int:
     >>> check_prime(7)
     7
     """
-    from sympy import isprime
-
     try:
         q = int(p)
     except (TypeError, ValueError):
         raise InvalidConnectionError(f"the field ('GF', {p!r}) needs an integer prime p") from None
-    if q != p or not isprime(q):
+    if q != p or not _is_prime(q):
         raise InvalidConnectionError(f"the field ('GF', {p!r}) needs a prime p; {p!r} is not prime")
     if q >= MAX_PRIME:
         raise InvalidConnectionError(f"GF(p) arithmetic is exact in int64 only for p < 2**31, got p = {q}")
     return q
+
+
+def _is_prime(q: int) -> bool:
+    """Exact primality for ``q < 2**31`` (or a little more): trial division by 2 and the odd numbers up to √q."""
+    if q < 2:
+        return q == 2
+    if q % 2 == 0:
+        return q == 2
+    odd = np.arange(3, math.isqrt(q) + 1, 2, dtype=np.int64)
+    return not bool(np.any(q % odd == 0))
 
 
 def pow_mod(x, e: int, p: int) -> np.ndarray:
