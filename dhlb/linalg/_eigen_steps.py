@@ -32,12 +32,16 @@ class EigenResult:
         Applications of the shifted inverse (ARPACK), LOBPCG iterations, or 0 (dense).
     residuals : (k,) float, normwise backward errors ``η``
     converged : bool
-    backend : str, name of the factorization backend actually used
+    backend : str
+        The factorization backend actually used.
     shift : float, the shift ``σ`` that was factorized (``A − σM``)
-    block_size : int, number of Krylov vectors (ARPACK's ``ncv``) or of the LOBPCG block
+    block_size : int
+        The number of Krylov vectors (ARPACK's ``ncv``) or of the LOBPCG block.
     method : str, ``"arpack"``, ``"dense"`` or ``"lobpcg"``
-    factorizations : int, number of sparse factorizations done
-    solves : int, number of solves with the factorization (right-hand sides)
+    factorizations : int
+        The number of sparse factorizations done.
+    solves : int
+        The number of solves with the factorization (right-hand sides).
     note : str
         Empty, or why the solver departed from the requested method (e.g. the factorization would
         not fit in memory and an iterative backend was used instead).

@@ -30,7 +30,9 @@ class DirectionField:
     t : float or None, ``(1 + ‖ũ‖_M)⁻¹`` of the aligned problem (Eq. 6.6)
     guidance : Guidance or None
     component_eigenvalues : tuple of float, one per connected component (smoothest field)
-    solver : dict, backend, iterations, residual, converged, factorizations, solves, note
+    solver : dict
+        What the eigensolver reported: backend, iterations, residual, converged, factorizations,
+        solves and note.
     timings : dict, seconds per phase (setup, solve, indices, total)
 
     Examples
