@@ -78,7 +78,7 @@ def _backend(name):
 
 
 def laplace_baseline(V, F, backend, repeat=3):
-    """L_ref: seconds for one factorization + solve of ``L + εM`` (ε small relative to the spectrum), best of ``repeat``."""
+    """L_ref: seconds for one factorization + solve of ``L + εM`` (ε small next to the spectrum), best of ``repeat``."""
     L, M = cotan_laplacian(V, F)
     eps = 1e-6 * L.diagonal().mean() / M.diagonal().mean()
     b = M @ np.ones(len(V))

@@ -235,7 +235,8 @@ def issue15(timeout, memory_limit="2.5G"):
             print(f"  ico{args[0]} {args[1]}: FAILED: {r['error']}", flush=True)
             continue
         print(f"  ico{args[0]} {args[1]:<12} {r['size']:>9} faces: {r['e2e']:7.2f} s (setup {r['setup']:.2f}, solve "
-              f"{r['solve']:.2f}, indices {r['indices']:.2f}; {r['solves']} solves), peak {r['peak_mb'] / 1024:.2f} GB, "
+              f"{r['solve']:.2f}, indices {r['indices']:.2f}; {r['solves']} solves), "
+              f"peak {r['peak_mb'] / 1024:.2f} GB, "
               f"L_ref {r['L_ref']:.2f} s, ratio {r['e2e'] / r['L_ref']:.1f}", flush=True)
     a, b = rows.get("6 subdivision", {}), rows.get("6 shuffled", {})
     if "e2e" in a and "e2e" in b:

@@ -39,9 +39,9 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 from dhlb.fem import bundle_matrices
+from dhlb.geometry import EuclideanComplex
 from dhlb.linalg import default_shift, smallest_eigenpairs
 from dhlb.linalg.backends import available_backends, clear_cache, get_backend
-from dhlb.geometry import EuclideanComplex
 
 BUNNY = os.path.join(os.path.dirname(__file__), "..", "..", "shared", "meshes", "stanford-bunny.obj")
 

@@ -148,7 +148,7 @@ def test_demo_fields_are_centred_in_the_box(name):
 
 
 def test_vtu_output_opens_with_meshio(tmp_path):
-    """Issue 23: dhlb vortex -o OUT.vtu writes the tet mesh with ψ, |ψ| and the velocity, and the filaments beside it."""
+    """Issue 23: dhlb vortex -o OUT.vtu writes the tet mesh with ψ, |ψ|, the velocity, and the filaments beside it."""
     meshio = pytest.importorskip("meshio")
     from dhlb.cli import main
 
@@ -156,3 +156,16 @@ def test_vtu_output_opens_with_meshio(tmp_path):
     m = meshio.read(tmp_path / "v.vtu")
     assert {"psi", "psi_abs", "velocity"} <= set(m.point_data) and "tetra" in m.cells_dict
     assert (tmp_path / "v-filaments.vtp").exists()
+
+
+def test_progress_on_stderr_and_quiet_silences_it(tmp_path):
+    """Issue 23: a run expected to take seconds reports its phases on stderr; -q silences it."""
+    import subprocess
+    import sys
+
+    pytest.importorskip("tqdm")
+    cmd = [sys.executable, "-m", "dhlb", "vortex", "--box", "24", "--no-png", "-o", str(tmp_path / "r.ply")]
+    loud = subprocess.run(cmd, capture_output=True, text=True, check=True)
+    assert "vortex filaments" in loud.stderr
+    quiet = subprocess.run([*cmd, "-q"], capture_output=True, text=True, check=True)
+    assert "vortex filaments" not in quiet.stderr

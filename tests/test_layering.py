@@ -2,10 +2,10 @@
 
 Each top-level package of ``dhlb`` has a rank; a module may import (at any place in the file, also
 inside functions) only packages of a lower rank, or its own — except that the presentation methods
-of results (``show``, ``_repr_png_``, ``_repr_html_``) may call the ``render`` layer at run time.  Applications share a rank and must not
-import each other.  ``KNOWN`` lists the imports that still break the rule, each with the reason; the
-re-layering removes them and the test then requires their removal (a listed import that is gone
-fails too, so the list cannot go stale).
+of results (``show``, ``_repr_png_``, ``_repr_html_``) may call the ``render`` layer at run time.
+Applications share a rank and must not import each other.  ``KNOWN`` lists the imports that still
+break the rule, each with the reason; the re-layering removes them and the test then requires their
+removal (a listed import that is gone fails too, so the list cannot go stale).
 """
 
 from __future__ import annotations

@@ -306,7 +306,8 @@ def run(args) -> int:
             raise UsageError(f"cannot write {args.output}: the folder does not exist")
     V, T, mesh_name = _mesh(args)
     velocity, vname = _velocity(args, V, T)
-    result = vortex_filaments(V, T, velocity, args.hbar, order=args.order, backend=args.backend, tol=args.tol)
+    result = vortex_filaments(V, T, velocity, args.hbar, order=args.order, backend=args.backend, tol=args.tol,
+                              progress=not (args.quiet or args.json))
     meta = {"mesh": mesh_name, "velocity": vname, "hbar": float(args.hbar)}
     meta["written"] = _outputs(args, result, meta, velocity)
     data = result.to_dict()

@@ -278,6 +278,7 @@ def vortex_filaments(
     tol: float = DEFAULT_TOL,
     placement: str = "balanced",
     orientation: str = "fix",
+    progress: bool = False,
 ) -> VortexResult:
     """Vortex filaments of a velocity field on a tetrahedral mesh (see the module docstring).
 
@@ -307,6 +308,9 @@ def vortex_filaments(
         (:func:`~dhlb.volume.face_zeros`).
     orientation : {"fix", "require"}
         Passed to :func:`~dhlb.volume.check_tet_mesh`: fix negatively oriented tetrahedra, or raise.
+    progress : bool
+        Show a progress bar over the five phases on stderr (needs tqdm, ``pip install
+        'dhlb[progress]'``) when the run is expected to take more than about two seconds.
 
     Returns
     -------
@@ -348,11 +352,14 @@ def vortex_filaments(
     """
     h = _check_hbar(hbar)
     _check_options(order, tol, placement, orientation)
+    from dhlb._progress import progress_bar
     from dhlb.fem import bundle_matrices, smallest_eigenpairs
     from dhlb.geometry import EuclideanComplex
 
     timings = {}
     t0 = t = time.perf_counter()
+    n_tets = V.tets.shape[0] if isinstance(V, TetMesh) else int(np.shape(T)[0]) if T is not None else 0
+    bar = progress_bar(5, "vortex filaments", progress=progress, estimate_seconds=4e-5 * n_tets, unit="phase")
     if isinstance(V, TetMesh):
         if T is not None:
             raise ShapeError("pass either a TetMesh as V (and T=None) or the arrays V and T")
@@ -366,17 +373,23 @@ def vortex_filaments(
     geo = EuclideanComplex(X, points=P)
     geo.barycentric_gradient_gram  # noqa: B018 -- geometry belongs to the mesh phase
     timings["mesh"] = (t1 := time.perf_counter()) - t
-    L = velocity_bundle(X, P, velocity, h, order=order)
-    n_unresolved = _warn_flux(X, P, L.curvature)
-    timings["omega"] = (t2 := time.perf_counter()) - t1
-    A, M = bundle_matrices(L, geo)
-    timings["assembly"] = (t3 := time.perf_counter()) - t2
-    eig = smallest_eigenpairs(A, M, k=1, tol=tol, backend=backend)
-    psi = np.asarray(eig.eigenvectors[:, 0])
-    timings["solve"] = (t4 := time.perf_counter()) - t3
-    fs = extract_filaments(L, psi, P, placement=placement)
-    Lk, lidx, defect = filament_linking_numbers(fs.filaments)
-    timings["extraction"] = (t5 := time.perf_counter()) - t4
+    with bar:
+        bar.update(1)
+        L = velocity_bundle(X, P, velocity, h, order=order)
+        n_unresolved = _warn_flux(X, P, L.curvature)
+        timings["omega"] = (t2 := time.perf_counter()) - t1
+        bar.update(1)
+        A, M = bundle_matrices(L, geo)
+        timings["assembly"] = (t3 := time.perf_counter()) - t2
+        bar.update(1)
+        eig = smallest_eigenpairs(A, M, k=1, tol=tol, backend=backend)
+        psi = np.asarray(eig.eigenvectors[:, 0])
+        timings["solve"] = (t4 := time.perf_counter()) - t3
+        bar.update(1)
+        fs = extract_filaments(L, psi, P, placement=placement)
+        Lk, lidx, defect = filament_linking_numbers(fs.filaments)
+        timings["extraction"] = (t5 := time.perf_counter()) - t4
+        bar.update(1)
     timings["total"] = t5 - t0
 
     crossed = np.count_nonzero(fs.index[X.faces(3)], axis=1)
