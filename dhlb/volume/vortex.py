@@ -147,6 +147,19 @@ class VortexResult:
                 f"{s['n_tets']} tets, ħ = {s['hbar']:.4g}, λ = {self.eigenvalue:.6g}, "
                 f"{self.timings['total']:.3g} s)")
 
+    def _repr_png_(self) -> bytes:
+        """A small picture of the filaments in the domain (notebooks display results by naming them)."""
+        import os
+        import tempfile
+
+        from dhlb.render.filaments_png import render_filaments_png
+
+        with tempfile.TemporaryDirectory() as d:
+            path = render_filaments_png(os.path.join(d, "v.png"), self.filaments, self.mesh.points,
+                                        self.mesh.boundary_faces, title=f"{len(self.filaments)} filament(s)")
+            with open(path, "rb") as fh:
+                return fh.read()
+
     def show(self, *, screenshot=None, **kwargs):
         """Show the result in polyscope (``pip install 'dhlb[view]'``), or render it to ``screenshot`` (PNG).
 
