@@ -42,6 +42,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._display import Presentable
 from dhlb.errors import DhlbWarning, InvalidParameterError, NotSemidefiniteError
 from dhlb.fem import select_backend, smallest_eigenpairs
 from dhlb.stripes.energy import ENERGIES, stripe_matrices
@@ -71,7 +72,7 @@ SECTIONS = ("unit", "eigenvector", "power")
 
 
 @dataclass
-class StripePattern:
+class StripePattern(Presentable):
     """Result of :func:`stripe_pattern`.
 
     Attributes
@@ -186,46 +187,19 @@ class StripePattern:
             out["orthogonal"] = self.orthogonal.to_json()
         return out
 
-    def show(self, *, screenshot=None, **kwargs):
-        """Show the result in polyscope (``pip install 'dhlb[view]'``), or render it to ``screenshot`` (PNG).
-
-        See :func:`dhlb.render.view.show`; raises ``ImportError`` or
-        :class:`~dhlb.errors.ViewerUnavailableError` saying what is missing.
-        """
-        from dhlb.render.view import show
-
-        return show(self, screenshot=screenshot, **kwargs)
-
-    def _repr_png_(self) -> bytes:
-        """A small picture for notebooks (:func:`dhlb.render.render_stripes_png`, 320 × 320 pixels)."""
-        import os
-        import tempfile
-
+    def _render_png(self, path, size):
         from dhlb.render import render_stripes_png
 
-        with tempfile.TemporaryDirectory() as d:
-            path = render_stripes_png(os.path.join(d, "s.png"), self.texture, size=(320, 320),
-                                      mark_singularities=True, max_triangles=150_000)
-            with open(path, "rb") as fh:
-                return fh.read()
+        return render_stripes_png(path, self.texture, size=size, mark_singularities=True, max_triangles=150_000)
 
-    def _repr_html_(self) -> str:
-        """The picture of :meth:`_repr_png_` beside a table of the summary numbers (notebooks)."""
-        import base64
-        import html
-
+    def _summary_rows(self):
         f = self.form.frequency
-        rows = [("n", self.n), ("vertices, faces", f"{self.mesh.n_vertices}, {self.mesh.n_faces}"),
+        return [("n", self.n), ("vertices, faces", f"{self.mesh.n_vertices}, {self.mesh.n_faces}"),
                 ("frequency", f"{float(f.min()):.4g} – {float(f.max()):.4g}"),
                 ("zeros (index sum)", f"{self.zero_faces.size} ({int(self.zero_index.sum())})"),
                 ("branch faces", self.branch_faces.size), ("section", self.section),
                 ("eigenvalue, unit energy", f"{self.eigenvalue:.6g}, {self.unit_energy:.6g}"),
                 ("time", f"{self.timings.get('total', float('nan')):.3g} s")]
-        table = "".join(f"<tr><th style='text-align:left'>{html.escape(str(k))}</th><td>{html.escape(str(v))}</td></tr>"
-                        for k, v in rows)
-        png = base64.b64encode(self._repr_png_()).decode("ascii")
-        return (f"<div style='display:flex;gap:1em;align-items:center'><img src='data:image/png;base64,{png}' "
-                f"width='320'/><table>{table}</table></div>")
 
     def __repr__(self) -> str:
         return (f"StripePattern(n={self.n}, energy={self.energy!r}, zeros={self.zero_faces.size}, "

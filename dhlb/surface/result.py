@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from dhlb._display import Presentable
 from dhlb.surface.directions import FieldIndices, Singularities
 from dhlb.surface.guidance import Guidance
 from dhlb.surface.mesh import SurfaceMesh
@@ -15,7 +16,7 @@ __all__ = ["DirectionField", "PrescribedField"]
 
 
 @dataclass(frozen=True, eq=False)
-class DirectionField:
+class DirectionField(Presentable):
     """An n-direction field on a triangle mesh (compact vertex order of ``mesh``).
 
     Attributes
@@ -120,47 +121,21 @@ class DirectionField:
             "solver": self.solver, "timings": self.timings,
         }
 
-    def show(self, *, screenshot=None, **kwargs):
-        """Show the result in polyscope (``pip install 'dhlb[view]'``), or render it to ``screenshot`` (PNG).
-
-        See :func:`dhlb.render.view.show`; raises ``ImportError`` or
-        :class:`~dhlb.errors.ViewerUnavailableError` saying what is missing.
-        """
-        from dhlb.render.view import show
-
-        return show(self, screenshot=screenshot, **kwargs)
-
-    def _repr_png_(self) -> bytes:
-        """A small picture for notebooks (:func:`dhlb.render.render_field_png`, 320 × 320 pixels)."""
-        import os
-        import tempfile
-
+    def _render_png(self, path, size):
         from dhlb.render import render_field_png
 
-        with tempfile.TemporaryDirectory() as d:
-            path = render_field_png(os.path.join(d, "f.png"), self.mesh.points, self.mesh.faces, self.directions,
-                                    self.singularities, size=(320, 320), max_glyphs=4000)
-            with open(path, "rb") as fh:
-                return fh.read()
+        return render_field_png(path, self.mesh.points, self.mesh.faces, self.directions, self.singularities,
+                                size=size, max_glyphs=4000)
 
-    def _repr_html_(self) -> str:
-        """The picture of :meth:`_repr_png_` beside a table of the summary numbers (notebooks)."""
-        import base64
-        import html
-
+    def _summary_rows(self):
         sing = self.singularities
-        rows = [("n, s", f"{self.n}, {self.s:g}"), ("vertices, faces", f"{self.mesh.n_vertices}, {self.mesh.n_faces}"),
+        return [("n, s", f"{self.n}, {self.s:g}"), ("vertices, faces", f"{self.mesh.n_vertices}, {self.mesh.n_faces}"),
                 ("Euler characteristic", self.euler_characteristic),
                 ("singularities", f"{int((sing.index > 0).sum())} positive, {int((sing.index < 0).sum())} negative"),
                 ("index sum (n χ)", self.index_sum),
                 ("eigenvalue" if self.eigenvalue is not None else "energy",
                  f"{(self.eigenvalue if self.eigenvalue is not None else self.energy):.6g}"),
                 ("time", f"{self.timings.get('total', float('nan')):.3g} s")]
-        table = "".join(f"<tr><th style='text-align:left'>{html.escape(str(k))}</th><td>{html.escape(str(v))}</td></tr>"
-                        for k, v in rows)
-        png = base64.b64encode(self._repr_png_()).decode("ascii")
-        return (f"<div style='display:flex;gap:1em;align-items:center'><img src='data:image/png;base64,{png}' "
-                f"width='320'/><table>{table}</table></div>")
 
     def __repr__(self) -> str:
         return (f"DirectionField(n={self.n}, s={self.s}, vertices={self.mesh.n_vertices}, "

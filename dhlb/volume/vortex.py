@@ -54,6 +54,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._display import Presentable
 from dhlb.errors import (
     DhlbWarning,
     InvalidParameterError,
@@ -84,7 +85,7 @@ _LINK_ATOL = 1e-6  # a Gauss integral farther than this from an integer means to
 
 
 @dataclass(frozen=True, eq=False)
-class VortexResult:
+class VortexResult(Presentable):
     """What :func:`vortex_filaments` found.
 
     Attributes
@@ -147,28 +148,17 @@ class VortexResult:
                 f"{s['n_tets']} tets, ħ = {s['hbar']:.4g}, λ = {self.eigenvalue:.6g}, "
                 f"{self.timings['total']:.3g} s)")
 
-    def _repr_png_(self) -> bytes:
-        """A small picture of the filaments in the domain (notebooks display results by naming them)."""
-        import os
-        import tempfile
-
+    def _render_png(self, path, size):
         from dhlb.render.filaments_png import render_filaments_png
 
-        with tempfile.TemporaryDirectory() as d:
-            path = render_filaments_png(os.path.join(d, "v.png"), self.filaments, self.mesh.points,
-                                        self.mesh.boundary_faces, title=f"{len(self.filaments)} filament(s)")
-            with open(path, "rb") as fh:
-                return fh.read()
+        return render_filaments_png(path, self.filaments, self.mesh.points, self.mesh.boundary_faces,
+                                    title=f"{len(self.filaments)} filament(s)")
 
-    def show(self, *, screenshot=None, **kwargs):
-        """Show the result in polyscope (``pip install 'dhlb[view]'``), or render it to ``screenshot`` (PNG).
-
-        See :func:`dhlb.render.view.show`; raises ``ImportError`` or
-        :class:`~dhlb.errors.ViewerUnavailableError` saying what is missing.
-        """
-        from dhlb.render.view import show
-
-        return show(self, screenshot=screenshot, **kwargs)
+    def _summary_rows(self):
+        s = self.statistics
+        return [("filaments", f"{s['n_filaments']} ({s['n_closed']} closed, {s['n_open']} open)"),
+                ("vertices, tetrahedra", f"{s['n_vertices']}, {s['n_tets']}"), ("eigenvalue", f"{self.eigenvalue:.6g}"),
+                ("time", f"{self.timings.get('total', float('nan')):.3g} s")]
 
     def to_dict(self) -> dict:
         """A JSON-ready dict.
