@@ -299,3 +299,19 @@ def test_memory_model_overestimates_measured_factors():
         stored = (fac.lu.L.nnz + fac.lu.U.nnz) * (8 + 4)   # values + row indices
         est = memory.factor_bytes(A.shape[0], A.nnz, complex_=False, dimension=pattern_dimension(A))
         assert stored < est < 60 * stored
+
+
+@pytest.mark.parametrize("backend", [b for b in B.available_backends() if b != "petsc"])
+def test_bitwise_reproducible_and_seeded(backend):
+    """Issue 19 point 10: two runs give the same bits on every backend; the start vectors take a seed."""
+    m = 40                                                 # a 40 × 41 grid: simple eigenvalues
+    T1 = sp.diags([-np.ones(m - 1), 2 * np.ones(m), -np.ones(m - 1)], [-1, 0, 1])
+    T2 = sp.diags([-np.ones(m), 2 * np.ones(m + 1), -np.ones(m)], [-1, 0, 1])
+    A = (sp.kron(T1, sp.identity(m + 1)) + sp.kron(sp.identity(m), T2)).tocsr()
+    M = sp.identity(m * (m + 1), format="csr")
+    r1, r2 = (smallest_eigenpairs(A, M, k=2, backend=backend, seed=7) for _ in range(2))
+    assert np.array_equal(r1.eigenvalues, r2.eigenvalues) and np.array_equal(r1.eigenvectors, r2.eigenvectors)
+    r3 = smallest_eigenpairs(A, M, k=2, backend=backend, seed=8)
+    np.testing.assert_allclose(r3.eigenvalues, r1.eigenvalues, rtol=1e-8)
+    with pytest.raises(InvalidParameterError, match="seed"):
+        smallest_eigenpairs(A, M, k=1, backend=backend, seed=-1)

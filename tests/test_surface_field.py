@@ -380,3 +380,30 @@ def test_default_tolerance_gives_the_singularities_of_a_tight_solve(path):
     assert tight.solver["residual"] <= 1e-14 and default.solver["residual"] <= 1e-10
     np.testing.assert_array_equal(default.indices.face_index, tight.indices.face_index)
     assert np.count_nonzero(default.indices.face_index) > 0
+
+
+@pytest.mark.parametrize(("name", "n"), [("octahedron", 6), ("tetrahedron", 5), ("coarse sphere", 2)])
+def test_small_meshes_always_converge(name, n):
+    """Issue 19 point 5: these gave ConvergenceError with advice to raise a block_size no API exposed."""
+    from dhlb.examples import meshes  # noqa: F401  (the bundled small meshes, if any)
+
+    if name == "octahedron":
+        V = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]])
+        F = [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]]
+    elif name == "tetrahedron":
+        V = np.array([[1.0, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]])
+        F = [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]]
+    else:
+        u, v = np.meshgrid(np.linspace(0.3, np.pi - 0.3, 4), np.linspace(0, 2 * np.pi, 7)[:-1], indexing="ij")
+        V = np.c_[np.sin(u).ravel() * np.cos(v).ravel(), np.sin(u).ravel() * np.sin(v).ravel(), np.cos(u).ravel()]
+        V = np.vstack([V, [0, 0, 1], [0, 0, -1]])
+        F = []
+        for i in range(3):
+            for j in range(6):
+                a, b, c, d = i * 6 + j, i * 6 + (j + 1) % 6, (i + 1) * 6 + j, (i + 1) * 6 + (j + 1) % 6
+                F += [[a, c, b], [b, c, d]]
+        F += [[24, j, (j + 1) % 6] for j in range(6)] + [[25, 18 + (j + 1) % 6, 18 + j] for j in range(6)]
+        F = [f[::-1] for f in F] if np.dot(np.cross(V[F[0][1]] - V[F[0][0]], V[F[0][2]] - V[F[0][0]]),
+                                          V[F[0]].mean(axis=0)) < 0 else F
+    res = direction_field(V, np.asarray(F), n=n)
+    assert res.solver["converged"] and res.index_sum == n * 2

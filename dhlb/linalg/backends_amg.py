@@ -49,13 +49,24 @@ _SOLVE_TOL = 1e-12
 
 
 def _hierarchy(K):
+    """Pyamg's smoothed-aggregation hierarchy of ``K``, reproducibly.
+
+    pyamg estimates spectral radii from random start vectors of numpy's global generator; it is
+    seeded here (and the caller's generator state restored afterwards), so that the hierarchy and
+    every result built on it are bitwise reproducible run to run.
+    """
     import pyamg
 
     K = sp.csr_matrix(K)
     sym = "hermitian" if K.dtype.kind == "c" else "symmetric"
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # pyamg warns about implicit conversions on complex input
-        return pyamg.smoothed_aggregation_solver(K, symmetry=sym, max_coarse=500)
+    state = np.random.get_state()  # noqa: NPY002 -- pyamg uses the legacy global generator
+    try:
+        np.random.seed(0)  # noqa: NPY002 -- pyamg draws from the global generator; restored below
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # pyamg warns about implicit conversions on complex input
+            return pyamg.smoothed_aggregation_solver(K, symmetry=sym, max_coarse=500)
+    finally:
+        np.random.set_state(state)  # noqa: NPY002
 
 
 class _AMGSolver:

@@ -130,7 +130,7 @@ def default_tol(n: int) -> float:
 
 def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: int = 1000, sigma=None,
                         v0=None, backend=None, block_size: int | None = None,
-                        factor_shift: str = "auto", psd: bool = True) -> EigenResult:
+                        factor_shift: str = "auto", psd: bool = True, seed: int = 0) -> EigenResult:
     """The ``k`` smallest eigenpairs of ``A u = λ M u`` (A Hermitian PSD, M Hermitian PD).
 
     Parameters
@@ -162,6 +162,13 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
         choose; ``"floor"`` factorizes ``A + εM`` (``σ = −ε``), so that :attr:`EigenResult.factor`
         approximates ``A⁻¹`` — for callers that go on iterating with ``A⁻¹`` (e.g. the
         unit-modulus stripe section).
+    seed : int
+        Seed of the random start vectors (when ``v0`` does not give them all).  With one BLAS
+        thread every backend is then bitwise reproducible run to run: the direct backends
+        (SuperLU, CHOLMOD) and ARPACK are deterministic given the start vector, and so are
+        pyamg's aggregation and LOBPCG (``amg-lobpcg``).  A different ``seed`` gives the same
+        eigenvalues to the tolerance and, for a simple eigenvalue, the same eigenvector up to its
+        phase, which :attr:`EigenResult.eigenvectors` fixes (largest entry real positive).
     psd : bool
         ``True`` (default): ``A`` must be positive semidefinite, and an eigenvalue below ``−ε``
         is an error.  ``False``: ``A`` may be indefinite; the ``k`` algebraically smallest pairs
@@ -208,6 +215,8 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
         raise InvalidParameterError(f"tol must be a positive number, got {tol!r}")
     if not (isinstance(maxiter, (int, np.integer)) and maxiter >= 1):
         raise InvalidParameterError(f"maxiter must be a positive integer, got {maxiter!r}")
+    if not (isinstance(seed, (int, np.integer)) and not isinstance(seed, bool) and seed >= 0):
+        raise InvalidParameterError(f"seed must be a non-negative integer, got {seed!r}")
     if not isinstance(psd, (bool, np.bool_)):
         raise InvalidParameterError(f"psd must be True or False, got {psd!r}")
     if factor_shift not in ("auto", "floor"):
@@ -221,7 +230,7 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
     eps_shift = default_shift(A, M)
     shift = -eps_shift if default else float(sigma)
     ncv = min(n, int(block_size) if block_size is not None else max(2 * k + 1, k + 11))
-    v = _start_vector(n, complex_, v0)
+    v = _start_vector(n, complex_, v0, seed)
     auto = backend is None or (isinstance(backend, str) and backend == "auto")
     if not auto:
         get_backend(backend)  # an unknown or uninstalled name is an error even when the dense path answers
@@ -241,14 +250,14 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
     be = get_backend(backend, n=n, nnz=A.nnz, eigen=True, shifted=not default, dimension=lambda: pattern_dimension(A))
     with blas_guard():  # once per eigen solve: every factorization and solve below runs inside
         if hasattr(be, "eigensolve"):
-            return _iterative(be, A, M, k, v, block_size, eps_shift, tol, maxiter, default, complex_)
+            return _iterative(be, A, M, k, v, block_size, eps_shift, tol, maxiter, default, complex_, seed)
         try:
             fac, shift = _factorize_shifted(be, A, M, shift, eps_shift, default)
         except InsufficientMemoryError as err:
             if not (auto and default and "amg-lobpcg" in available_backends()):
                 raise
             res = _iterative(get_backend("amg-lobpcg"), A, M, k, v, block_size, eps_shift, tol, maxiter, default,
-                             complex_)
+                             complex_, seed)
             return replace(res, note=f"{be.name} would not fit in memory ({err}); solved by amg-lobpcg instead")
         res = _arpack(fac, A, M, k, shift, tol, maxiter, v, ncv, default, getattr(fac, "name", be.name))
     return replace(res, factor=fac, factorizations=1)
@@ -302,14 +311,14 @@ def _lowest_of_indefinite(A, M, k, eps_shift, tol, maxiter, v, ncv, tries=12):
                            f"after {tries} shifts (last shift {shift:.6g}); is A far from semidefinite?")
 
 
-def _iterative(be, A, M, k, v, block_size, eps_shift, tol, maxiter, default, complex_):
+def _iterative(be, A, M, k, v, block_size, eps_shift, tol, maxiter, default, complex_, seed=0):
     """An iterative backend's block method (LOBPCG) from ``v`` and random vectors."""
     if not default:
         raise InvalidParameterError(f"backend {be.name!r} computes the smallest eigenvalues only; sigma= needs a "
                                     "direct backend (e.g. backend='superlu' or 'cholmod')")
     n = A.shape[0]
     p = min(n, int(block_size) if block_size is not None else (k if k == 1 else k + max(2, k // 2)))
-    U = np.concatenate([v[:, None], _random_block(n, p - 1, complex_)], axis=1)
+    U = np.concatenate([v[:, None], _random_block(n, p - 1, complex_, seed + 1)], axis=1)
     return _iterate_lobpcg(be, A, M, U, k, eps_shift, tol, maxiter)
 
 
@@ -435,15 +444,15 @@ class _DenseFactor:
         return sla.lu_solve(self.lu, np.asarray(B), check_finite=False)
 
 
-def _random_block(n, p, complex_):
-    rng = np.random.default_rng(0)
+def _random_block(n, p, complex_, seed=0):
+    rng = np.random.default_rng(seed)
     U = rng.standard_normal((n, p))
     return U + 1j * rng.standard_normal((n, p)) if complex_ else U
 
 
-def _start_vector(n, complex_, v0):
+def _start_vector(n, complex_, v0, seed=0):
     if v0 is None:
-        return _random_block(n, 1, complex_)[:, 0]
+        return _random_block(n, 1, complex_, seed)[:, 0]
     V = np.asarray(v0)
     V = V.reshape(-1, 1) if V.ndim == 1 else V
     if V.ndim != 2 or V.shape[0] != n or V.shape[1] > n:
@@ -452,7 +461,7 @@ def _start_vector(n, complex_, v0):
         raise NonFiniteError("v0 contains NaN or inf")
     v = V.sum(axis=1)
     if not np.any(v):
-        return _random_block(n, 1, complex_)[:, 0]
+        return _random_block(n, 1, complex_, seed)[:, 0]
     return v.astype(np.complex128) if complex_ else np.real(v).astype(np.float64)
 
 
