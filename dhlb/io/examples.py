@@ -12,6 +12,7 @@ EXAMPLES = {
     "solid-torus.mesh": "solid torus, 144 vertices, 384 tetrahedra, boundary triangles included (H = Z, Z, 0, 0)",
     "spot.obj": "Keenan Crane's cow Spot (CC0), 2930 vertices, 5856 triangles, closed genus 0",
     "saddle.obj": "saddle z = (x² − y²)/2 over the unit disk, 631 vertices, 1176 triangles, one boundary loop",
+    "double-torus.obj": "closed genus-2 surface (MIT, geometry-processing-js), 3070 vertices, 6144 triangles",
 }
 
 
@@ -21,7 +22,8 @@ def example_path(name: str = "torus.obj") -> str:
     Parameters
     ----------
     name : str
-        One of :data:`EXAMPLES` (``"torus.obj"``, ``"solid-torus.mesh"``, ``"spot.obj"``, ``"saddle.obj"``).
+        One of :data:`EXAMPLES` (``"torus.obj"``, ``"solid-torus.mesh"``, ``"spot.obj"``, ``"saddle.obj"``,
+        ``"double-torus.obj"``).
 
     Raises
     ------
