@@ -282,3 +282,20 @@ def test_bad_parameters(cube):
         conformal_deformation(cube, None, True)
     with pytest.raises(InvalidParameterError, match="radius"):
         mobius_factor((0, 0, 0), -1.0)
+
+
+def test_a_closed_surface_tetrahedralised_by_pytetwild():
+    """Issue 20: any closed surface, tetrahedralised with pytetwild (dhlb[tet]), deforms close to conformally."""
+    from dhlb.volume import tetgen
+
+    if not tetgen.available():
+        pytest.skip("pytetwild is not installed (optional extra dhlb[tet])")
+    from dhlb.io import example_path, read_surface
+
+    V, F = read_surface(example_path("torus.obj"))
+    mesh = tetgen.tetrahedralize(V, F, edge_length_fac=0.08)
+    P, T = mesh.points, mesh.tets
+    res = conformal_deformation(P, T, point_charge_factor([(3.0, 0.0, 0.0, 0.5)]))
+    assert res.eigenvalue > 0 and 1.0 <= res.distortion.mean() < 1.1
+    half = conformal_deformation(P, T, point_charge_factor([(3.0, 0.0, 0.0, 0.25)]))
+    assert half.eigenvalue < res.eigenvalue and half.distortion.mean() < res.distortion.mean()

@@ -177,3 +177,35 @@ def vortex(out, progress, *, backend=None) -> list[dict]:
                      "caption": caption, "details": {"filaments": len(res.filaments), "linking_numbers": L.tolist(),
                                                      "timings": res.timings}})
     return recs
+
+
+def conformal(out, progress, *, backend=None) -> list[dict]:
+    """Close-to-conformal deformations of a tetrahedral ball (seed part 3, §2.4): a Möbius factor and point charges."""
+    from dhlb.commands.conformal import boundary_distortion, render_conformal_png
+    from dhlb.conformal import conformal_deformation, mobius_factor, point_charge_factor
+    from dhlb.volume import ball_tet_mesh
+
+    mesh = ball_tet_mesh(6)
+    cases = [("conformal-mobius", mobius_factor((2.5, 0.0, 0.0), 1.5),
+              "a Möbius factor log(R²/|x − a|²): an exactly conformal map, λ₁ ≈ 0", True),
+             ("conformal-charges", point_charge_factor([(2.0, 0.0, 0.0, 0.5), (0.0, -2.0, 0.0, -0.4)]),
+              "two point charges: close to conformal, λ₁ > 0", False)]
+    recs = []
+    for name, u, caption, exact in cases:
+        def work(name=name, u=u, caption=caption):
+            t0 = time.perf_counter()
+            res = conformal_deformation(mesh.points, mesh.tets, u, backend=backend)
+            F, dF = boundary_distortion(res)
+            png = render_conformal_png(os.path.join(out, f"{name}.png"), mesh.points, res.points, F, dF,
+                                       title=caption)
+            return res, png, time.perf_counter() - t0
+
+        res, png, sec = progress.run(caption, work)
+        ok = (abs(res.eigenvalue) < 1e-6) if exact else (res.eigenvalue > 1e-6 and res.distortion.min() >= 1.0)
+        recs.append({"step": "conformal " + ("Möbius" if exact else "charges"),
+                     "mesh": f"ball ({len(mesh.points)} v, {len(mesh.tets)} tets)",
+                     "result": f"λ₁ = {res.eigenvalue:.2g}, distortion {res.distortion.mean():.3f} mean",
+                     "check": "λ₁ ≈ 0 (|λ₁| < 1e-6)" if exact else "λ₁ > 0, distortion >= 1", "ok": bool(ok),
+                     "seconds": sec, "picture": png, "caption": caption,
+                     "details": {"eigenvalue": float(res.eigenvalue), "timings": res.timings}})
+    return recs

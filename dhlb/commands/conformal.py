@@ -15,7 +15,8 @@ import numpy as np
 from dhlb.commands._common import UsageError, add_command, resolve_input
 from dhlb.errors import DhlbWarning
 
-__all__ = ["NAME", "SUMMARY", "format_report", "parse_charge", "register", "render_conformal_png", "run"]
+__all__ = ["NAME", "SUMMARY", "boundary_distortion", "format_report", "parse_charge", "register",
+           "render_conformal_png", "run"]
 
 NAME = "conformal"
 SUMMARY = "close-to-conformal deformation of a tet mesh with a target conformal factor (point charges or u.npy)"
@@ -140,6 +141,27 @@ def render_conformal_png(path, before, after, faces, distortion_faces, *, title=
     return out
 
 
+def boundary_distortion(result) -> tuple[np.ndarray, np.ndarray]:
+    """The boundary triangles of a :class:`~dhlb.conformal.ConformalResult` and the distortion of their tets.
+
+    Examples
+    --------
+    >>> from dhlb.conformal import conformal_deformation, point_charge_factor
+    >>> from dhlb.volume import ball_tet_mesh
+    >>> m = ball_tet_mesh(2)
+    >>> F, d = boundary_distortion(conformal_deformation(m.points, m.tets, point_charge_factor([(3, 0, 0, 0.5)])))
+    >>> F.shape[0] == d.shape[0] and bool((d >= 1).all())
+    True
+    """
+    mesh = result.mesh
+    F = mesh.boundary_faces
+    local = np.array([[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]])  # the tet of each boundary triangle
+    allf = np.sort(mesh.tets[:, local].reshape(-1, 3), axis=1)
+    tet_of = np.repeat(np.arange(mesh.tets.shape[0]), 4)
+    keys = {tuple(f): t for f, t in zip(allf.tolist(), tet_of.tolist())}
+    return F, np.array([result.distortion[keys[tuple(sorted(f))]] for f in F.tolist()])
+
+
 def _mesh(args):
     from dhlb.volume import ball_tet_mesh, check_tet_mesh
 
@@ -200,16 +222,9 @@ def _outputs(args, result, meta) -> list[str]:
         raise UsageError(f"cannot write {exc.filename or out}: {exc.strerror}") from None
     if not args.no_png:
         try:
-            mesh = result.mesh
-            F = mesh.boundary_faces
-            # the tet of each boundary triangle: match sorted face keys
-            local = np.array([[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]])
-            allf = np.sort(mesh.tets[:, local].reshape(-1, 3), axis=1)
-            tet_of = np.repeat(np.arange(mesh.tets.shape[0]), 4)
-            keys = {tuple(f): t for f, t in zip(allf.tolist(), tet_of.tolist())}
-            dF = np.array([result.distortion[keys[tuple(sorted(f))]] for f in F.tolist()])
+            F, dF = boundary_distortion(result)
             title = f"{meta['u']}: distortion (colour) 1 .. {result.distortion.max():.3g}"
-            written.append(render_conformal_png(stem + ".png", mesh.points, result.points, F, dF, title=title))
+            written.append(render_conformal_png(stem + ".png", result.mesh.points, result.points, F, dF, title=title))
         except ImportError as exc:
             warnings.warn(f"no PNG written: {exc}", DhlbWarning, stacklevel=2)
     return written

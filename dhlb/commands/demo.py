@@ -40,7 +40,7 @@ def register(subparsers) -> None:
     p.set_defaults(output="dhlb-demo")
     p.add_argument("--backend", default=None, metavar="NAME", help="linear-algebra backend (default: automatic)")
     p.add_argument("--only", default=None, metavar="LIST",
-                   help="comma-separated subset of: fields, aligned, boundary, stripes, vortex")
+                   help="comma-separated subset of: fields, aligned, boundary, stripes, vortex, conformal")
     p.set_defaults(func=run)
 
 
@@ -69,7 +69,7 @@ class _Progress:
                 print(f"  {name}: done in {time.perf_counter() - t0:.1f} s", file=sys.stderr, flush=True)
 
 
-STEPS = ("fields", "aligned", "boundary", "stripes", "vortex")
+STEPS = ("fields", "aligned", "boundary", "stripes", "vortex", "conformal")
 
 
 def run(args) -> int:
