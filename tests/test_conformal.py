@@ -299,3 +299,15 @@ def test_a_closed_surface_tetrahedralised_by_pytetwild():
     assert res.eigenvalue > 0 and 1.0 <= res.distortion.mean() < 1.1
     half = conformal_deformation(P, T, point_charge_factor([(3.0, 0.0, 0.0, 0.25)]))
     assert half.eigenvalue < res.eigenvalue and half.distortion.mean() < res.distortion.mean()
+
+
+def test_vtu_for_paraview(tmp_path):
+    """Issue 23: a conformal deformation saves as .vtu with its arrays, read back by meshio."""
+    meshio = pytest.importorskip("meshio")
+    m = ball_tet_mesh(2)
+    res = conformal_deformation(m.points, m.tets, point_charge_factor([(3.0, 0.0, 0.0, 0.5)]))
+    (path,) = res.save(tmp_path / "c.vtu")
+    back = meshio.read(path)
+    np.testing.assert_allclose(back.points, res.points)
+    assert {"phi", "u", "input_points"} <= set(back.point_data)
+    np.testing.assert_allclose(back.cell_data["distortion"][0], res.distortion)

@@ -174,7 +174,10 @@ class ConformalResult:
         }
 
     def save(self, path: str | os.PathLike[str]) -> list[str]:
-        """Write the deformed mesh: ``.json`` (:meth:`to_json`), ``.mesh``/``.msh``/``.vtk`` (tets), or ``.npz``.
+        """Write the result: ``.json`` (:meth:`to_json`), ``.mesh``/``.msh``/``.vtk`` (tets), ``.vtu`` or ``.npz``.
+
+        ``.vtu`` (needs meshio, ``dhlb[meshio]``) holds the deformed tets with ``phi``, ``u`` and
+        ``input_points`` per vertex and ``distortion``, ``scale_error`` per tet, for ParaView.
 
         Parameters
         ----------
@@ -197,21 +200,31 @@ class ConformalResult:
         ...     print(read_volume(paths[0])[1].shape)
         (6, 4)
         """
+        from dhlb.io import atomic_write  # the io layer is below the applications
+
         out = os.fspath(path)
         ext = os.path.splitext(out)[1].lower()
         if ext == ".json":
-            with open(out, "w", encoding="utf-8") as fh:
+            with atomic_write(out, "w") as fh:
                 json.dump(self.to_json(), fh)
         elif ext == ".npz":
-            np.savez(out, points=self.points, tets=self.mesh.tets, phi=self.phi, u=self.u,
-                     distortion=self.distortion, scale_error=self.scale_error, eigenvalue=self.eigenvalue)
+            with atomic_write(out, "wb") as fh:
+                np.savez(fh, points=self.points, tets=self.mesh.tets, phi=self.phi, u=self.u,
+                         distortion=self.distortion, scale_error=self.scale_error, eigenvalue=self.eigenvalue)
         elif ext in (".mesh", ".msh", ".vtk"):
-            from dhlb.io import write_volume  # the io layer is below the applications
+            from dhlb.io import write_volume
 
             write_volume(out, self.points, self.mesh.tets)
+        elif ext == ".vtu":  # ParaView: the deformed tets with φ, u and the input points; distortion per tet
+            from dhlb.io.meshio_bridge import write_vtu_volume
+
+            write_vtu_volume(out, self.points, self.mesh.tets,
+                             point_data={"phi": self.phi, "u": self.u, "input_points": self.mesh.points},
+                             cell_data={"distortion": self.distortion, "scale_error": self.scale_error},
+                             field_data={"eigenvalue": [float(self.eigenvalue)]})
         else:
             raise InvalidParameterError(f"cannot save a conformal deformation as {ext or 'a file without extension'!r}"
-                                        f" ({out}); use .json, .npz, .mesh, .msh or .vtk")
+                                        f" ({out}); use .json, .npz, .mesh, .msh, .vtk or .vtu (ParaView, meshio)")
         return [out]
 
 
