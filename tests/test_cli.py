@@ -158,9 +158,9 @@ def test_unparsable_and_bad_input_exit_1_with_one_line(capsys, tmp_path):
     nan.write_text("v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n")
     code, out, err = run(capsys, "info", str(nan))
     assert code == 1 and "line 2: vertex 2 (0-based 1) has a non-finite coordinate" in one_line_error(err)
-    (tmp_path / "a.stl").write_text("solid\n")
-    code, out, err = run(capsys, "info", str(tmp_path / "a.stl"))
-    assert code == 2 and "unknown file extension '.stl'" in one_line_error(err) and "--format" in err
+    (tmp_path / "a.xyz").write_text("solid\n")
+    code, out, err = run(capsys, "info", str(tmp_path / "a.xyz"))
+    assert code == 2 and "unknown file extension '.xyz'" in one_line_error(err) and "--format" in err
     code, out, err = run(capsys, "info", str(tmp_path))
     assert code == 2 and "is a directory" in one_line_error(err)
     code, out, err = run(capsys, "info", "--example", "torus.obj", str(bad))

@@ -95,7 +95,7 @@ def test_alignment_from_files(tmp_path, capsys):
     (["rounded_cube.obj", "--align", "sideways"], 2, "--align must be one of"),
     (["rounded_cube.obj", "--align", "missing.npy"], 2, "no such file"),
     (["nothere.obj"], 2, "no such file"),
-    (["octopus-low-tet.mesh"], 2, "triangle surface"),
+    (["octopus-low-tet.mesh"], 1, "volume mesh"),
 ])
 def test_errors(tmp_path, capsys, argv, code, message):
     argv = [os.path.join(DATA, argv[0]) if os.path.exists(os.path.join(DATA, argv[0])) else argv[0]] + argv[1:]
@@ -155,3 +155,17 @@ def test_npz_documents_unreferenced_vertices_and_vtu_output(tmp_path):
     assert np.isnan(data["directions"][6]).all() and "NaN" in str(data["note"])
     m = meshio.read(tmp_path / "out.vtu")
     assert m.points.shape[0] >= 6 and "index" in m.cell_data
+
+
+@pytest.mark.parametrize("ext", [".stl", ".vtu", ".mesh", ".vtk"])
+def test_every_triangle_surface_format_is_accepted(tmp_path, ext):
+    """Issues 17 and 23: dhlb field reads triangle surfaces in Medit/VTK and every format meshio reads."""
+    meshio = pytest.importorskip("meshio")
+    from dhlb.cli import main
+    from dhlb.io import example_path, read_surface
+
+    V, F = read_surface(example_path("torus.obj"))
+    path = tmp_path / f"torus{ext}"
+    meshio.write(path, meshio.Mesh(V, [("triangle", F)]), **({"binary": False} if ext == ".vtk" else {}))
+    assert main(["field", str(path), "--n", "2", "-o", str(tmp_path / "out"), "--no-png", "-q"]) == 0
+    assert json.loads((tmp_path / "out.json").read_text())["index_sum"] == 0

@@ -166,8 +166,8 @@ def _surface_mesh(tmp_path) -> str:
 
 
 def test_unknown_extension_missing_file_and_directory(tmp_path):
-    with pytest.raises(MeshParseError, match=r"unknown file extension '.stl'"):
-        load(tmp_path / "a.stl")
+    with pytest.raises(MeshParseError, match=r"unknown file extension '.xyz'"):
+        load(tmp_path / "a.xyz")
     with pytest.raises(FileNotFoundError):
         load(tmp_path / "missing.obj")
     with pytest.raises(IsADirectoryError):

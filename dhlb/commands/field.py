@@ -187,9 +187,7 @@ def run(args) -> int:
     if not os.path.isdir(parent):
         raise UsageError(f"cannot write {out}.*: the directory {parent} does not exist")
     t0 = time.perf_counter()
-    fmt = resolve_input(args.mesh, args.fmt)
-    if fmt not in ("obj", "off", "ply"):
-        raise UsageError(f"{args.mesh}: dhlb field needs a triangle surface (.obj, .off, .ply), not {fmt}")
+    fmt = resolve_input(args.mesh, args.fmt)  # every surface read_surface reads (also via meshio); see below
     align = read_alignment(args.align)
     sing = read_singularities(args.singularity)
     if args.singularity and (align is not None or args.s != 0.0):

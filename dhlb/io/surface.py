@@ -290,6 +290,10 @@ def read_surface(path: str | os.PathLike[str], fmt: str | None = None) -> tuple[
     0
     """
     fmt = format_of(path, fmt)
+    if fmt == "meshio":  # a format only meshio reads (e.g. .vtu, .stl): its triangles
+        from dhlb.io.meshio_bridge import read_with_meshio
+
+        return read_with_meshio(path)
     if fmt == "obj":
         return read_obj(path)
     if fmt == "off":
