@@ -31,6 +31,11 @@ SPOT_VIEW = {"view": (1.0, 0.6, 0.4), "up": (0.0, 1.0, 0.0)}
 SADDLE_VIEW = {"view": (0.3, -1.0, 1.2), "up": (0.0, 0.0, 1.0)}
 
 
+def back(view: dict) -> dict:
+    """The view from the other side: the camera direction negated, the same up vector."""
+    return {**view, "view": tuple(-float(c) for c in view["view"])}
+
+
 def shrink(path: str) -> None:
     """Re-save the PNG with a 256-colour palette (median cut, no dithering): about a third of the size."""
     from PIL import Image  # a dependency of matplotlib, which the renderer needs anyway
@@ -48,6 +53,8 @@ def picture(name: str, mesh: str, view: dict, **kw) -> dict:
     path = render_field_png(os.path.join(OUT, f"{name}.png"), m.points, m.faces, res.directions,
                             res.singularities, size=SIZE, **view)
     shrink(path)
+    shrink(render_field_png(os.path.join(OUT, f"{name}-back.png"), m.points, m.faces, res.directions,
+                            res.singularities, size=SIZE, **back(view)))
     nbytes = os.path.getsize(path)
     if nbytes > MAX_BYTES:
         raise SystemExit(f"{path}: {nbytes} bytes > {MAX_BYTES}")
@@ -76,6 +83,7 @@ def stripes(name: str, view: dict, *, n: int, spacing: float, **field_kw) -> Non
     res = stripe_pattern(V, F, field, spacing=spacing)
     path = render_stripes_png(os.path.join(OUT, f"{name}.png"), res.texture, size=SIZE, **view)
     shrink(path)
+    shrink(render_stripes_png(os.path.join(OUT, f"{name}-back.png"), res.texture, size=SIZE, **back(view)))
     info = res.to_json()
     print(f"{os.path.basename(path):28s} {os.path.getsize(path):7d} B  {len(info['zero_faces'])} zero faces, "
           f"{len(info['branch_faces'])} branch faces  {time.perf_counter() - t0:5.1f} s")
@@ -91,9 +99,12 @@ def tube_stripes(section: str) -> list:
     tube = stepped_tube((1.0, 1.5, 2.0), stripes=8, around=96, jitter=0.25, seed=1)
     res = stripe_pattern(tube.points, tube.faces, tube.directions, frequency=tube.frequency, section=section)
     counts = np.round(tube.winding(res.psi, res.mesh.vertex_labels)[tube.middle_rings()]).astype(int).tolist()
+    tube_view = {"view": (1.0, -1.2, 0.35), "up": (0.0, 0.0, 1.0)}
     path = render_stripes_png(os.path.join(OUT, f"stripes-tube-{section}.png"), res.texture, size=SIZE,
-                              view=(1.0, -1.2, 0.35), up=(0.0, 0.0, 1.0), mark_singularities=True)
+                              mark_singularities=True, **tube_view)
     shrink(path)
+    shrink(render_stripes_png(os.path.join(OUT, f"stripes-tube-{section}-back.png"), res.texture, size=SIZE,
+                              mark_singularities=True, **back(tube_view)))
     print(f"{os.path.basename(path):28s} {os.path.getsize(path):7d} B  stripes per level {counts} "
           f"(want {tube.stripes_per_level.astype(int).tolist()}), {res.zero_faces.size} zeros, "
           f"unit energy {res.unit_energy:.3g} (λ₁ = {res.eigenvalue:.3g})  {time.perf_counter() - t0:5.1f} s")
@@ -113,6 +124,8 @@ def filaments(name: str, kind: str) -> None:
     path = render_filaments_png(os.path.join(OUT, f"{name}.png"), res.filaments, res.mesh.points,
                                 res.mesh.boundary_faces, size=SIZE)
     shrink(path)
+    shrink(render_filaments_png(os.path.join(OUT, f"{name}-back.png"), res.filaments, res.mesh.points,
+                                res.mesh.boundary_faces, size=SIZE, view=(-1.0, 1.6, 0.9)))
     print(f"{os.path.basename(path):28s} {os.path.getsize(path):7d} B  {len(res.filaments)} filaments  "
           f"{time.perf_counter() - t0:5.1f} s")
 

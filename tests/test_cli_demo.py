@@ -37,7 +37,9 @@ def test_demo_runs_all_steps_and_passes_its_checks(demo, capsys):
 
     page = (demo / "index.html").read_text(encoding="utf-8")
     sources = re.findall(r'<img src="([^"]+)"', page)
-    assert len(sources) == len(summary["steps"])
+    assert len(sources) == 2 * len(summary["steps"])                 # every result seen front and back
+    assert sum(src.endswith("-back.png") for src in sources) == len(summary["steps"])
+    assert "conformal Möbius" in steps and "conformal charges" in steps
     for src in sources:
         data = (demo / src).read_bytes()
         assert data[:8] == PNG_MAGIC, src

@@ -16,6 +16,15 @@ __all__ = ["fields", "aligned", "boundary", "stripes", "vortex", "write_field_np
 _SPOT_VIEW = {"view": (1.0, 0.6, 0.4), "up": (0.0, 1.0, 0.0), "size": (600, 600)}
 
 
+def _back(view: dict) -> dict:
+    """The view from the other side (camera direction negated): every result is shown front and back."""
+    return {**view, "view": tuple(-float(c) for c in view["view"])}
+
+
+def _back_path(png: str) -> str:
+    return png[:-4] + "-back.png"
+
+
 def _spot():
     from dhlb.io import example_path, read_surface
 
@@ -80,6 +89,8 @@ def _field(out, progress, name, V, F, mesh_name, caption, view, **kw):
         m = res.mesh
         png = render_field_png(os.path.join(out, f"{name}.png"), m.points, m.faces, res.directions,
                                res.singularities, title=caption, **view)
+        render_field_png(_back_path(png), m.points, m.faces, res.directions, res.singularities,
+                         title=caption + " (back)", **_back(view))
         write_field_npz(os.path.join(out, f"{name}.npz"), res)
         return res, png, time.perf_counter() - t0
 
@@ -132,6 +143,7 @@ def stripes(out, progress, *, backend=None) -> list[dict]:
         field = direction_field(V, F, n=2, backend=backend)
         res = stripe_pattern(V, F, field, spacing=6.0, backend=backend)
         png = render_stripes_png(os.path.join(out, "stripes.png"), res.texture, title=caption, **_SPOT_VIEW)
+        render_stripes_png(_back_path(png), res.texture, title=caption + " (back)", **_back(_SPOT_VIEW))
         write_stripes_obj(os.path.join(out, "stripes.obj"), res.texture)
         return res, png, time.perf_counter() - t0
 
@@ -162,6 +174,8 @@ def vortex(out, progress, *, backend=None) -> list[dict]:
             write_polylines_obj(os.path.join(out, f"{name}.obj"), res.filaments)
             png = render_filaments_png(os.path.join(out, f"{name}.png"), res.filaments, res.mesh.points,
                                        res.mesh.boundary_faces, title=caption)
+            render_filaments_png(_back_path(png), res.filaments, res.mesh.points, res.mesh.boundary_faces,
+                                 title=caption + " (back)", view=(-1.0, 1.6, 0.9))
             return res, png, time.perf_counter() - t0
 
         res, png, sec = progress.run(caption, work)
@@ -198,6 +212,8 @@ def conformal(out, progress, *, backend=None) -> list[dict]:
             F, dF = boundary_distortion(res)
             png = render_conformal_png(os.path.join(out, f"{name}.png"), mesh.points, res.points, F, dF,
                                        title=caption)
+            render_conformal_png(_back_path(png), mesh.points, res.points, F, dF, title=caption + " (back)",
+                                 view=(-1.0, 1.6, -0.9))
             return res, png, time.perf_counter() - t0
 
         res, png, sec = progress.run(caption, work)

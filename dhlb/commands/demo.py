@@ -97,7 +97,12 @@ def run(args) -> int:
         if name in only:
             records += getattr(steps, name)(out, progress, backend=args.backend)
     total = time.perf_counter() - t0
-    pictures = [(r["picture"], r["caption"]) for r in records if r.get("picture")]
+    pictures = []  # every result front and back
+    for r in records:
+        if r.get("picture"):
+            back = r["picture"][:-4] + "-back.png"
+            pictures += [(r["picture"], r["caption"])] + ([(back, r["caption"] + " (back)")]
+                                                         if os.path.exists(back) else [])
     table = [["step", "mesh", "result", "check", "seconds"]] + [
         [r["step"], r["mesh"], r["result"], r["check"], f"{r['seconds']:.2f}"] for r in records]
     page = write_gallery(os.path.join(out, "index.html"), "dhlb demo", pictures, table=table,
