@@ -35,6 +35,9 @@ class _Silent:
     def set_postfix_str(self, s: str) -> None:
         """Ignored."""
 
+    def close(self) -> None:
+        """Nothing to close."""
+
     def __enter__(self):
         return self
 

@@ -407,3 +407,16 @@ def test_small_meshes_always_converge(name, n):
                                           V[F[0]].mean(axis=0)) < 0 else F
     res = direction_field(V, np.asarray(F), n=n)
     assert res.solver["converged"] and res.index_sum == n * 2
+
+
+def test_progress_reports_the_phases_only_when_asked(monkeypatch, capsys):
+    """Issue 23: progress on stderr for long runs (here forced by a zero threshold), silent by default."""
+    pytest.importorskip("tqdm")
+    import dhlb._progress as P
+
+    V, F = read_surface(example_path("torus.obj"))
+    monkeypatch.setattr(P, "MIN_SECONDS", 0.0)
+    direction_field(V, F, n=2)
+    assert "direction field" not in capsys.readouterr().err
+    direction_field(V, F, n=2, progress=True)
+    assert "direction field" in capsys.readouterr().err

@@ -198,7 +198,7 @@ def run(args) -> int:
         res = prescribed_field(V, F, args.n, sing, reorient=args.reorient, backend=args.backend)
     else:
         res = direction_field(V, F, n=args.n, s=args.s, align=align, lam=args.lam, reorient=args.reorient,
-                              backend=args.backend)
+                              backend=args.backend, progress=not (args.quiet or args.json))
     t2 = time.perf_counter()
     note = (getattr(res, "solver", None) or {}).get("note")
     if note and not args.quiet:

@@ -96,7 +96,7 @@ def _sub(S, idx):
 
 def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None, lam: float = 0.0, *,
                     lumped: bool = False, reorient: bool = False, components: str = "all", backend=None,
-                    tol: float | None = None) -> DirectionField:
+                    tol: float | None = None, progress: bool = False) -> DirectionField:
     """The smoothest (or guidance-aligned) n-direction field of a triangle mesh.
 
     Parameters
@@ -119,6 +119,10 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
     tol : float, optional
         Backward-error tolerance of the eigen solve; default :func:`dhlb.linalg.default_tol`, which scales
         with the mesh so that the singularities are those of a tol = 1e-14 solve.
+    progress : bool
+        Report the phases (setup, eigen solve, indices) on stderr with tqdm when the run is expected
+        to take more than about two seconds (``pip install 'dhlb[progress]'``); the CLI passes
+        ``not --quiet``.
 
     Returns
     -------
@@ -146,9 +150,13 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
     >>> res.index_sum, res.poincare_hopf          # Poincaré–Hopf on the octahedron: χ = 2
     (2, 2.0)
     """
+    from dhlb._progress import progress_bar
+
     t0 = time.perf_counter()
     s = check_s(s)
     lam = _check_lam(lam)
+    faces = np.shape(F)[0] if F is not None else getattr(getattr(V, "mesh", V), "n_faces", 0)
+    bar = progress_bar(3, "direction field", progress=progress, estimate_seconds=1.4e-5 * faces, unit="phase")
     if n is None:
         n = V.n if isinstance(V, TangentBundle) else 1
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 1:
@@ -163,6 +171,7 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
             guide = None
     A, M = energy_matrices(tb, s=s, lumped=lumped)
     t1 = time.perf_counter()
+    bar.update(1)
 
     N = tb.mesh.n_vertices
     u = np.zeros(N, np.complex128)
@@ -194,10 +203,13 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
         share = np.asarray(tb.geometry.volumes(2))[_faces_of(tb, idx)].sum() / area if len(comps) > 1 else 1.0
         u[idx] = uc * np.sqrt(share)
     t2 = time.perf_counter()
+    bar.update(1)
     energy = float((u.conj() @ (A @ u)).real)
     dirs = direction_vectors(tb, u)
     indices = field_indices(tb, u)
     t3 = time.perf_counter()
+    bar.update(1)
+    bar.close()
     return DirectionField(
         n=int(n), s=s, lam=lam, tangent=tb, u=u, directions=dirs, indices=indices, energy=energy,
         eigenvalue=max(eigs) if eigs else None, t=(ts[0] if len(ts) == 1 else (max(ts) if ts else None)),
