@@ -25,6 +25,34 @@ def _back_path(png: str) -> str:
     return png[:-4] + "-back.png"
 
 
+VIEW_ANGLES = {"front": (1.0, 0.6, 0.4), "back": (-1.0, -0.6, -0.4), "left": (-0.4, 0.6, 1.0),
+               "right": (0.4, -0.6, -1.0)}
+"""Camera directions of the polyscope views of each result (when ``dhlb[view]`` and EGL are there)."""
+
+
+def _views(res, out: str, name: str) -> str | None:
+    """A page of polyscope renderings of ``res`` from several angles, where the environment allows it.
+
+    Needs polyscope (``dhlb[view]``) and a headless OpenGL (EGL); returns the page's path, or None
+    (then the demo page shows the matplotlib pictures only).
+    """
+    from dhlb.errors import DhlbError
+    from dhlb.render.gallery import write_gallery
+
+    try:
+        from dhlb.render.view import show
+    except ImportError:
+        return None
+    shots = []
+    for label, view in VIEW_ANGLES.items():
+        path = os.path.join(out, f"{name}-3d-{label}.png")
+        try:
+            shots.append((show(res, screenshot=path, view=view, size=(480, 480)), f"{name}: {label}"))
+        except (ImportError, DhlbError, RuntimeError):
+            return None
+    return write_gallery(os.path.join(out, f"{name}-views.html"), f"{name}: polyscope views", shots)
+
+
 def _spot():
     from dhlb.io import example_path, read_surface
 
@@ -95,7 +123,7 @@ def _field(out, progress, name, V, F, mesh_name, caption, view, **kw):
         return res, png, time.perf_counter() - t0
 
     res, png, sec = progress.run(caption, work)
-    return _field_record(name.split("-")[0], res, png, caption, sec, mesh_name)
+    return {**_field_record(name.split("-")[0], res, png, caption, sec, mesh_name), "views": _views(res, out, name)}
 
 
 def fields(out, progress, *, backend=None) -> list[dict]:
@@ -152,7 +180,7 @@ def stripes(out, progress, *, backend=None) -> list[dict]:
     n_zero, n_branch = len(info["zero_faces"]), len(info["branch_faces"])
     return [{"step": "stripes", "mesh": f"spot ({len(V)} v, {len(F)} f)",
              "result": f"{n_zero} zero faces, {n_branch} branch faces", "check": "continuous texture",
-             "ok": True, "seconds": sec, "picture": png, "caption": caption,
+             "ok": True, "seconds": sec, "picture": png, "caption": caption, "views": _views(res, out, "stripes"),
              "details": {"zero_faces": n_zero, "branch_faces": n_branch, "timings": info.get("timings", {})}}]
 
 
@@ -188,6 +216,7 @@ def vortex(out, progress, *, backend=None) -> list[dict]:
             result += f", linking {int(L[0, 1])}"
         recs.append({"step": "vortex " + kind, "mesh": f"cube ({len(mesh.points)} v, {len(mesh.tets)} tets)",
                      "result": result, "check": check, "ok": bool(ok), "seconds": sec, "picture": png,
+                     "views": _views(res, out, name),
                      "caption": caption, "details": {"filaments": len(res.filaments), "linking_numbers": L.tolist(),
                                                      "timings": res.timings}})
     return recs

@@ -101,8 +101,9 @@ def run(args) -> int:
     for r in records:
         if r.get("picture"):
             back = r["picture"][:-4] + "-back.png"
-            pictures += [(r["picture"], r["caption"])] + ([(back, r["caption"] + " (back)")]
-                                                         if os.path.exists(back) else [])
+            link = r.get("views")  # polyscope views from several angles, where the environment allows it
+            pictures += [(r["picture"], r["caption"], link)] + ([(back, r["caption"] + " (back)", link)]
+                                                               if os.path.exists(back) else [])
     table = [["step", "mesh", "result", "check", "seconds"]] + [
         [r["step"], r["mesh"], r["result"], r["check"], f"{r['seconds']:.2f}"] for r in records]
     page = write_gallery(os.path.join(out, "index.html"), "dhlb demo", pictures, table=table,

@@ -272,7 +272,7 @@ def _run(args) -> int:
     directions = _directions(args, V, F, n)
     res = stripe_pattern(V, F, directions, args.frequency, spacing=args.spacing, n=n, energy=args.energy,
                          backend=args.backend, orthogonal=args.orthogonal, section=args.section,
-                         iterations=args.iterations, seed=args.seed)
+                         iterations=args.iterations, seed=args.seed, progress=not (args.quiet or args.json))
     written = _outputs(res, paths, args)
     summary = res.to_json()
     summary["files"] = written

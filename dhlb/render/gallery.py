@@ -27,7 +27,7 @@ td, th { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; }
 def write_gallery(
     path: str | os.PathLike[str], title: str, pictures: Sequence[Any], *, table: Any = None, intro: str = ""
 ) -> str:
-    """Write ``path`` (an HTML file) showing ``pictures`` = [(file, caption), ...].
+    """Write ``path`` (an HTML file) showing ``pictures`` = [(file, caption), ...] or [(file, caption, link), ...].
 
     Picture files are referenced relative to the page's directory (they must lie beside it or
     below); ``table`` is an optional list of rows (the first row is the header).
@@ -53,10 +53,13 @@ def write_gallery(
         parts += ["<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>" for row in rows]
         parts.append("</table>")
     parts.append("<div class=\"grid\">")
-    for file, caption in pictures:
+    for file, caption, *link in pictures:
         rel = os.path.relpath(os.path.abspath(file), base).replace(os.sep, "/")
-        parts.append(f"<figure><img src=\"{html.escape(rel)}\" alt=\"{html.escape(caption)}\">"
-                     f"<figcaption>{html.escape(caption)}</figcaption></figure>")
+        img = f"<img src=\"{html.escape(rel)}\" alt=\"{html.escape(caption)}\">"
+        if link and link[0]:  # e.g. a page of views from several angles
+            href = os.path.relpath(os.path.abspath(link[0]), base).replace(os.sep, "/")
+            img = f"<a href=\"{html.escape(href)}\">{img}</a>"
+        parts.append(f"<figure>{img}<figcaption>{html.escape(caption)}</figcaption></figure>")
     parts.append("</div>\n</body>\n</html>\n")
     with open(path, "w", encoding="utf-8") as fh:
         fh.write("\n".join(parts))

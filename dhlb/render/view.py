@@ -144,8 +144,8 @@ class Scene:
         uv = None
         if corner_uv is not None:
             uv = np.asarray(corner_uv, dtype=np.float64)
-            if uv.shape == T.shape:  # stripes: u only; v = 1/4 keeps polyscope's checker off its cell border
-                uv = np.stack([uv, np.full_like(uv, 0.25)], axis=-1)
+            if uv.shape == T.shape:  # stripes: u only; v = 1/8 keeps polyscope's checker off its cell border
+                uv = np.stack([uv, np.full_like(uv, 0.125)], axis=-1)
             if uv.shape != T.shape + (2,):
                 raise ShapeError(f"mesh {name!r}: corner_uv must have shape {T.shape} or {T.shape + (2,)}, "
                                  f"got {np.shape(corner_uv)}")
@@ -219,7 +219,11 @@ def _stripes_scene(res, isolines: bool = True) -> Scene:
     tex = res.texture
     mesh = res.mesh
     s = Scene(title=f"stripes n = {res.n}: {tex.zero_faces.size} zeros, {tex.branch_faces.size} branch faces")
-    s.add_mesh("mesh", mesh.points, mesh.faces, corner_uv=tex.corner_alpha / (2 * np.pi),
+    # The per-corner α is defined per face up to α → α + 2π and, for line fields (n = 2), α → −α (the
+    # sheet of the double cover): draw the distance of u = α/2π to the nearest integer, which both leave
+    # alone; checker cells of 1/4 then show the bands cos α > 0 and cos α < 0, the stripes.
+    u = tex.corner_alpha / (2 * np.pi)
+    s.add_mesh("mesh", mesh.points, mesh.faces, corner_uv=np.abs(u - np.round(u)),
                scalars={"zero index": tex.zero_index})
     if isolines:
         iso = trace(tex)
@@ -363,7 +367,7 @@ def _register(ps, scene: Scene) -> None:
                                    enabled=False, cmap="coolwarm")
         if m.corner_uv is not None:
             sm.add_parameterization_quantity("stripes", m.corner_uv.reshape(-1, 2), defined_on="corners",
-                                             coords_type="unit", viz_style="checker", checker_size=0.5,
+                                             coords_type="unit", viz_style="checker", checker_size=0.25,
                                              checker_colors=((0.10, 0.10, 0.14), (0.96, 0.94, 0.88)), enabled=True)
     for p in scene.points:
         pc = ps.register_point_cloud(p.name, p.points, radius=p.radius)

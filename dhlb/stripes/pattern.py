@@ -364,6 +364,7 @@ def stripe_pattern(
     iterations: int | None = None,
     seed: Any = None,
     unit_tol: float = UNIT_RTOL,
+    progress: bool = False,
 ) -> StripePattern:
     """A stripe pattern following ``directions`` with the given frequency (seed part 2).
 
@@ -420,6 +421,9 @@ def stripe_pattern(
         start (default 0, deterministic; see :func:`dhlb.stripes.section.unit_section`).
     unit_tol : float
         ``"unit"`` stops when the unit energy changed by less than this (relative) in one step.
+    progress : bool
+        Report the patterns computed (one, or two with ``orthogonal``) on stderr with tqdm when the
+        run is expected to take more than about two seconds; the CLI passes ``not --quiet``.
 
     Returns
     -------
@@ -473,10 +477,16 @@ def stripe_pattern(
     t_mesh = time.perf_counter() - t0
     args = (frequency, spacing, method, energy, lumped, branch_weight, backend, tol, block_size, warn_aliasing,
             section, iterations, seed, unit_tol)
-    res = _one(tb, X, n, *args, t_mesh)
-    if orthogonal:
-        t1 = time.perf_counter()
-        Y = np.cross(tb.normals, res.form.directions)
-        res.orthogonal = _one(tb, Y, n, *args, time.perf_counter() - t1)
+    from dhlb._progress import progress_bar
+
+    with progress_bar(2 if orthogonal else 1, "stripe pattern", progress=progress, unit="pattern",
+                      estimate_seconds=(2 if orthogonal else 1) * 1.5e-5 * n * mesh.n_faces) as bar:
+        res = _one(tb, X, n, *args, t_mesh)
+        bar.update(1)
+        if orthogonal:
+            t1 = time.perf_counter()
+            Y = np.cross(tb.normals, res.form.directions)
+            res.orthogonal = _one(tb, Y, n, *args, time.perf_counter() - t1)
+            bar.update(1)
     return res
 
