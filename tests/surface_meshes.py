@@ -33,14 +33,10 @@ def ellipsoid(level: int = 4, axes=(3.0, 2.0, 1.0)):
 
 
 def torus(nu: int = 24, nv: int = 12, R: float = 2.0, r: float = 0.7):
-    """Regular torus grid, outward orientation."""
-    i, j = np.meshgrid(np.arange(nu), np.arange(nv), indexing="ij")
-    u, v = 2 * np.pi * i / nu, 2 * np.pi * j / nv
-    V = np.stack([(R + r * np.cos(v)) * np.cos(u), (R + r * np.cos(v)) * np.sin(u), r * np.sin(v)], -1).reshape(-1, 3)
-    idx = lambda a, b: (a % nu) * nv + (b % nv)  # noqa: E731
-    a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
-    F = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3), np.stack([a, c, d], -1).reshape(-1, 3)])
-    return V, F
+    """Regular torus grid, outward orientation (the generator of dhlb.strategies)."""
+    from dhlb.strategies.meshes import _torus
+
+    return _torus(nu, nv, R, r)
 
 
 def cylinder(nu: int = 32, nz: int = 8, R: float = 1.0, h: float = 2.0):
