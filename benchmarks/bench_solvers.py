@@ -1,6 +1,6 @@
 """Benchmark of the solver backends (issue 8): every installed backend on a surface and a tet mesh.
 
-For each problem and each available backend (:func:`dhlb.fem.backends.available_backends`):
+For each problem and each available backend (:func:`dhlb.linalg.available_backends`):
 
 * ``real``  — factorization + one solve of the plain real cotangent Laplacian ``L + εM``
   (``L_ref`` is this figure for the fastest direct backend, measured in the same run);

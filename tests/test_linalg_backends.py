@@ -1,4 +1,4 @@
-"""Tests of dhlb.fem.backends: every installed backend gives the same eigenpairs and solves."""
+"""Tests of dhlb.linalg.backends: every installed backend gives the same eigenpairs and solves."""
 
 import warnings
 

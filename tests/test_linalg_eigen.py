@@ -1,4 +1,4 @@
-"""Tests of dhlb.fem.solvers: generalized Hermitian eigenpairs and shifted solves."""
+"""Tests of dhlb.linalg.eigen and dhlb.linalg.linear: generalized Hermitian eigenpairs and shifted solves."""
 
 import numpy as np
 import pytest
