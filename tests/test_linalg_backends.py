@@ -315,3 +315,16 @@ def test_bitwise_reproducible_and_seeded(backend):
     np.testing.assert_allclose(r3.eigenvalues, r1.eigenvalues, rtol=1e-8)
     with pytest.raises(InvalidParameterError, match="seed"):
         smallest_eigenpairs(A, M, k=1, backend=backend, seed=-1)
+
+
+def test_number_of_eigenpairs_is_checked_against_memory_before_work(monkeypatch):
+    """Issue 19 point 1: the number of eigenpairs scales memory; too many is refused up front, naming k."""
+    from dhlb.errors import ResourceLimitError
+    from dhlb.linalg import memory
+
+    n = 5_000
+    A = sp.diags(np.arange(1.0, n + 1)).tocsr()
+    monkeypatch.setattr(memory, "_LIMIT", 4 * 1024**2)      # 4 MiB: room for a few vectors of 5,000 reals
+    with pytest.raises(ResourceLimitError, match=r"k = 200 .* at most about k = \d+ eigenpairs"):
+        smallest_eigenpairs(A, sp.identity(n, format="csr"), k=200)
+    assert smallest_eigenpairs(A, sp.identity(n, format="csr"), k=2).converged

@@ -420,3 +420,15 @@ def test_progress_reports_the_phases_only_when_asked(monkeypatch, capsys):
     assert "direction field" not in capsys.readouterr().err
     direction_field(V, F, n=2, progress=True)
     assert "direction field" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("scale", [1e-150, 1e150])
+def test_the_answer_does_not_depend_on_the_unit(scale):
+    """Issue 19 point 8: a mesh measured in units of 1e∓150 has the same field (geometry and solver are scale-free)."""
+    V, F = read_surface(example_path("spot.obj"))
+    ref = direction_field(V, F, n=4)
+    res = direction_field(V * scale, F, n=4)
+    np.testing.assert_array_equal(res.indices.face_index, ref.indices.face_index)
+    assert res.eigenvalue * scale**2 == pytest.approx(ref.eigenvalue, rel=1e-12)
+    u, u0 = res.u / np.linalg.norm(res.u), ref.u / np.linalg.norm(ref.u)
+    assert abs(np.vdot(u0, u)) == pytest.approx(1.0, abs=1e-9)        # the same section up to a global phase

@@ -42,8 +42,11 @@ def soa_empty(m: int, *shape: int) -> np.ndarray:
     return np.moveaxis(np.empty((*shape, m)), -1, 0)
 
 
-def eigvalsh_small(g: np.ndarray, det: np.ndarray | None = None) -> np.ndarray:
+def eigvalsh_small(g: np.ndarray, det: np.ndarray | None = None, sqrt_det: np.ndarray | None = None) -> np.ndarray:
     """Ascending eigenvalues ``(m, n)`` of symmetric ``(m, n, n)`` metrics, ``n <= 2``.
+
+    ``det`` (or, better, ``sqrt_det``, which cannot overflow where ``det = sqrt_det²`` would: edges
+    of length 1e150) gives the determinant accurately; ``λ_min = det / λ_max``.
 
     Examples
     --------
@@ -54,6 +57,9 @@ def eigvalsh_small(g: np.ndarray, det: np.ndarray | None = None) -> np.ndarray:
         return g[:, :, 0].copy()
     a, b, c = g[:, 0, 0], g[:, 0, 1], g[:, 1, 1]
     hi = 0.5 * (a + c) + np.hypot(0.5 * (a - c), b)
+    if sqrt_det is not None:  # λ_min = √det · (√det / λ_max): no intermediate det (1e600 for 1e150 edges)
+        lo = sqrt_det * np.divide(sqrt_det, hi, out=np.zeros_like(hi), where=hi != 0)
+        return np.stack([lo, hi], axis=1)
     d = a * c - b * b if det is None else det
     lo = np.divide(d, hi, out=np.zeros_like(hi), where=hi != 0)
     return np.stack([lo, hi], axis=1)
@@ -77,21 +83,27 @@ def factor_from_edges(E: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     e2 = np.ascontiguousarray(E[:, :, 1])
     n12 = np.einsum("md,md->m", e1, e2)
     n22 = np.einsum("md,md->m", e2, e2)
+    # |e1 ∧ e2| from edges scaled by a power of two (exact): the squared wedge is a 4th power of the
+    # lengths and would under/overflow for edges of 1e∓150, where the metric itself is still fine
+    big = np.maximum(np.abs(e1).max(axis=1), np.abs(e2).max(axis=1))
+    s = np.exp2(np.round(np.log2(np.where(big > 0, big, 1.0))))[:, None]
+    f1, f2 = e1 / s, e2 / s
     if d == 3:
-        c = np.cross(e1, e2)
+        c = np.cross(f1, f2)
         wedge2 = np.einsum("md,md->m", c, c)
     elif d == 2:
-        wedge2 = (e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]) ** 2
+        wedge2 = (f1[:, 0] * f2[:, 1] - f1[:, 1] * f2[:, 0]) ** 2
     else:
         wedge2 = np.zeros(m)
         for i in range(d):
             for j in range(i + 1, d):
-                wedge2 += (e1[:, i] * e2[:, j] - e1[:, j] * e2[:, i]) ** 2
+                wedge2 += (f1[:, i] * f2[:, j] - f1[:, j] * f2[:, i]) ** 2
+    wedge = np.sqrt(wedge2) * s[:, 0] ** 2
     safe = np.where(r11 > 0, r11, 1.0)
     R = np.zeros((m, 2, 2))
     R[:, 0, 0] = r11
     R[:, 0, 1] = np.where(r11 > 0, n12 / safe, 0.0)
-    R[:, 1, 1] = np.where(r11 > 0, np.sqrt(wedge2) / safe, np.sqrt(n22))
+    R[:, 1, 1] = np.where(r11 > 0, wedge / safe, np.sqrt(n22))
     g = np.empty((m, 2, 2))
     g[:, 0, 0], g[:, 0, 1], g[:, 1, 0], g[:, 1, 1] = n11, n12, n12, n22
     return R, g

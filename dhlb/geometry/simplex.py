@@ -202,10 +202,10 @@ class SimplexStack:
         if self.n == 0:
             return np.zeros((self.m, 0))
         if self.n <= 2:
-            det = None
-            if self._factor_given is not None:
-                det = np.prod(np.diagonal(self._factor_given, axis1=1, axis2=2), axis=1) ** 2
-            return eigvalsh_small(self._g, det)
+            if self._factor_given is not None:  # √det = Π diag R: no squaring (edges of 1e±150 stay finite)
+                return eigvalsh_small(self._g, sqrt_det=np.prod(np.diagonal(self._factor_given, axis1=1, axis2=2),
+                                                                axis=1))
+            return eigvalsh_small(self._g)
         return np.linalg.eigvalsh(self._g)
 
     @cached_property

@@ -187,6 +187,9 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
         (default shift) ``A + εM`` not positive definite, i.e. ``A`` is not PSD.
     InvalidParameterError
         ``k``, ``tol``, ``maxiter``, ``sigma``, ``block_size`` or ``factor_shift`` out of range.
+    ResourceLimitError
+        The ``k`` eigenvectors (and the Krylov basis) would not fit in the available memory; checked
+        before any work.
     InsufficientMemoryError
         The factorization would not fit in the available memory and no iterative backend is
         installed (the message says what would fit).  With ``backend=None``/``"auto"`` and pyamg
@@ -226,6 +229,75 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
         raise InvalidParameterError(f"sigma must be a finite real number, got {sigma!r}")
     if block_size is not None and not (isinstance(block_size, (int, np.integer)) and k <= block_size):
         raise InvalidParameterError(f"block_size must be an integer >= k = {k}, got {block_size!r}")
+    _check_basis_memory(n, k, block_size, np.iscomplexobj(A.data) or np.iscomplexobj(M.data))
+    sA, sM = _pencil_scales(A, M)
+    if sA == 1.0 and sM == 1.0:
+        return _solve(A, M, k, tol, maxiter, sigma, v0, backend, block_size, factor_shift, psd, seed)
+    res = _solve(A * sA, M * sM, k, tol, maxiter, None if sigma is None else float(sigma) * sA / sM, v0, backend,
+                 block_size, factor_shift, psd, seed)
+    return _unscale(res, sA, sM)
+
+
+def _check_basis_memory(n: int, k: int, block_size, complex_: bool) -> None:
+    """Refuse, before any work, a number of eigenpairs whose vectors would not fit in memory."""
+    from dhlb.errors import ResourceLimitError
+    from dhlb.linalg.memory import available_bytes
+
+    if n <= DENSE_MAX:
+        return
+    vectors = 3 * max(2 * k + 1, k + 11, int(block_size or 0))   # Krylov basis, its M-images, Ritz vectors
+    need = vectors * n * (16 if complex_ else 8)
+    have = available_bytes()
+    if need > have:
+        fit = max(1, int(have / (3 * 2 * n * (16 if complex_ else 8))))
+        raise ResourceLimitError("k", k, need, have, f"at most about k = {fit} eigenpairs of this {n:,}-unknown "
+                                 "problem fit in memory")
+
+
+def _pencil_scales(A, M) -> tuple[float, float]:
+    """Powers of two ``(s_A, s_M)`` that bring ``‖A‖₁`` and ``max M_ii`` near 1, or ``(1, 1)`` if they are.
+
+    The eigenproblem is scale-covariant: ``(s_A A) u = (s_A λ / s_M)(s_M M) u``.  A mesh measured in
+    units of 1e-150 has a mass matrix near 1e-300 and ARPACK's M-norms underflow; scaling by powers
+    of two (``s_M`` a power of four, so that ``√s_M`` is one too) is exact, so results in the
+    caller's units do not depend on the unit.  Only far-out scales (beyond 2^±64) are touched.
+    """
+    nA = _norm1(A)
+    dM = float(M.diagonal().real.max())
+    eA = int(np.round(np.log2(nA))) if nA > 0 and np.isfinite(nA) else 0
+    eM = int(np.round(np.log2(dM) / 2)) if dM > 0 and np.isfinite(dM) else 0
+    if abs(eA) <= 64 and abs(eM) <= 32:
+        return 1.0, 1.0
+    return float(np.ldexp(1.0, -eA)), float(np.ldexp(1.0, -2 * eM))
+
+
+def _unscale(res: EigenResult, sA: float, sM: float) -> EigenResult:
+    """The result of the scaled pencil ``(s_A A, s_M M)`` in the caller's units."""
+    c = sM / sA
+    fac = None if res.factor is None else _ScaledFactor(res.factor, sA)
+    return replace(res, eigenvalues=res.eigenvalues * c, eigenvectors=res.eigenvectors * np.sqrt(sM),
+                   shift=res.shift * c, factor=fac)
+
+
+class _ScaledFactor:
+    """``solve`` for ``A − σM`` from a factor of ``s_A (A − σM)``."""
+
+    def __init__(self, fac, sA: float):
+        self.fac, self.sA = fac, sA
+        self.name = getattr(fac, "name", "")
+
+    @property
+    def negative_pivots(self):
+        return getattr(self.fac, "negative_pivots", None)
+
+    def solve(self, B):
+        return self.fac.solve(B) * self.sA
+
+
+def _solve(A, M, k, tol, maxiter, sigma, v0, backend, block_size, factor_shift, psd, seed) -> EigenResult:
+    """:func:`smallest_eigenpairs` after the checks, on a pencil of ordinary scale."""
+    n = A.shape[0]
+    default = sigma is None
     complex_ = np.iscomplexobj(A.data) or np.iscomplexobj(M.data)
     eps_shift = default_shift(A, M)
     shift = -eps_shift if default else float(sigma)
