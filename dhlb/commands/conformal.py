@@ -136,8 +136,11 @@ def render_conformal_png(path, before, after, faces, distortion_faces, *, title=
         ax.set_title(name, fontsize=10)
     if title:
         fig.suptitle(title, fontsize=10)
+    from dhlb.io.atomic import atomic_write
+
     out = os.fspath(path)
-    fig.savefig(out, format="png", dpi=dpi, facecolor="white")
+    with atomic_write(out, "wb") as fh:
+        fig.savefig(fh, format="png", dpi=dpi, facecolor="white")
     return out
 
 

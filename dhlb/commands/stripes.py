@@ -154,30 +154,6 @@ def _check_density(args, V, F, n):
                                  f"{advice} (isolines of ~{crossings:.3g} crossings), or --no-isolines")
 
 
-def _atomic_png(path, texture, size):
-    """Render to a temporary PNG in the target folder, then rename it onto ``path``."""
-    import contextlib
-    import secrets
-
-    from dhlb.io.atomic import output_error
-    from dhlb.render.stripes_png import render_stripes_png
-
-    folder, name = os.path.split(os.path.abspath(path))
-    tmp = os.path.join(folder, f".{os.path.splitext(name)[0]}.{secrets.token_hex(4)}.tmp.png")
-    try:
-        render_stripes_png(tmp, texture, size=(size, size), mark_singularities=True)
-        os.replace(tmp, path)
-    except OSError as exc:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise output_error(path, exc) from None
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
-    return path
-
-
 def _write_isolines(path, iso_list) -> int:
     lines = ["# dhlb stripe isolines: one 'l' polyline per isoline"]
     offset, count = 0, 0
@@ -209,7 +185,10 @@ def _outputs(res, paths, args) -> dict:
         written["isolines"] = paths["isolines"]
         written["n_isolines"] = _write_isolines(paths["isolines"], iso)
     if not args.no_png:
-        written["png"] = _atomic_png(paths["png"], res.texture, args.size)
+        from dhlb.render.stripes_png import render_stripes_png  # written atomically by the render layer
+
+        written["png"] = render_stripes_png(paths["png"], res.texture, size=(args.size, args.size),
+                                            mark_singularities=True)
     if res.orthogonal is not None:
         o = output_paths(paths["obj"][:-4] + "-orthogonal")
         written["orthogonal_obj"], written["orthogonal_sidecar"] = write_stripes_obj(o["obj"], res.orthogonal.texture)

@@ -1,12 +1,14 @@
 """Safe output files: write to a temporary file and rename, never replace an input.
 
-Two small tools every writer and command uses:
+Small tools every writer and command uses:
 
 * :func:`atomic_write` — a context manager that opens a temporary file next to the target and
   renames it onto the target only when the ``with`` block finishes without an error. An
   interrupted or failed run leaves the target as it was (absent or the old file) and no
   temporary file. ``OSError`` (disk full, no permission, missing folder) becomes
   :class:`~dhlb.errors.OutputError`, a one-line message naming the path.
+* :func:`atomic_path` — the same for writers that need a file name (meshio, matplotlib): a
+  temporary path with the target's extension, renamed onto the target at the end.
 * :func:`refuse_overwrite` — raises :class:`~dhlb.errors.OverwriteError` when an output path
   is one of the input files (same path after resolving symlinks and ``..``, or the same file
   through a hard link).
@@ -34,7 +36,7 @@ from typing import IO, Any
 
 from dhlb.errors import OutputError, OverwriteError
 
-__all__ = ["atomic_write", "refuse_overwrite", "output_error"]
+__all__ = ["atomic_path", "atomic_write", "refuse_overwrite", "output_error"]
 
 
 def output_error(path: str | os.PathLike[str], exc: OSError) -> OutputError:
@@ -61,6 +63,47 @@ def output_error(path: str | os.PathLike[str], exc: OSError) -> OutputError:
         errno.ENOTDIR: " (a part of the path is not a folder)",
     }.get(exc.errno or 0, "")
     return OutputError(os.fspath(path), reason + hint)
+
+
+@contextlib.contextmanager
+def atomic_path(path: str | os.PathLike[str]) -> Iterator[str]:
+    """A temporary path beside ``path`` (same extension) that is renamed onto ``path`` at the end.
+
+    For writers that want a file name rather than a file object (meshio, matplotlib's format
+    detection). The target appears (or is replaced) only when the ``with`` block ends normally;
+    otherwise the temporary file is removed.
+
+    Raises
+    ------
+    OutputError
+        ``path`` is a directory, or an ``OSError`` (missing folder, no permission, disk full) met
+        while writing or renaming (one line naming ``path``).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     with atomic_path(os.path.join(d, "a.txt")) as tmp:
+    ...         _ = open(tmp, "w").write("x")
+    ...         hidden = os.path.basename(tmp).startswith(".") and tmp.endswith(".txt")
+    ...     print(hidden, os.listdir(d))
+    True ['a.txt']
+    """
+    path = os.fspath(path)
+    if os.path.isdir(path):
+        raise OutputError(path, "it is a directory; give a file name")
+    folder, name = os.path.split(os.path.abspath(path))
+    stem, ext = os.path.splitext(name)
+    tmp = os.path.join(folder, f".{stem}.{secrets.token_hex(4)}.tmp{ext}")
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    except OSError as exc:
+        _remove(tmp)
+        raise output_error(path, exc) from None
+    except BaseException:
+        _remove(tmp)
+        raise
 
 
 @contextlib.contextmanager
@@ -107,27 +150,14 @@ def atomic_write(
     """
     if mode not in ("w", "wb"):
         raise ValueError(f"atomic_write mode must be 'w' or 'wb', got {mode!r}")
-    path = os.fspath(path)
-    folder, name = os.path.split(os.path.abspath(path))
-    if os.path.isdir(path):
-        raise OutputError(path, "it is a directory; give a file name")
-    tmp = os.path.join(folder, f".{name}.{secrets.token_hex(4)}.tmp")
-    try:
-        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-    except OSError as exc:
-        raise output_error(path, exc) from None
-    try:
-        kwargs = {"encoding": encoding} if mode == "w" else {}
-        with os.fdopen(fd, mode, **kwargs) as fh:
+    with atomic_path(path) as tmp:
+        try:
+            fh = open(tmp, mode.replace("w", "x"), **({"encoding": encoding} if mode == "w" else {}))
+        except OSError as exc:
+            raise output_error(path, exc) from None
+        with fh:
             yield fh
             fh.flush()
-        os.replace(tmp, path)
-    except OSError as exc:
-        _remove(tmp)
-        raise output_error(path, exc) from None
-    except BaseException:
-        _remove(tmp)
-        raise
 
 
 def _remove(tmp: str) -> None:

@@ -33,9 +33,7 @@ Examples
 
 from __future__ import annotations
 
-import contextlib
 import os
-import secrets
 import xml.etree.ElementTree as ET
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
@@ -133,30 +131,24 @@ def _data(data, rows, kind, path) -> dict:
 
 # ---------------------------------------------------------------------------- writing
 def _write_atomic(path, write) -> str:
-    """Call ``write(tmp)`` on a temporary file with the same extension beside ``path``; rename it."""
-    from dhlb.io.atomic import output_error
+    """Call ``write(tmp)`` on a temporary path beside ``path`` (:func:`dhlb.io.atomic.atomic_path`).
+
+    meshio's own failures become :class:`~dhlb.errors.OutputError` too.
+    """
+    from dhlb.io.atomic import atomic_path
 
     out = os.fspath(path)
-    folder, name = os.path.split(os.path.abspath(out))
-    stem, ext = os.path.splitext(name)
-    tmp = os.path.join(folder, f".{stem}.{secrets.token_hex(4)}.tmp{ext}")
-    try:
-        write(tmp)
-        os.replace(tmp, out)
-    except OSError as exc:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise output_error(out, exc) from None
-    except (ValueError, KeyError, TypeError) as exc:  # meshio's WriteError is a plain Exception subclass
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise OutputError(out, f"meshio cannot write it ({exc})") from None
-    except Exception as exc:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        if type(exc).__module__.startswith("meshio"):
+    with atomic_path(out) as tmp:
+        try:
+            write(tmp)
+        except OSError:
+            raise
+        except (ValueError, KeyError, TypeError) as exc:  # meshio's WriteError is a plain Exception subclass
             raise OutputError(out, f"meshio cannot write it ({exc})") from None
-        raise
+        except Exception as exc:
+            if type(exc).__module__.startswith("meshio"):
+                raise OutputError(out, f"meshio cannot write it ({exc})") from None
+            raise
     return out
 
 

@@ -226,6 +226,9 @@ def finish_figure(fig, ax, path, xy, aspect, title, dpi, background) -> str:
     ax.set_ylim(mid[1] - half / min(aspect, 1), mid[1] + half / min(aspect, 1))
     if title:
         ax.text(0.02, 0.98, title, transform=ax.transAxes, va="top", ha="left", fontsize=10)
+    from dhlb.io.atomic import atomic_write
+
     out = os.fspath(path)
-    fig.savefig(out, format="png", dpi=dpi, facecolor=background)
+    with atomic_write(out, "wb") as fh:  # a failed or interrupted render leaves no half-written picture
+        fig.savefig(fh, format="png", dpi=dpi, facecolor=background)
     return out

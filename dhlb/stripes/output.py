@@ -37,17 +37,14 @@ Examples
 
 from __future__ import annotations
 
-import contextlib
-import errno
 import io
 import json
 import os
-import secrets
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import InvalidParameterError, OutputError
+from dhlb.errors import InvalidParameterError
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -107,30 +104,11 @@ def stripes_sidecar(
     return out
 
 
-def _write_atomic(path: str, text: str) -> None:
-    """Write ``text`` to a temporary file in the target folder, then ``os.replace`` it onto ``path``.
+def _write_text(path: str, text: str) -> None:
+    from dhlb.io.atomic import atomic_write  # the io layer is below the applications
 
-    An interrupted or failed write leaves ``path`` as it was; ``OSError`` becomes a one-line
-    :class:`~dhlb.errors.OutputError` naming ``path``.
-    """
-    folder, name = os.path.split(os.path.abspath(path))
-    if os.path.isdir(path):
-        raise OutputError(path, "it is a directory; give a file name")
-    tmp = os.path.join(folder, f".{name}.{secrets.token_hex(4)}.tmp")
-    try:
-        with open(tmp, "x", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except OSError as exc:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        hint = {errno.ENOSPC: " (the disk is full)", errno.ENOENT: " (the folder does not exist)",
-                errno.EACCES: " (no permission; choose another folder)"}.get(exc.errno or 0, "")
-        raise OutputError(path, (exc.strerror or str(exc)) + hint) from None
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
+    with atomic_write(path) as fh:
+        fh.write(text)
 
 
 def _expanded(texture, refine: int):
@@ -207,12 +185,12 @@ def write_stripes_obj(
     idx = np.stack([tri + 1, np.arange(1, 3 * m + 1).reshape(m, 3)], axis=-1).reshape(m, 6)
     np.savetxt(buf, idx, fmt="f %d/%d %d/%d %d/%d")
     out = os.fspath(path)
-    _write_atomic(out, buf.getvalue())
+    _write_text(out, buf.getvalue())
     side = None
     if sidecar:
         base = out[:-4] if out.lower().endswith(".obj") else out
         side = base + ".json"
         data = stripes_sidecar(texture, obj_name=os.path.basename(out), obj_face_of=face_of)
         data["expanded"] = int(expand)
-        _write_atomic(side, json.dumps(data))
+        _write_text(side, json.dumps(data))
     return out, side
