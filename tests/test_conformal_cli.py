@@ -68,7 +68,7 @@ def test_errors_and_exit_codes(tmp_path, capsys):
     code, _, err = dhlb_conformal([str(src), "--u", str(tmp_path / "bad.npy")], capsys)
     assert code == 2 and "(27,)" in err
     code, _, err = dhlb_conformal([str(src), "-o", str(tmp_path / "x.ply")], capsys)
-    assert code == 2 and ".mesh or .vtk" in err
+    assert code == 2 and ".mesh, .vtk or .vtu" in err
     code, _, err = dhlb_conformal([str(tmp_path / "missing.mesh")], capsys)
     assert code == 2 and "no such file" in err
 
@@ -77,3 +77,19 @@ def test_default_ball(capsys):
     code, text, err = dhlb_conformal(["--ball", "2"], capsys)
     assert code == 0, err
     assert "ball 2" in text and "eigenvalue" in text
+
+
+def test_derived_outputs_never_overwrite_the_input(tmp_path):
+    """-o ball.vtk also writes ball.mesh: with ball.mesh as the input that is refused before any work."""
+    from dhlb.cli import main
+    from dhlb.io import write_volume
+    from dhlb.volume import ball_tet_mesh
+
+    m = ball_tet_mesh(2)
+    src = tmp_path / "ball.mesh"
+    write_volume(src, m.points, m.tets)
+    before = src.read_bytes()
+    assert main(["conformal", str(src), "-o", str(tmp_path / "ball.vtk"), "--no-png", "-q"]) == 2
+    assert src.read_bytes() == before
+    assert main(["conformal", str(src), "-o", str(tmp_path / "out.vtu"), "--no-png", "-q"]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["ball.mesh", "out.json", "out.mesh", "out.vtk", "out.vtu"]

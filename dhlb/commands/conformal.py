@@ -12,7 +12,7 @@ import warnings
 
 import numpy as np
 
-from dhlb.commands._common import UsageError, add_command, resolve_input
+from dhlb.commands._common import UsageError, add_command, check_outputs, resolve_input
 from dhlb.errors import DhlbWarning
 
 __all__ = ["NAME", "SUMMARY", "boundary_distortion", "format_report", "parse_charge", "register",
@@ -209,20 +209,29 @@ def _factor(args, mesh, n_rows):
     return u, "; ".join(u.labels)
 
 
+MESH_EXTENSIONS = (".mesh", ".vtk", ".vtu")
+"""``-o`` extensions; the deformed tets are always written as ``.mesh`` and ``.vtk`` beside it, ``.vtu`` when asked."""
+
+
+def _mesh_outputs(out: str) -> list[str]:
+    """The deformed-mesh files ``-o OUT`` writes: ``.mesh`` and ``.vtk``, and ``.vtu`` if asked."""
+    stem, ext = os.path.splitext(out)
+    return [stem + e for e in (".mesh", ".vtk")] + ([out] if ext.lower() == ".vtu" else [])
+
+
 def _outputs(args, result, meta) -> list[str]:
+    from dhlb.io.atomic import atomic_write
+
     out = args.output
     if not out or out == "-":
         return []
     stem = os.path.splitext(out)[0]
     written = []
-    try:
-        for e in (".mesh", ".vtk"):
-            written += result.save(stem + e)
-        with open(stem + ".json", "w", encoding="utf-8") as fh:
-            json.dump({**meta, **_summary(result)}, fh, indent=1)
-        written.append(stem + ".json")
-    except OSError as exc:
-        raise UsageError(f"cannot write {exc.filename or out}: {exc.strerror}") from None
+    for path in _mesh_outputs(out):
+        written += result.save(path)
+    with atomic_write(stem + ".json") as fh:
+        json.dump({**meta, **_summary(result)}, fh, indent=1)
+    written.append(stem + ".json")
     if not args.no_png:
         try:
             F, dF = boundary_distortion(result)
@@ -269,8 +278,11 @@ def run(args) -> int:
 
     if args.output and args.output != "-":
         ext = os.path.splitext(args.output)[1].lower()
-        if ext not in (".mesh", ".vtk"):
-            raise UsageError(f"-o must name a .mesh or .vtk file for the deformed mesh, got {args.output!r}")
+        if ext not in MESH_EXTENSIONS:
+            raise UsageError(f"-o must name a .mesh, .vtk or .vtu file for the deformed mesh, got {args.output!r}")
+        stem = os.path.splitext(args.output)[0]
+        derived = _mesh_outputs(args.output) + [stem + ".json"] + ([] if args.no_png else [stem + ".png"])
+        check_outputs(derived, args, inputs=[args.u_file])  # never over the input mesh or the u file
     mesh, n_rows, mesh_name = _mesh(args)
     u, uname = _factor(args, mesh, n_rows)
     if isinstance(u, np.ndarray) and u.shape != (n_rows,):
@@ -281,5 +293,6 @@ def run(args) -> int:
     meta = {"mesh": mesh_name, "u": uname}
     meta["written"] = _outputs(args, result, meta)
     data = _summary(result)
-    print(json.dumps({**data, **meta}, indent=1) if args.json else format_report(meta, data))
+    if args.json or not args.quiet:
+        print(json.dumps({**data, **meta}, indent=1) if args.json else format_report(meta, data))
     return 0
