@@ -557,11 +557,8 @@ def conformal_deformation(
     target = np.exp(0.5 * (uv[E[:, 0]] + uv[E[:, 1]]))[:, None] * qmul(qconj(pm), qmul(imag(e), pm))[:, 1:]
     w = cotan_edge_weights(geo)
     N = Pm.shape[0]
-    b = np.zeros((N, 3))
-    for c in range(3):
-        b[:, c] = (np.bincount(E[:, 1], weights=w * target[:, c], minlength=N)
-                   - np.bincount(E[:, 0], weights=w * target[:, c], minlength=N))
-    L = geo.stiffness_matrix().tocsr()
+    b = X.coboundary(0).T @ (w[:, None] * target)     # d₀ᵀ W E: the normal equations' right-hand side
+    L = geo.stiffness_matrix().tocsr()                 # = d₀ᵀ W d₀
     Ml = geo.mass_matrix(lumped=True).tocsr()
     f = np.zeros((N, 3))
     if N > 1:
