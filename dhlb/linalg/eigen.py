@@ -311,14 +311,11 @@ def _solve(A, M, k, tol, maxiter, sigma, v0, backend, block_size, factor_shift, 
     if default and not psd:
         with blas_guard():
             return _lowest_of_indefinite(A, M, k, eps_shift, tol, maxiter, v, ncv)
-    if v0 is not None and np.ndim(v0) == 2 and np.shape(v0)[1] >= k:  # a warm start that may already pass
-        _, _, lam, U, eta = _rayleigh_ritz(A, M, np.asarray(v0), k, shift, _norm1(A), _norm1(M))
+    if v0 is not None and (k == 1 or (np.ndim(v0) == 2 and np.shape(v0)[1] >= k)):  # a warm start may already pass
+        W = np.asarray(v0) if np.ndim(v0) == 2 and np.shape(v0)[1] >= k else v[:, None]
+        _, _, lam, U, eta = _rayleigh_ritz(A, M, W, k, shift, _norm1(A), _norm1(M))
         if np.all(eta <= tol) and not (default and lam[0] < shift):
             return EigenResult(lam, _fix_phase(U), 0, eta, True, "warm start", shift, k, "rayleigh-ritz")
-    elif v0 is not None and k == 1:
-        _, _, lam, U, eta = _rayleigh_ritz(A, M, v[:, None], 1, shift, _norm1(A), _norm1(M))
-        if eta[0] <= tol and not (default and lam[0] < shift):
-            return EigenResult(lam, _fix_phase(U), 0, eta, True, "warm start", shift, 1, "rayleigh-ritz")
     be = get_backend(backend, n=n, nnz=A.nnz, eigen=True, shifted=not default, dimension=lambda: pattern_dimension(A))
     with blas_guard():  # once per eigen solve: every factorization and solve below runs inside
         if hasattr(be, "eigensolve"):
