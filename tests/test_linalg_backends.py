@@ -298,7 +298,7 @@ def test_memory_model_overestimates_measured_factors():
         fac = SuperLUBackend().factorize(A)
         stored = (fac.lu.L.nnz + fac.lu.U.nnz) * (8 + 4)   # values + row indices
         est = memory.factor_bytes(A.shape[0], A.nnz, complex_=False, dimension=pattern_dimension(A))
-        assert stored < est < 60 * stored
+        assert stored < est < 20 * stored                  # measured 9.5–11×: the model covers SuperLU's workspace
 
 
 @pytest.mark.parametrize("backend", [b for b in B.available_backends() if b != "petsc"])

@@ -307,7 +307,7 @@ def _solve(A, M, k, tol, maxiter, sigma, v0, backend, block_size, factor_shift, 
     if not auto:
         get_backend(backend)  # an unknown or uninstalled name is an error even when the dense path answers
     if (auto and n <= DENSE_MAX) or ncv >= n - 1:
-        return _dense(A, M, k, shift, default and psd, tol, complex_)
+        return _dense(A, M, k, shift, default, psd, tol, eps_shift)
     if default and not psd:
         with blas_guard():
             return _lowest_of_indefinite(A, M, k, eps_shift, tol, maxiter, v, ncv)
@@ -479,12 +479,17 @@ class _Deflated(spla.LinearOperator):
         return x - self.X @ np.linalg.solve(self.G, self.MX.conj().T @ x)
 
 
-def _dense(A, M, k, shift, default, tol, complex_):
-    """Dense generalized eigensolver for small problems (always converges)."""
+def _dense(A, M, k, shift, smallest, psd, tol, eps_shift):
+    """Dense generalized eigensolver for small problems (always converges).
+
+    ``smallest``: the ``k`` algebraically smallest pairs (``sigma`` not given), else the ``k``
+    closest to ``shift``; ``psd``: an eigenvalue below the shift is an error.  Like the sparse path,
+    the returned factor steps off ``shift`` by ``ε`` when ``shift`` is exactly an eigenvalue.
+    """
     Ad, Md = A.toarray(), M.toarray()
     n = Ad.shape[0]
     try:
-        if default:
+        if smallest:
             lam, U = sla.eigh(Ad, Md, subset_by_index=[0, k - 1])
         else:
             lam, U = sla.eigh(Ad, Md)
@@ -492,11 +497,13 @@ def _dense(A, M, k, shift, default, tol, complex_):
             lam, U = lam[sel], U[:, sel]
     except np.linalg.LinAlgError as err:
         raise InvalidOperatorError(f"M is not positive definite ({err})") from err
-    if default and lam[0] < shift:
+    if smallest and psd and lam[0] < shift:
         raise _not_psd(lam[0], shift)
     eta = _eta(A @ U - (M @ U) * lam[None, :], lam, U, _norm1(A), _norm1(M))
-    K = Ad - shift * Md
-    fac = _DenseFactor(K)
+    fac = _DenseFactor(Ad - shift * Md)
+    if not fac.regular:  # σ is exactly an eigenvalue: step off it
+        shift -= eps_shift
+        fac = _DenseFactor(Ad - shift * Md)
     return EigenResult(lam, _fix_phase(U), 0, eta, bool(np.all(eta <= max(tol, 1e3 * _EPS))), "dense", shift, n,
                        "dense", factor=fac)
 
@@ -507,7 +514,10 @@ class _DenseFactor:
     name = "dense"
 
     def __init__(self, K):
-        self.lu = sla.lu_factor(K, check_finite=False)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", sla.LinAlgWarning)  # an exactly singular K: reported by `regular`
+            self.lu = sla.lu_factor(K, check_finite=False)
+        self.regular = bool(np.all(np.diagonal(self.lu[0]) != 0))
 
     def solve(self, B):
         return sla.lu_solve(self.lu, np.asarray(B), check_finite=False)
