@@ -1,4 +1,4 @@
-"""dhlb.io.meshio_bridge: .vtu/.vtp output of the results, meshio input; round trips read back with meshio."""
+"""dhlb.io.meshio_bridge and dhlb.io.paraview: .vtu/.vtp output of results, meshio input; read back with meshio."""
 
 import itertools
 import os
@@ -23,14 +23,12 @@ from dhlb.errors import (  # noqa: E402
 from dhlb.io import example_path, read_ply, read_surface, read_vtk  # noqa: E402
 from dhlb.io.meshio_bridge import (  # noqa: E402
     MESHIO_EXTRA,
-    field_to_vtu,
     read_with_meshio,
-    stripes_to_vtu,
-    vortex_to_vtu,
     write_vtp_curves,
     write_vtu_surface,
     write_vtu_volume,
 )
+from dhlb.io.paraview import field_to_vtu, stripes_to_vtu, vortex_to_vtu  # noqa: E402
 
 DATA = Path(__file__).parent / "data"
 
