@@ -26,3 +26,13 @@ def test_layers_are_attributes(attr):
     for part in attr.split("."):
         obj = getattr(obj, part)
     assert callable(obj)
+
+
+def test_old_solver_module_is_a_deprecated_alias():
+    out = _run("import warnings, sys; warnings.simplefilter('error'); "
+               "exec('try:\\n import dhlb.fem.solvers\\nexcept DeprecationWarning as e:\\n print(\"deprecated\")')")
+    assert out == ["deprecated"]
+    import dhlb.fem
+    import dhlb.linalg
+
+    assert dhlb.fem.smallest_eigenpairs is dhlb.linalg.smallest_eigenpairs

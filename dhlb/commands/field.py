@@ -206,7 +206,7 @@ def run(args) -> int:
     summary = res.to_json()
     paths = write_field(out, res, V, F, png=not args.no_png)
     if vtu:
-        from dhlb.io.meshio_bridge import field_to_vtu
+        from dhlb.io.paraview import field_to_vtu
 
         paths["vtu"] = field_to_vtu(res, out + ".vtu")
     t3 = time.perf_counter()

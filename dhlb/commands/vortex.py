@@ -243,7 +243,7 @@ def _outputs(args, result, meta, velocity=None) -> list[str]:
         raise UsageError(f"-o must name a .ply or .obj file (filament polylines) or a .vtu file (ParaView), "
                          f"got {out!r}")
     if ext.lower() == ".vtu":
-        from dhlb.io.meshio_bridge import vortex_to_vtu
+        from dhlb.io.paraview import vortex_to_vtu
 
         written = vortex_to_vtu(result, out, velocity)
     else:
