@@ -83,22 +83,14 @@ def factor_from_edges(E: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     e2 = np.ascontiguousarray(E[:, :, 1])
     n12 = np.einsum("md,md->m", e1, e2)
     n22 = np.einsum("md,md->m", e2, e2)
-    # |e1 ∧ e2| from edges scaled by a power of two (exact): the squared wedge is a 4th power of the
-    # lengths and would under/overflow for edges of 1e∓150, where the metric itself is still fine
-    big = np.maximum(np.abs(e1).max(axis=1), np.abs(e2).max(axis=1))
-    s = np.exp2(np.round(np.log2(np.where(big > 0, big, 1.0))))[:, None]
-    f1, f2 = e1 / s, e2 / s
-    if d == 3:
-        c = np.cross(f1, f2)
-        wedge2 = np.einsum("md,md->m", c, c)
-    elif d == 2:
-        wedge2 = (f1[:, 0] * f2[:, 1] - f1[:, 1] * f2[:, 0]) ** 2
-    else:
-        wedge2 = np.zeros(m)
-        for i in range(d):
-            for j in range(i + 1, d):
-                wedge2 += (f1[:, i] * f2[:, j] - f1[:, j] * f2[:, i]) ** 2
-    wedge = np.sqrt(wedge2) * s[:, 0] ** 2
+    wedge = np.sqrt(_wedge2(e1, e2, m, d))
+    # |e1 ∧ e2|² is a 4th power of the lengths: it under/overflows for edges of 1e∓100, where the
+    # metric itself is still fine; there, recompute it from edges scaled by a power of two (exact)
+    far = (n11 > 1e200) | (n11 < 1e-200) | (n22 > 1e200) | (n22 < 1e-200)
+    if np.any(far):
+        big = np.maximum(np.abs(e1[far]).max(axis=1), np.abs(e2[far]).max(axis=1))
+        sc = np.exp2(np.round(np.log2(np.where(big > 0, big, 1.0))))
+        wedge[far] = np.sqrt(_wedge2(e1[far] / sc[:, None], e2[far] / sc[:, None], int(far.sum()), d)) * sc**2
     safe = np.where(r11 > 0, r11, 1.0)
     R = np.zeros((m, 2, 2))
     R[:, 0, 0] = r11
@@ -107,6 +99,20 @@ def factor_from_edges(E: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     g = np.empty((m, 2, 2))
     g[:, 0, 0], g[:, 0, 1], g[:, 1, 0], g[:, 1, 1] = n11, n12, n12, n22
     return R, g
+
+
+def _wedge2(e1: np.ndarray, e2: np.ndarray, m: int, d: int) -> np.ndarray:
+    """``|e1 ∧ e2|²`` per row for edge vectors ``(m, d)``."""
+    if d == 3:
+        c = np.cross(e1, e2)
+        return np.einsum("md,md->m", c, c)
+    if d == 2:
+        return (e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]) ** 2
+    out = np.zeros(m)
+    for i in range(d):
+        for j in range(i + 1, d):
+            out += (e1[:, i] * e2[:, j] - e1[:, j] * e2[:, i]) ** 2
+    return out
 
 
 def cholesky_3(g: np.ndarray) -> np.ndarray:
