@@ -20,7 +20,7 @@ import numpy as np
 from dhlb.conformal import conformal_deformation, point_charge_factor
 from dhlb.fem import solve
 from dhlb.geometry import EuclideanComplex
-from dhlb.volume import ball_tet_mesh
+from dhlb.mesh import ball_tet_mesh
 
 SIZES = {"5k": 6, "40k": 12, "200k": 20, "1M": 34}   # ball_tet_mesh(n): 6 n³ + 36 n² ceil(n/2) tets
 

@@ -32,7 +32,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 from dhlb import EuclideanComplex, HermitianLineBundle, SimplicialComplex
 from dhlb.examples import torus_nd
 from dhlb.fem import bundle_matrices, mass_matrix
-from dhlb.volume import box_tet_mesh
+from dhlb.mesh import box_tet_mesh
 
 BUNNY = Path(os.environ.get("DHLB_MESHES", "/work/shared/meshes")) / "stanford-bunny.obj"
 

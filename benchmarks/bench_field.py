@@ -1,4 +1,4 @@
-"""Benchmark of dhlb.surface.direction_field (issues 5 and 15) against one plain cotangent-Laplacian solve.
+"""Benchmark of dhlb.fields.direction_field (issues 5 and 15) against one plain cotangent-Laplacian solve.
 
 For spot, kitten, the 69k-face Stanford bunny and a ≥ 300k-face mesh (kitten, midpoint-subdivided
 twice) from /work/shared/meshes, the smoothest cross field (n = 4, s = 0) is timed per phase
@@ -26,10 +26,10 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from dhlb.fields import direction_field, energy_matrices
 from dhlb.io import read_surface
-from dhlb.io.compact import compact_mesh
 from dhlb.linalg import default_shift, smallest_eigenpairs
-from dhlb.surface import direction_field, energy_matrices
+from dhlb.mesh.compact import compact_mesh
 
 MESHES = "/work/shared/meshes"
 

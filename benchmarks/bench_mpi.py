@@ -51,9 +51,9 @@ def peak_mb() -> float:
 def worker(faces: int) -> None:
     from mpi4py import MPI
 
+    from dhlb.fields import direction_field
     from dhlb.linalg import backends
     from dhlb.linalg.backends_petsc import PetscBackend
-    from dhlb.surface import direction_field
 
     made = []
 
@@ -75,7 +75,7 @@ def worker(faces: int) -> None:
 
 
 def default_worker(faces: int) -> None:
-    from dhlb.surface import direction_field
+    from dhlb.fields import direction_field
 
     V, F = torus_mesh(faces)
     t = time.perf_counter()

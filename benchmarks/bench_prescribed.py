@@ -1,4 +1,4 @@
-"""Benchmark of dhlb.surface.prescribed_field (issue 21) against one plain cotangent-Laplacian solve.
+"""Benchmark of dhlb.fields.prescribed_field (issue 21) against one plain cotangent-Laplacian solve.
 
 On the 69k-face Stanford bunny (/work/shared/meshes, 5 boundary loops) a cross field (n = 4) with
 prescribed singularities (the 12 singular faces of a random admissible pattern: ±1 pairs at faces
@@ -23,10 +23,11 @@ import numpy as np
 import scipy.sparse as sp
 
 from dhlb.fem import cotan_edge_weights, lumped_mass, solve
+from dhlb.fields import prescribed_field
 from dhlb.geometry import EuclideanComplex
 from dhlb.io import read_surface
-from dhlb.io.compact import compact_mesh
-from dhlb.surface import prescribed_field, validate_surface
+from dhlb.mesh import validate_surface
+from dhlb.mesh.compact import compact_mesh
 
 MESHES = "/work/shared/meshes"
 

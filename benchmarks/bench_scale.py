@@ -10,14 +10,14 @@ One command; every size runs in a fresh child process (peak memory = the child's
   of kitten and bunny (:func:`midpoint_subdivide`, generated in the child, not timed).  For each
   backend (``--surface-backends``; default ``auto`` and the pip-only ``superlu``, the latter up to
   ``--superlu-max-faces``, default 350,000) the smoothest
-  n = 4 direction field :func:`dhlb.surface.direction_field` end to end = reading the file +
+  n = 4 direction field :func:`dhlb.fields.direction_field` end to end = reading the file +
   its ``setup`` (validation, tangent bundle, matrices) + ``solve`` (eigen solve) + ``indices``
   (directions and singularities).  ``lap`` is the Laplacian factorization + solve of that mesh.
   With ``--breakdown`` (default on) the setup is split by timing :func:`validate_surface`,
   :func:`tangent_bundle` (its bundle + geometry) and :func:`energy_matrices` once more.
-* Tets: the Kuhn-triangulated box ``[-1, 1]³`` (:func:`dhlb.volume.box_tet_mesh`, ``6 m³``
+* Tets: the Kuhn-triangulated box ``[-1, 1]³`` (:func:`dhlb.mesh.box_tet_mesh`, ``6 m³``
   tets) with the vortex-ring demo field of ``dhlb vortex`` (:func:`dhlb.commands.vortex.demo_velocity`,
-  ħ = 1) through :func:`dhlb.volume.vortex_filaments`, phases ``mesh``, ``omega`` (Biot–Savart
+  ħ = 1) through :func:`dhlb.vortex.vortex_filaments`, phases ``mesh``, ``omega`` (Biot–Savart
   line integrals and the bundle), ``assembly``, ``solve``, ``extraction``; backend
   ``--tet-backends`` (default ``amg-lobpcg``).
 * Scaling exponent: least-squares slope of log(end-to-end time) against log(size) per
@@ -98,7 +98,7 @@ def laplace_time(V, F, backend, repeat=1):
     from dhlb.geometry import EuclideanComplex
     from dhlb.linalg import default_shift
     from dhlb.linalg.backends import clear_cache, get_backend
-    from dhlb.surface import validate_surface
+    from dhlb.mesh import validate_surface
 
     geo = EuclideanComplex(validate_surface(V, F).complex, points=V)
     L, M = geo.stiffness_matrix().tocsr(), geo.mass_matrix(lumped=True).tocsr()
@@ -130,7 +130,8 @@ def child_lref():
 
 
 def child_surface(label, backend, breakdown):
-    from dhlb.surface import direction_field, energy_matrices, tangent_bundle, validate_surface
+    from dhlb.fields import direction_field, energy_matrices
+    from dhlb.mesh import tangent_bundle, validate_surface
 
     _, file, levels = next(s for s in SURFACES if s[0] == label)
     t0 = time.perf_counter()
@@ -163,7 +164,8 @@ def child_surface(label, backend, breakdown):
 
 def child_tets(m, backend):
     from dhlb.commands.vortex import demo_velocity
-    from dhlb.volume import box_tet_mesh, vortex_filaments
+    from dhlb.mesh import box_tet_mesh
+    from dhlb.vortex import vortex_filaments
 
     t0 = time.perf_counter()
     mesh = box_tet_mesh(m, lower=-1.0, upper=1.0)
@@ -197,7 +199,7 @@ def child_icosphere(level, order, backend):
     """Issue 15: the n = 4 field on an icosphere (subdivision or shuffled vertex order), its L_ref, peak memory."""
     import scipy.sparse.linalg as spla
 
-    from dhlb.surface import direction_field
+    from dhlb.fields import direction_field
 
     V, F = icosphere(level)
     if order == "shuffled":
@@ -211,7 +213,7 @@ def child_icosphere(level, order, backend):
     rss = _rss_mb()
     from dhlb.fem import bundle_matrices  # noqa: F401  (L_ref below: plain cotangent Laplacian, splu defaults)
     from dhlb.geometry import EuclideanComplex
-    from dhlb.surface import validate_surface
+    from dhlb.mesh import validate_surface
 
     geo = EuclideanComplex(validate_surface(V, F).complex, points=V)
     L, M = geo.stiffness_matrix().tocsc(), geo.mass_matrix(lumped=True).tocsc()

@@ -48,7 +48,7 @@ BUNNY = os.path.join(os.path.dirname(__file__), "..", "..", "shared", "meshes", 
 
 def bunny_problem(path=BUNNY):
     from dhlb.io import compact_mesh, read_surface
-    from dhlb.surface import tangent_bundle
+    from dhlb.mesh import tangent_bundle
 
     V, F = read_surface(path)
     with warnings.catch_warnings():
@@ -60,7 +60,8 @@ def bunny_problem(path=BUNNY):
 
 
 def box_problem(m):
-    from dhlb.volume import FilamentField, box_tet_mesh, velocity_bundle, vortex_ring
+    from dhlb.mesh import box_tet_mesh
+    from dhlb.vortex import FilamentField, velocity_bundle, vortex_ring
 
     mesh = box_tet_mesh(m, lower=-1.0, upper=1.0)
     v = FilamentField([vortex_ring(0.5, n=64)], circulation=1.0, core_radius=0.1)

@@ -29,11 +29,12 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
+from dhlb.fields import direction_field
 from dhlb.io import read_surface
 from dhlb.linalg import default_shift, select_backend, solve
+from dhlb.mesh import validate_surface
+from dhlb.mesh.tangent import TangentBundle
 from dhlb.stripes import stripe_pattern
-from dhlb.surface import direction_field, validate_surface
-from dhlb.surface.tangent import TangentBundle
 
 MESHES = os.path.join(os.path.dirname(__file__), "..", "..", "shared", "meshes")
 FILES = ["spot.obj", "kitten.obj", "stanford-bunny.obj"]

@@ -1,6 +1,6 @@
 """Benchmark of the vortex-filament pipeline (issue 7): time per phase and peak memory, end to end.
 
-For each mesh size a fresh child process runs :func:`dhlb.volume.vortex_filaments` on the
+For each mesh size a fresh child process runs :func:`dhlb.vortex.vortex_filaments` on the
 Kuhn-triangulated cube ``[-1, 1]³`` with ``m`` cells per axis (``6 m³`` tetrahedra; ``m = 20``:
 48 000, ``m = 32``: 196 608) and a velocity field (default: one vortex ring of radius 0.6,
 circulation 2π, core radius 0.08, 64 Biot–Savart segments; ħ = 1), and reports the seconds spent
@@ -37,7 +37,7 @@ SHIFT = (0.013, 0.007, 0.011)
 def field(name: str):
     import numpy as np
 
-    from dhlb.volume import FilamentField, hopf_link, vortex_ring
+    from dhlb.vortex import FilamentField, hopf_link, vortex_ring
 
     if name == "ring":
         curves = [vortex_ring(0.6, center=SHIFT, n=64)]
@@ -53,7 +53,8 @@ def single(m: int, backend, name: str, per_vertex: bool = False, order: int = 4)
     """One run in this process; returns the figures."""
     import warnings
 
-    from dhlb.volume import box_tet_mesh, vortex_filaments
+    from dhlb.mesh import box_tet_mesh
+    from dhlb.vortex import vortex_filaments
 
     t0 = time.perf_counter()
     mesh = box_tet_mesh(m, lower=-1.0, upper=1.0)

@@ -11,8 +11,9 @@ import lazy_loader as _lazy
 
 # Lazy submodules (the scientific-Python pattern, SPEC 1): ``import dhlb`` loads almost nothing;
 # ``dhlb.fem``, ``dhlb.SimplicialComplex``, ... are imported on first access.
-_SUBMODULES = ["errors", "topology", "forms", "bundles", "geometry", "linalg", "fem", "surface", "stripes", "volume",
-               "conformal", "strategies", "io", "render", "examples", "cli", "commands"]
+_SUBMODULES = ["errors", "topology", "forms", "bundles", "geometry", "linalg", "fem", "mesh", "fields", "stripes",
+               "vortex", "conformal", "strategies", "io", "render", "examples", "cli",
+               "surface", "volume", "commands"]  # the last three: deprecated aliases
 _ATTRS = {
     "topology": ["SimplicialComplex"],
     "forms": ["Chain", "Cochain", "SolveResult", "integrate_closed_1form", "is_exact", "solve_d"],

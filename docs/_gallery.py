@@ -20,9 +20,9 @@ import time
 
 import numpy as np
 
+from dhlb.fields import direction_field
 from dhlb.io import example_path, read_surface
 from dhlb.render import render_field_png
-from dhlb.surface import direction_field
 
 OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "_static", "gallery")
 SIZE = (500, 500)
@@ -75,7 +75,7 @@ def picture(name: str, mesh: str, view: dict, **kw) -> dict:
 def stripes(name: str, view: dict, *, n: int, spacing: float, **field_kw) -> None:
     """A stripe pattern on Spot along a direction field (``orthogonal`` pictures: both directions)."""
     from dhlb.render import render_stripes_png
-    from dhlb.surface import stripe_pattern
+    from dhlb.stripes import stripe_pattern
 
     t0 = time.perf_counter()
     V, F = read_surface(example_path("spot.obj"))
@@ -114,8 +114,9 @@ def tube_stripes(section: str) -> list:
 def filaments(name: str, kind: str) -> None:
     """Vortex filaments of a demo velocity field (``ring``/``linked-rings``/``trefoil``) in a tet cube."""
     from dhlb.commands.vortex import demo_velocity
+    from dhlb.mesh import box_tet_mesh
     from dhlb.render import render_filaments_png
-    from dhlb.volume import box_tet_mesh, vortex_filaments
+    from dhlb.vortex import vortex_filaments
 
     t0 = time.perf_counter()
     mesh = box_tet_mesh(14, lower=(-1.0, -1.0, -1.0), upper=(1.0, 1.0, 1.0))

@@ -135,7 +135,8 @@ def _icosphere(levels: int):
 def numeric_checks() -> None:
     import scipy.linalg as sla
 
-    from dhlb.surface import energy_matrices, tangent_bundle
+    from dhlb.fields import energy_matrices
+    from dhlb.mesh import tangent_bundle
 
     V, F = _planar_mesh(6)
     tb = tangent_bundle(V, F, n=1)

@@ -17,7 +17,7 @@ Derived and asserted:
    2 whenever χ ≠ 0; the printed Gauss--Bonnet ``Σ Ω_t = 2nπχ`` is right.
 3. (numeric, independent implementation of Eq. 6.1/6.2) on an icosahedron, an icosphere and a
    torus of revolution: ``Ω_t = nσ_t`` on n-smooth meshes, every index is in {-1, 0, 1} and the
-   index sum of random fields is ``nχ`` (not 2nχ); the code (``dhlb.surface.tangent_bundle``,
+   index sum of random fields is ``nχ`` (not 2nχ); the code (``dhlb.mesh.tangent_bundle``,
    ``dhlb.bundles.index.index_sum``) gives the same total curvature and index sums.
 """
 
@@ -31,7 +31,7 @@ import sympy as sp
 from _derive_util import summary
 
 from dhlb.bundles.index import index_sum
-from dhlb.surface import tangent_bundle
+from dhlb.mesh import tangent_bundle
 
 
 # --------------------------------------------------------------------------- meshes

@@ -1,4 +1,4 @@
-"""Fields with prescribed singularities (issue 21, ``dhlb.surface.prescribed_field``): the closed forms.
+"""Fields with prescribed singularities (issue 21, ``dhlb.fields.prescribed_field``): the closed forms.
 
 Derives, from the definitions in ``docs/conventions.md``:
 
@@ -83,7 +83,7 @@ print("3. the leaves-first subtree sums solve all 8 face equations of the octahe
 import scipy.sparse as ssp  # noqa: E402
 import scipy.sparse.linalg as ssl  # noqa: E402
 
-from dhlb.surface import prescribed_field  # noqa: E402
+from dhlb.fields import prescribed_field  # noqa: E402
 
 m = 4
 idx = np.arange(m * m).reshape(m, m)

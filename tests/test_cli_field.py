@@ -12,8 +12,8 @@ import pytest
 
 import dhlb.commands.field as field_cmd
 from dhlb.commands._common import run_command
+from dhlb.fields import direction_field
 from dhlb.io import read_ply, write_obj
-from dhlb.surface import direction_field
 from tests.surface_meshes import ellipsoid, grid
 
 DATA = os.path.join(os.path.dirname(__file__), "data")

@@ -10,9 +10,9 @@ import pytest
 
 from dhlb.commands import stripes
 from dhlb.commands._common import run_command
+from dhlb.fields import direction_field
 from dhlb.io import example_path, read_surface
 from dhlb.stripes import stripe_pattern
-from dhlb.surface import direction_field
 
 TORUS = example_path("torus.obj")
 

@@ -14,7 +14,8 @@ import pytest
 
 from dhlb.commands import vortex
 from dhlb.commands._common import run_command
-from dhlb.volume import box_tet_mesh, linking_number, vortex_ring
+from dhlb.mesh import box_tet_mesh
+from dhlb.vortex import linking_number, vortex_ring
 
 
 def dhlb_vortex(argv, capsys):

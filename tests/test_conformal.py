@@ -31,7 +31,7 @@ from dhlb.errors import (
     NonManifoldError,
     ShapeError,
 )
-from dhlb.volume import ball_tet_mesh, box_tet_mesh, check_tet_mesh
+from dhlb.mesh import ball_tet_mesh, box_tet_mesh, check_tet_mesh
 
 
 def align(F, G):
@@ -286,7 +286,7 @@ def test_bad_parameters(cube):
 
 def test_a_closed_surface_tetrahedralised_by_pytetwild():
     """Issue 20: any closed surface, tetrahedralised with pytetwild (dhlb[tet]), deforms close to conformally."""
-    from dhlb.volume import tetgen
+    from dhlb.mesh import tetgen
 
     if not tetgen.available():
         pytest.skip("pytetwild is not installed (optional extra dhlb[tet])")

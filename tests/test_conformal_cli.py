@@ -14,7 +14,7 @@ import numpy as np
 from dhlb.commands import conformal
 from dhlb.commands._common import run_command
 from dhlb.io import read_volume, write_volume
-from dhlb.volume import ball_tet_mesh, box_tet_mesh
+from dhlb.mesh import ball_tet_mesh, box_tet_mesh
 
 
 def dhlb_conformal(argv, capsys):
@@ -83,7 +83,7 @@ def test_derived_outputs_never_overwrite_the_input(tmp_path):
     """-o ball.vtk also writes ball.mesh: with ball.mesh as the input that is refused before any work."""
     from dhlb.cli import main
     from dhlb.io import write_volume
-    from dhlb.volume import ball_tet_mesh
+    from dhlb.mesh import ball_tet_mesh
 
     m = ball_tet_mesh(2)
     src = tmp_path / "ball.mesh"

@@ -20,6 +20,7 @@ from dhlb.errors import (
     NonFiniteError,
     UnreferencedVertexWarning,
 )
+from dhlb.mesh import mesh_complex
 
 
 # ------------------------------------------------------------------ counts, f-vectors and Euler characteristics
@@ -163,7 +164,7 @@ def test_surface_keeps_orientation_and_index():
     angle = 2 * np.pi * P
     V = np.stack([(2 + np.cos(angle[:, 1])) * np.cos(angle[:, 0]), (2 + np.cos(angle[:, 1])) * np.sin(angle[:, 0]),
                   np.sin(angle[:, 1])], axis=1)
-    M = E.surface(F, V)
+    M = mesh_complex(V, F, dim=2)
     X = M.complex
     assert X == T
     assert np.array_equal(X.simplices(2)[M.index], np.sort(F, axis=1))
@@ -172,14 +173,15 @@ def test_surface_keeps_orientation_and_index():
     # flipping one triangle flips exactly its sign
     G = F.copy()
     G[5] = G[5, [1, 0, 2]]
-    assert np.array_equal(E.surface(G).orientation * M.orientation, np.where(np.arange(len(F)) == 5, -1, 1))
+    flipped = mesh_complex(None, G, dim=2).orientation
+    assert np.array_equal(flipped * M.orientation, np.where(np.arange(len(F)) == 5, -1, 1))
 
 
 def test_tet_mesh_and_unreferenced_vertices():
     V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [9, 9, 9], [1, 1, 1]], float)
     T = np.array([[0, 1, 2, 3], [5, 3, 2, 1]])
     with pytest.warns(UnreferencedVertexWarning):
-        M = E.tet_mesh(T, V)
+        M = mesh_complex(V, T, dim=3)
     assert M.complex.vertex_labels.tolist() == [0, 1, 2, 3, 5]
     assert M.points.tolist() == V[[0, 1, 2, 3, 5]].tolist()
     assert M.orientation.tolist() == [1, SimplicialComplex.orientation_of([[5, 3, 2, 1]])[0]]
@@ -189,19 +191,19 @@ def test_tet_mesh_and_unreferenced_vertices():
 def test_mesh_bad_input():
     V = np.zeros((4, 3))
     with pytest.raises(InvalidSimplexError, match="shape"):
-        E.surface([[0, 1, 2, 3]], V)
+        mesh_complex(V, [[0, 1, 2, 3]], dim=2)
     with pytest.raises(InvalidSimplexError, match="refers to vertex 7"):
-        E.surface([[0, 1, 2], [1, 2, 7]], V)
+        mesh_complex(V, [[0, 1, 2], [1, 2, 7]], dim=2)
     with pytest.raises(InvalidSimplexError, match="repeats a vertex"):
-        E.surface([[0, 1, 1]])
+        mesh_complex(None, [[0, 1, 1]], dim=2)
     with pytest.raises(InvalidSimplexError):
-        E.surface([[0, -1, 2]])
+        mesh_complex(None, [[0, -1, 2]], dim=2)
     with pytest.raises(EmptyComplexError):
-        E.tet_mesh(np.zeros((0, 4), int))
+        mesh_complex(None, np.zeros((0, 4), int), dim=3)
     with pytest.raises(NonFiniteError, match="vertex 2"):
-        E.surface([[0, 1, 2]], [[0, 0, 0], [1, 0, 0], [np.nan, 0, 0]])
+        mesh_complex([[0, 0, 0], [1, 0, 0], [np.nan, 0, 0]], [[0, 1, 2]], dim=2)
     with pytest.raises(InvalidSimplexError):
-        E.tet_mesh([[0, 1, 2]])
+        mesh_complex(None, [[0, 1, 2]], dim=3)
 
 
 # ------------------------------------------------------------------ bad parameters

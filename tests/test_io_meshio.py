@@ -91,7 +91,7 @@ def test_random_triangle_meshes_round_trip_bitwise(n, m, seed):
 
 
 def test_volume_round_trip(tmp_path):
-    from dhlb.volume import box_tet_mesh
+    from dhlb.mesh import box_tet_mesh
 
     mesh = box_tet_mesh(3, lower=-1, upper=1)
     p = write_vtu_volume(tmp_path / "b.vtu", mesh.points, mesh.tets, point_data={"x": mesh.points[:, 0]},
@@ -174,7 +174,7 @@ def test_missing_meshio_names_the_extra(tmp_path, monkeypatch):
 
 # ---------------------------------------------------------------------------- results
 def test_field_to_vtu_holds_the_directions_and_indices(tmp_path):
-    from dhlb.surface import direction_field
+    from dhlb.fields import direction_field
 
     V, F = read_surface(example_path("spot.obj"))
     res = direction_field(V, F, n=4)
@@ -189,8 +189,8 @@ def test_field_to_vtu_holds_the_directions_and_indices(tmp_path):
 
 
 def test_stripes_to_vtu(tmp_path):
+    from dhlb.fields import direction_field
     from dhlb.stripes import stripe_pattern
-    from dhlb.surface import direction_field
 
     V, F = read_surface(example_path("torus.obj"))
     res = stripe_pattern(V, F, direction_field(V, F, n=2), spacing=6.0, section="eigenvector")
@@ -201,7 +201,8 @@ def test_stripes_to_vtu(tmp_path):
 
 
 def test_vortex_to_vtu_ring(tmp_path):
-    from dhlb.volume import FilamentField, box_tet_mesh, vortex_filaments, vortex_ring
+    from dhlb.mesh import box_tet_mesh
+    from dhlb.vortex import FilamentField, vortex_filaments, vortex_ring
 
     mesh = box_tet_mesh(8, lower=(-1, -1, -1), upper=(1, 1, 1))
     field = FilamentField([vortex_ring(0.6, center=(0.01, 0.005, 0.01))], circulation=2 * np.pi, core_radius=0.1)

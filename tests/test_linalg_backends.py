@@ -31,7 +31,7 @@ DIRECT = [_param(b) for b in ALL if b != "amg-lobpcg"]
 def torus_problem():
     """n = 4 tangent bundle of the example torus: complex Hermitian, 2-D pattern."""
     from dhlb.io import example_path, read_surface
-    from dhlb.surface import tangent_bundle
+    from dhlb.mesh import tangent_bundle
 
     tb = tangent_bundle(*read_surface(example_path("torus.obj")), n=4)
     A, M = bundle_matrices(tb.bundle, tb.geometry)
@@ -42,7 +42,8 @@ def torus_problem():
 def box_problem():
     """Curved line bundle (velocity of a rigid rotation, curl = 2 e_z) on a 5³ tet box: 3-D pattern."""
     from dhlb.geometry import EuclideanComplex
-    from dhlb.volume import box_tet_mesh, velocity_bundle
+    from dhlb.mesh import box_tet_mesh
+    from dhlb.vortex import velocity_bundle
 
     mesh = box_tet_mesh(5, lower=-1.0, upper=1.0)
     rot = mesh.points[:, [1, 0, 2]] * np.array([-1.0, 1.0, 0.0])
@@ -233,7 +234,7 @@ def test_pattern_dimension_tells_surfaces_with_blocks_from_tet_meshes(torus_prob
     tets; the ball-growth dimension separates them, and auto selection uses it."""
     from dhlb.geometry import EuclideanComplex
     from dhlb.linalg.backends_cholesky import real_embedding
-    from dhlb.volume import box_tet_mesh
+    from dhlb.mesh import box_tet_mesh
 
     A, _ = torus_problem
     n = A.shape[0]

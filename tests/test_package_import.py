@@ -16,8 +16,9 @@ def test_import_dhlb_loads_no_layer_and_no_scipy():
     assert out == ["['dhlb']", "False", "False"]
 
 
-@pytest.mark.parametrize("attr", ["fem.mass_matrix", "linalg.smallest_eigenpairs", "surface.direction_field",
-                                  "stripes.stripe_pattern", "volume.vortex_filaments", "SimplicialComplex",
+@pytest.mark.parametrize("attr", ["fem.mass_matrix", "linalg.smallest_eigenpairs", "fields.direction_field",
+                                  "stripes.stripe_pattern", "mesh.validate_surface", "vortex.vortex_filaments",
+                                  "SimplicialComplex",
                                   "EuclideanComplex", "errors.DhlbError", "io.read_surface"])
 def test_layers_are_attributes(attr):
     import dhlb

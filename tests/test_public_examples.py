@@ -10,8 +10,8 @@ import inspect
 
 import pytest
 
-PACKAGES = ["dhlb", "dhlb.topology", "dhlb.forms", "dhlb.bundles", "dhlb.geometry", "dhlb.fem", "dhlb.surface",
-            "dhlb.stripes", "dhlb.volume", "dhlb.io", "dhlb.render", "dhlb.examples", "dhlb.linalg",
+PACKAGES = ["dhlb", "dhlb.topology", "dhlb.forms", "dhlb.bundles", "dhlb.geometry", "dhlb.fem", "dhlb.fields",
+            "dhlb.stripes", "dhlb.vortex", "dhlb.io", "dhlb.render", "dhlb.examples", "dhlb.linalg",
             "dhlb.strategies", "dhlb.conformal"]
 
 

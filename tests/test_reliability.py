@@ -251,8 +251,8 @@ def test_vortex_box_400_is_refused_with_the_memory_estimate(capsys, monkeypatch)
 
 
 def test_box_tet_mesh_checks_memory_before_allocating():
-    from dhlb.volume import box_tet_mesh
-    from dhlb.volume.meshes import check_box_memory
+    from dhlb.mesh import box_tet_mesh
+    from dhlb.mesh.tet import check_box_memory
 
     with pytest.raises(ResourceLimitError) as info:
         check_box_memory(400, available=8 * 10**9)
@@ -280,7 +280,7 @@ def test_int_in_range_for_pixel_sizes():
 
 # --------------------------------------------------------------------------------- Python inputs
 def test_ragged_face_lists_are_typed_errors():
-    from dhlb.surface import validate_surface
+    from dhlb.mesh import validate_surface
 
     with pytest.raises(RaggedInputError):
         validate_surface(OCT_V, [[0, 2, 4], [2, 1, 4, 5]])
@@ -289,7 +289,7 @@ def test_ragged_face_lists_are_typed_errors():
 
 
 def test_vertex_index_2_to_the_70_is_a_typed_error():
-    from dhlb.surface import validate_surface
+    from dhlb.mesh import validate_surface
 
     for F in ([[0, 1, 2**70]], [[0, 1, 2.0**70]], np.array([[0, 1, 2**70]], dtype=object)):
         with pytest.raises(InvalidSimplexError, match="outside V"):
@@ -299,7 +299,7 @@ def test_vertex_index_2_to_the_70_is_a_typed_error():
 
 
 def test_complex_or_text_coordinates_are_refused():
-    from dhlb.surface import validate_surface
+    from dhlb.mesh import validate_surface
 
     with pytest.raises(InvalidTypeError, match="complex"):
         validate_surface(OCT_V + 1e-3j, OCT_F)
@@ -312,7 +312,8 @@ def test_complex_or_text_coordinates_are_refused():
 
 
 def test_vortex_filaments_checks_hbar_orientation_and_options_first():
-    from dhlb.volume import box_tet_mesh, uniform_flow, vortex_filaments
+    from dhlb.mesh import box_tet_mesh
+    from dhlb.vortex import uniform_flow, vortex_filaments
 
     mesh = box_tet_mesh(1)
     flow = uniform_flow([0.1, 0.0, 0.0])
@@ -326,7 +327,7 @@ def test_vortex_filaments_checks_hbar_orientation_and_options_first():
 
 
 def test_huge_core_radius_is_a_typed_error():
-    from dhlb.volume import FilamentField, vortex_ring
+    from dhlb.vortex import FilamentField, vortex_ring
 
     with pytest.raises(InvalidParameterError, match="core_radius"):
         FilamentField([vortex_ring(1.0, n=8)], core_radius=1e308)
@@ -337,7 +338,7 @@ def test_huge_core_radius_is_a_typed_error():
 # ---------------------------------------------------------------------------------------- scales
 @pytest.mark.parametrize("scale", [1e-150, 1e150, 1e-300, 1e300])
 def test_validate_surface_is_scale_free(scale):
-    from dhlb.surface import validate_surface
+    from dhlb.mesh import validate_surface
 
     ref = validate_surface(OCT_V, OCT_F)
     mesh = validate_surface(OCT_V * scale, OCT_F)
@@ -349,7 +350,7 @@ def test_validate_surface_is_scale_free(scale):
 
 def test_degenerate_faces_are_still_found_at_extreme_scales():
     from dhlb.errors import DegenerateSimplexError
-    from dhlb.surface import validate_surface
+    from dhlb.mesh import validate_surface
 
     V = np.array([[0.0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0]])
     for scale in (1e-150, 1.0, 1e150):
@@ -366,7 +367,7 @@ def test_differing_digits_shows_the_difference():
 
 # ---------------------------------------------------------------------------- unreferenced vertices
 def test_input_vertex_mask_marks_the_nan_rows():
-    from dhlb.surface import validate_surface
+    from dhlb.mesh import validate_surface
 
     V = np.vstack([OCT_V, [[7.0, 7, 7]]])
     with warnings.catch_warnings():

@@ -18,7 +18,7 @@ from dhlb import SimplicialComplex
 from dhlb.bundles import index_sum
 from dhlb.errors import InvalidParameterError
 from dhlb.examples import projective_plane, torus
-from dhlb.surface import validate_surface
+from dhlb.mesh import validate_surface
 from dhlb.topology import homology, manifold_report
 from dhlb.topology.orientation import is_orientable
 from tests import strategies as legacy

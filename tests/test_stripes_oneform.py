@@ -19,9 +19,10 @@ from dhlb.errors import (
     ShapeError,
     UnreferencedVertexWarning,
 )
+from dhlb.fields import direction_vectors, field_indices
+from dhlb.fields.guidance import curvature_guidance
+from dhlb.mesh import tangent_bundle, validate_surface
 from dhlb.stripes import stripe_form
-from dhlb.surface import direction_vectors, field_indices, tangent_bundle, validate_surface
-from dhlb.surface.guidance import curvature_guidance
 from tests.surface_meshes import ellipsoid, grid, icosphere, torus
 
 

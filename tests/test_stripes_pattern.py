@@ -10,7 +10,7 @@ import scipy.linalg as sla
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import dhlb.surface as surface
+import dhlb.fields as surface
 from dhlb.errors import (
     DegenerateSimplexError,
     DhlbWarning,
@@ -20,9 +20,10 @@ from dhlb.errors import (
     SectionZeroError,
 )
 from dhlb.fem import bundle_matrices, connection_laplacian, smallest_eigenpairs
+from dhlb.fields import direction_vectors, field_indices
 from dhlb.geometry import EuclideanComplex
+from dhlb.mesh import tangent_bundle
 from dhlb.stripes import stripe_form, stripe_matrices, stripe_pattern, texture_coordinates
-from dhlb.surface import direction_vectors, field_indices, tangent_bundle
 from dhlb.topology.complex import SimplicialComplex
 from tests.surface_meshes import grid, icosphere, torus
 from tests.test_stripes_texture import jittered, side_points, twin_sides
@@ -150,7 +151,7 @@ def test_branch_triangles_are_the_half_singularities_of_the_line_field(name, see
         assert half.sum() == 4 and np.all(fi.face_index[half] == 1)  # the smoothest line field on a sphere
 
 
-@pytest.mark.skipif(not hasattr(surface, "direction_field"), reason="dhlb.surface.direction_field not available yet")
+@pytest.mark.skipif(not hasattr(surface, "direction_field"), reason="dhlb.fields.direction_field not available yet")
 def test_direction_field_input():
     V, F = icosphere(2)
     fld = surface.direction_field(V, F, n=2)

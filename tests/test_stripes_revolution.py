@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 import scipy.spatial
 
-from dhlb.surface import stripe_pattern
+from dhlb.stripes import stripe_pattern
 
 LEVELS = (1.0, 2.0, 3.0)          # radii of the three levels: h ∈ [0, 1), [1, 2), [2, 3]
 

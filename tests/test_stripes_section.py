@@ -12,12 +12,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dhlb.errors import InvalidParameterError, ResourceLimitError
+from dhlb.fields import direction_field
 from dhlb.io import example_path, read_surface
 from dhlb.stripes import isolines, stripe_pattern
 from dhlb.stripes.energy import stripe_matrices
 from dhlb.stripes.revolution import stepped_tube
 from dhlb.stripes.section import normalize_per_vertex, unit_energy
-from dhlb.surface import direction_field
 from tests.test_stripes_texture import side_points, twin_sides
 
 DATA = Path(__file__).parent / "data"

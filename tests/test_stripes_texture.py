@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 
 from dhlb.bundles import index_form
 from dhlb.errors import DhlbWarning, InvalidParameterError, NonFiniteError, SectionZeroError, ShapeError
+from dhlb.mesh import validate_surface
 from dhlb.stripes import larg, stripe_form, texture_coordinates
-from dhlb.surface import validate_surface
 from dhlb.topology.complex import SimplicialComplex
 from tests.surface_meshes import cylinder, grid, icosphere, torus
 

@@ -10,10 +10,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dhlb.errors import NonFiniteError, SectionZeroError, ShapeError
+from dhlb.fields.directions import direction_vectors, field_indices
+from dhlb.fields.guidance import user_guidance
 from dhlb.io import read_surface
-from dhlb.surface import tangent_bundle
-from dhlb.surface.directions import direction_vectors, field_indices
-from dhlb.surface.guidance import user_guidance
+from dhlb.mesh import tangent_bundle
 from tests.surface_meshes import cylinder, grid, icosphere, torus
 
 DATA = os.path.join(os.path.dirname(__file__), "data")
@@ -133,8 +133,8 @@ def test_bad_sections():
 
 
 def test_singularity_positions_do_not_depend_on_the_corner_order():
+    from dhlb.fields import direction_field
     from dhlb.io import example_path, read_surface
-    from dhlb.surface import direction_field
 
     V, F = read_surface(example_path("spot.obj"))
     a = direction_field(V, F, n=1)

@@ -20,8 +20,9 @@ from dhlb.errors import (
     NonOrientableError,
     UnreferencedVertexWarning,
 )
+from dhlb.fields import direction_field, energy_matrices, user_guidance
 from dhlb.io import example_path, read_surface
-from dhlb.surface import direction_field, energy_matrices, tangent_bundle, user_guidance
+from dhlb.mesh import tangent_bundle
 from tests.surface_meshes import cylinder, ellipsoid, grid, icosphere
 
 DATA = os.path.join(os.path.dirname(__file__), "data")

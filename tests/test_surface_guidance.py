@@ -9,15 +9,15 @@ import pytest
 import scipy.sparse as sp
 
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
-from dhlb.surface import tangent_bundle
-from dhlb.surface.directions import field_indices
-from dhlb.surface.guidance import (
+from dhlb.fields.directions import field_indices
+from dhlb.fields.guidance import (
     boundary_guidance,
     curvature_guidance,
     dihedral_angles,
     hopf_differential,
     user_guidance,
 )
+from dhlb.mesh import tangent_bundle
 from tests.surface_meshes import cylinder, ellipsoid, grid, icosphere
 
 UMBILICS = np.array([[sx * 3 * np.sqrt(5 / 8), 0, sz * np.sqrt(3 / 8)] for sx in (1, -1) for sz in (1, -1)])

@@ -22,7 +22,7 @@ from dhlb.errors import (
     UnreferencedVertexWarning,
 )
 from dhlb.io import read_surface
-from dhlb.surface import SurfaceMesh, tangent_bundle, validate_surface
+from dhlb.mesh import SurfaceMesh, tangent_bundle, validate_surface
 from tests.surface_meshes import grid, icosphere
 
 DATA = os.path.join(os.path.dirname(__file__), "data")

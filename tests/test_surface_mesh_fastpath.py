@@ -16,7 +16,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dhlb.surface import _mesh_checks, validate_surface
+from dhlb.mesh import _surface_checks as _mesh_checks
+from dhlb.mesh import validate_surface
 from tests.surface_meshes import grid, icosphere, torus
 
 DEFECTS = ["none", "flip", "third-face", "pinch", "hole", "component", "unused", "flip-all-of-one"]

@@ -11,8 +11,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from dhlb.errors import InvalidParameterError
+from dhlb.fields import locate_faces, prescribed_field
 from dhlb.io import example_path, read_surface
-from dhlb.surface import locate_faces, prescribed_field, validate_surface
+from dhlb.mesh import validate_surface
 from tests.surface_meshes import cylinder, icosphere
 
 DATA = os.path.join(os.path.dirname(__file__), "data")

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from dhlb.errors import InvalidParameterError, InvalidSimplexError, NonFiniteError, ShapeError
-from dhlb.surface import tangent_bundle
-from dhlb.surface.directions import direction_vectors, field_indices
-from dhlb.surface.guidance import curvature_guidance
+from dhlb.fields.directions import direction_vectors, field_indices
+from dhlb.fields.guidance import curvature_guidance
+from dhlb.mesh import tangent_bundle
 from tests.surface_meshes import ellipsoid, grid, icosphere
 
 mpimg = pytest.importorskip("matplotlib.image")

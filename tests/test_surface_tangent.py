@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dhlb.io import example_path, read_surface
-from dhlb.surface import tangent_bundle, validate_surface
+from dhlb.mesh import tangent_bundle, validate_surface
 from tests.surface_meshes import cylinder, grid, icosphere, torus
 
 DATA = os.path.join(os.path.dirname(__file__), "data")
@@ -232,7 +232,7 @@ def test_geometry_matches_mesh():
 
 def test_fans_refuse_a_vertex_with_two_fans():
     from dhlb.errors import NonManifoldError
-    from dhlb.surface._fans import vertex_fans
+    from dhlb.mesh.halfedge import vertex_fans
 
     _V, F = icosphere(0)
     F2 = np.where(F == 0, 0, F + 11)  # a second icosahedron sharing vertex 0 (a double cone there)

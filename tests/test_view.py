@@ -75,7 +75,7 @@ def _red_blue(img):
 
 
 def test_field_singularities_are_coloured_by_index(tmp_path):
-    from dhlb.surface import direction_field
+    from dhlb.fields import direction_field
 
     V, F = read_surface(example_path("spot.obj"))
     res = direction_field(V, F, n=4)
@@ -91,8 +91,8 @@ def test_field_singularities_are_coloured_by_index(tmp_path):
 
 
 def test_stripes_screenshot_has_dark_and_light_bands(tmp_path):
+    from dhlb.fields import direction_field
     from dhlb.stripes import stripe_pattern
-    from dhlb.surface import direction_field
 
     V, F = read_surface(example_path("torus.obj"))
     res = stripe_pattern(V, F, direction_field(V, F, n=2), spacing=4.0)
@@ -109,8 +109,8 @@ def test_stripes_screenshot_has_dark_and_light_bands(tmp_path):
 def test_stripes_are_bands_not_per_triangle_noise(tmp_path):
     """Line-field stripes (n = 2) change sheet between faces (α → −α): drawn naively, the checker flips
     from one triangle to the next. Along image rows the band colour must change rarely."""
+    from dhlb.fields import direction_field
     from dhlb.stripes import stripe_pattern
-    from dhlb.surface import direction_field
 
     V, F = read_surface(example_path("spot.obj"))
     res = stripe_pattern(V, F, direction_field(V, F, n=2), spacing=6.0)

@@ -20,15 +20,8 @@ from dhlb.errors import (
     SectionZeroError,
     ShapeError,
 )
-from dhlb.volume import (
-    box_tet_mesh,
-    extract_filaments,
-    face_zeros,
-    hausdorff_distance,
-    hopf_link,
-    linking_number,
-    vortex_ring,
-)
+from dhlb.mesh import box_tet_mesh
+from dhlb.vortex import extract_filaments, face_zeros, hausdorff_distance, hopf_link, linking_number, vortex_ring
 
 BOX = box_tet_mesh(5)
 TRIVIAL = HermitianLineBundle.trivial(BOX.complex)
@@ -266,7 +259,7 @@ def test_vortex_ring_field_through_the_engine(circulation):
     """velocity → bundle → Dirichlet/mass → smallest eigenvector → filament: the ring, oriented like Γ."""
     from dhlb import EuclideanComplex
     from dhlb.fem import bundle_matrices, smallest_eigenpairs
-    from dhlb.volume import FilamentField, velocity_bundle
+    from dhlb.vortex import FilamentField, velocity_bundle
 
     mesh = box_tet_mesh(12, lower=-1.6, upper=1.6)
     X, P = mesh.complex, mesh.points

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dhlb.errors import CurveIntersectionError, InvalidParameterError, NonFiniteError, ShapeError
-from dhlb.volume import (
+from dhlb.vortex import (
     gauss_linking_integral,
     hausdorff_distance,
     hopf_link,

@@ -18,7 +18,7 @@ from dhlb.errors import (
     NonManifoldError,
     ShapeError,
 )
-from dhlb.volume import ball_tet_mesh, box_tet_mesh, check_tet_mesh, signed_volumes, tetgen
+from dhlb.mesh import ball_tet_mesh, box_tet_mesh, check_tet_mesh, signed_volumes, tetgen
 
 TET = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
 

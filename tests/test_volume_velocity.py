@@ -8,9 +8,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
-from dhlb.volume import (
+from dhlb.mesh import box_tet_mesh
+from dhlb.vortex import (
     FilamentField,
-    box_tet_mesh,
     edge_circulation,
     gauss_legendre,
     hopf_link,

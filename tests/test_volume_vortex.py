@@ -25,10 +25,10 @@ from dhlb.errors import (
     UnreferencedVertexWarning,
     UnresolvedFluxWarning,
 )
-from dhlb.volume import (
+from dhlb.mesh import box_tet_mesh
+from dhlb.vortex import (
     Filament,
     FilamentField,
-    box_tet_mesh,
     extract_filaments,
     filament_linking_numbers,
     hausdorff_distance,

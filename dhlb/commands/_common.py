@@ -234,8 +234,8 @@ def check_outputs(outputs, args=None, inputs=()) -> None:
     ...
     dhlb.commands._common.UsageError: refusing to write .../_common.py: it is the input file ...
     """
+    from dhlb._files import refuse_overwrite
     from dhlb.errors import OverwriteError
-    from dhlb.io.atomic import refuse_overwrite
 
     try:
         refuse_overwrite(list(outputs), (input_paths(args) if args is not None else []) + list(inputs))
@@ -254,7 +254,7 @@ def write_output(args, text: str) -> None:
     The file is written atomically (a temporary file renamed at the end) and never over an input
     file (usage error); disk-full and permission errors are one-line errors naming the path.
     """
-    from dhlb.io.atomic import atomic_write
+    from dhlb._files import atomic_write
 
     if not text.endswith("\n"):
         text += "\n"

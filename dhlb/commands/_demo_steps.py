@@ -88,7 +88,7 @@ def write_field_npz(path, res) -> str:
     Examples
     --------
     >>> import os, tempfile, warnings, numpy as np
-    >>> from dhlb.surface import direction_field
+    >>> from dhlb.fields import direction_field
     >>> V = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1], [5, 5, 5]])
     >>> F = [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]]
     >>> with warnings.catch_warnings():
@@ -99,7 +99,7 @@ def write_field_npz(path, res) -> str:
     >>> data["vertex_used"].tolist()[-2:], bool(np.isnan(data["directions"][6]).all()), "NaN" in str(data["note"])
     ([True, False], True, True)
     """
-    from dhlb.io.atomic import atomic_write
+    from dhlb._files import atomic_write
 
     with atomic_write(path, "wb") as fh:
         np.savez_compressed(fh, u=res.u, directions=res.input_directions(), vertex_used=res.mesh.input_vertex_used,
@@ -108,8 +108,8 @@ def write_field_npz(path, res) -> str:
 
 
 def _field(out, progress, name, V, F, mesh_name, caption, view, **kw):
+    from dhlb.fields import direction_field
     from dhlb.render import render_field_png
-    from dhlb.surface import direction_field
 
     def work():
         t0 = time.perf_counter()
@@ -159,9 +159,9 @@ def boundary(out, progress, *, backend=None) -> list[dict]:
 
 def stripes(out, progress, *, backend=None) -> list[dict]:
     """A stripe pattern on Spot following its smoothest line field."""
+    from dhlb.fields import direction_field
     from dhlb.render.stripes_png import render_stripes_png
     from dhlb.stripes import stripe_pattern, write_stripes_obj
-    from dhlb.surface import direction_field
 
     V, F = _spot()
     caption = "stripe pattern along the smoothest line field (spacing 6 mean edge lengths)"
@@ -187,8 +187,9 @@ def stripes(out, progress, *, backend=None) -> list[dict]:
 def vortex(out, progress, *, backend=None) -> list[dict]:
     """Vortex filaments of a vortex ring and of two linked rings in a tetrahedral cube (ħ = 1)."""
     from dhlb.commands.vortex import demo_velocity, write_polylines_obj
+    from dhlb.mesh import box_tet_mesh
     from dhlb.render.filaments_png import render_filaments_png
-    from dhlb.volume import box_tet_mesh, vortex_filaments
+    from dhlb.vortex import vortex_filaments
 
     recs = []
     mesh = box_tet_mesh(12, lower=(-1.0, -1.0, -1.0), upper=(1.0, 1.0, 1.0))
@@ -226,7 +227,7 @@ def conformal(out, progress, *, backend=None) -> list[dict]:
     """Close-to-conformal deformations of a tetrahedral ball (seed part 3, §2.4): a Möbius factor and point charges."""
     from dhlb.commands.conformal import boundary_distortion, render_conformal_png
     from dhlb.conformal import conformal_deformation, mobius_factor, point_charge_factor
-    from dhlb.volume import ball_tet_mesh
+    from dhlb.mesh import ball_tet_mesh
 
     mesh = ball_tet_mesh(6)
     cases = [("conformal-mobius", mobius_factor((2.5, 0.0, 0.0), 1.5),

@@ -46,7 +46,7 @@ def register(subparsers) -> None:
     """Add the ``conformal`` parser to ``subparsers``."""
     p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
     p.add_argument("mesh", nargs="?", metavar="TETMESH", help="tetrahedral mesh file (.mesh .msh .vtk)")
-    p.add_argument("--ball", type=int, metavar="N", help="use the unit ball (dhlb.volume.ball_tet_mesh(N)) instead")
+    p.add_argument("--ball", type=int, metavar="N", help="use the unit ball (dhlb.mesh.ball_tet_mesh(N)) instead")
     p.add_argument("--format", dest="fmt", metavar="FMT", help="mesh format if the extension does not say it")
     p.add_argument("--charge", action="append", default=[], metavar="X,Y,Z,Q",
                    help="a point charge at (X, Y, Z) with charge Q (repeatable)")
@@ -88,7 +88,7 @@ def render_conformal_png(path, before, after, faces, distortion_faces, *, title=
     Examples
     --------
     >>> import os, tempfile, numpy as np
-    >>> from dhlb.volume import box_tet_mesh
+    >>> from dhlb.mesh import box_tet_mesh
     >>> m = box_tet_mesh(2)
     >>> F = m.boundary_faces
     >>> with tempfile.TemporaryDirectory() as d:
@@ -136,7 +136,7 @@ def render_conformal_png(path, before, after, faces, distortion_faces, *, title=
         ax.set_title(name, fontsize=10)
     if title:
         fig.suptitle(title, fontsize=10)
-    from dhlb.io.atomic import atomic_write
+    from dhlb._files import atomic_write
 
     out = os.fspath(path)
     with atomic_write(out, "wb") as fh:
@@ -150,7 +150,7 @@ def boundary_distortion(result) -> tuple[np.ndarray, np.ndarray]:
     Examples
     --------
     >>> from dhlb.conformal import conformal_deformation, point_charge_factor
-    >>> from dhlb.volume import ball_tet_mesh
+    >>> from dhlb.mesh import ball_tet_mesh
     >>> m = ball_tet_mesh(2)
     >>> F, d = boundary_distortion(conformal_deformation(m.points, m.tets, point_charge_factor([(3, 0, 0, 0.5)])))
     >>> F.shape[0] == d.shape[0] and bool((d >= 1).all())
@@ -166,7 +166,7 @@ def boundary_distortion(result) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _mesh(args):
-    from dhlb.volume import ball_tet_mesh, check_tet_mesh
+    from dhlb.mesh import ball_tet_mesh, check_tet_mesh
 
     if args.mesh is not None and args.ball is not None:
         raise UsageError("give either TETMESH or --ball N, not both")
@@ -220,7 +220,7 @@ def _mesh_outputs(out: str) -> list[str]:
 
 
 def _outputs(args, result, meta) -> list[str]:
-    from dhlb.io.atomic import atomic_write
+    from dhlb._files import atomic_write
 
     out = args.output
     if not out or out == "-":

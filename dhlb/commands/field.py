@@ -3,7 +3,7 @@
 Writes ``OUT.ply`` (the mesh with the n unit directions as vertex properties ``d{k}x d{k}y d{k}z``),
 ``OUT.npz`` (``u``, ``directions``, ``frames``, ``face_index`` and the singularities, all in the
 input numbering: rows of the file's vertices and faces), ``OUT.json`` (the summary of
-:meth:`dhlb.surface.DirectionField.to_json` plus output timings) and ``OUT.png`` (the shaded mesh,
+:meth:`dhlb.fields.DirectionField.to_json` plus output timings) and ``OUT.png`` (the shaded mesh,
 direction glyphs, singularities red (+) / blue (−)).
 """
 
@@ -35,7 +35,7 @@ Outputs (OUT is a base path): OUT.ply (mesh + directions as vertex properties), 
 Euler characteristic, eigenvalue, timings) and OUT.png (picture). --json prints the summary.
 
 With --singularity (repeatable) the field has exactly the given singularities instead
-(dualised trivial connections, dhlb.surface.prescribed_field): FACE:K puts index K/n on the
+(dualised trivial connections, dhlb.fields.prescribed_field): FACE:K puts index K/n on the
 face with row FACE of the file, x,y,z:K on the face nearest to the point; K is an integer in
 {-1, 0, 1} per face and on a closed surface the K sum to n * chi (Poincare-Hopf)."""
 
@@ -72,7 +72,7 @@ def register(subparsers) -> None:
 
 
 def read_alignment(value):
-    """The ``align`` argument of :func:`dhlb.surface.direction_field` for ``--align VALUE``.
+    """The ``align`` argument of :func:`dhlb.fields.direction_field` for ``--align VALUE``.
 
     Examples
     --------
@@ -93,7 +93,7 @@ def read_alignment(value):
 
 
 def read_singularities(values):
-    """The ``singularities`` of :func:`dhlb.surface.prescribed_field` for ``--singularity`` values.
+    """The ``singularities`` of :func:`dhlb.fields.prescribed_field` for ``--singularity`` values.
 
     Examples
     --------
@@ -139,7 +139,7 @@ def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
     --------
     >>> import os, tempfile
     >>> from dhlb.io import read_surface, example_path
-    >>> from dhlb.surface import direction_field
+    >>> from dhlb.fields import direction_field
     >>> V, F = read_surface(example_path("torus.obj"))
     >>> with tempfile.TemporaryDirectory() as d:
     ...     paths = write_field(os.path.join(d, "t"), direction_field(V, F, n=2), V, F, png=False)
@@ -156,7 +156,7 @@ def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
 
     write_ply(paths["ply"], V, F, binary=True, vertex_properties=props)
     sing = res.singularities
-    from dhlb.io.atomic import atomic_write
+    from dhlb._files import atomic_write
 
     with atomic_write(paths["npz"], "wb") as fh:  # NaN rows for unreferenced vertices: said by vertex_used and note
         np.savez_compressed(
@@ -174,8 +174,8 @@ def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
 
 def run(args) -> int:
     """Entry point of ``dhlb field``."""
+    from dhlb.fields import direction_field, prescribed_field
     from dhlb.io import read_surface
-    from dhlb.surface import direction_field, prescribed_field
 
     if not args.output or args.output == "-":
         raise UsageError("give the output base path with -o OUT (writes OUT.ply, OUT.npz, OUT.json, OUT.png)")

@@ -83,7 +83,7 @@ def output_paths(base: str) -> dict:
 
 
 def _directions(args, V, F, n):
-    from dhlb.surface import direction_field
+    from dhlb.fields import direction_field
 
     fld = args.field
     if fld in ("smoothest", "curvature"):
@@ -163,7 +163,7 @@ def _write_isolines(path, iso_list) -> int:
             lines.append("l " + " ".join(str(int(i) + 1 + offset) for i in poly))
             count += 1
         offset += len(iso.points)
-    from dhlb.io.atomic import atomic_write
+    from dhlb._files import atomic_write
 
     with atomic_write(path) as fh:
         fh.write("\n".join(lines) + "\n")
@@ -234,8 +234,8 @@ def run(args) -> int:
 
 
 def _run(args) -> int:
+    from dhlb._files import refuse_overwrite
     from dhlb.io import read_surface
-    from dhlb.io.atomic import refuse_overwrite
     from dhlb.stripes import stripe_pattern
 
     fmt = resolve_input(args.file, args.fmt)

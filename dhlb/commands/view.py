@@ -144,7 +144,7 @@ def scene_from_outputs(base: str, *, isolines: bool = True):
     --------
     >>> import os, tempfile
     >>> from dhlb.io import read_surface, example_path
-    >>> from dhlb.surface import direction_field
+    >>> from dhlb.fields import direction_field
     >>> from dhlb.commands.field import write_field
     >>> V, F = read_surface(example_path("torus.obj"))
     >>> with tempfile.TemporaryDirectory() as d:
@@ -194,7 +194,7 @@ def scene_from_outputs(base: str, *, isolines: bool = True):
             s.add_curves("domain", _box_outline(), color=(0.55, 0.58, 0.64), radius=0.002)
         elif os.path.isfile(mesh):
             from dhlb.io import read_volume
-            from dhlb.volume import check_tet_mesh
+            from dhlb.mesh import check_tet_mesh
 
             m = check_tet_mesh(*read_volume(mesh))
             s.add_mesh("domain", m.points, m.boundary_faces, transparency=0.25)

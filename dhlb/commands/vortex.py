@@ -1,4 +1,4 @@
-"""``dhlb vortex``: vortex filaments of a velocity field on a tetrahedral mesh (:func:`dhlb.volume.vortex_filaments`).
+"""``dhlb vortex``: vortex filaments of a velocity field on a tetrahedral mesh (:func:`dhlb.vortex.vortex_filaments`).
 
 Also home of the polyline writers (:func:`write_polylines_obj`, :func:`write_polylines_ply`) and
 of the demo fields of the command (:func:`demo_velocity`).
@@ -12,6 +12,7 @@ import warnings
 
 import numpy as np
 
+from dhlb._files import atomic_write
 from dhlb.commands._common import (
     UsageError,
     add_command,
@@ -22,7 +23,6 @@ from dhlb.commands._common import (
     resolve_input,
 )
 from dhlb.errors import DhlbWarning, InvalidParameterError, ResourceLimitError
-from dhlb.io.atomic import atomic_write
 
 __all__ = ["NAME", "SUMMARY", "demo_velocity", "format_report", "register", "run", "write_polylines_obj",
            "write_polylines_ply"]
@@ -98,7 +98,7 @@ def demo_velocity(name: str, points, *, circulation: float = 2 * np.pi, core_rad
     >>> len(curves), field.core_radius
     (2, 0.08)
     """
-    from dhlb.volume import FilamentField, hopf_link, torus_knot, vortex_ring
+    from dhlb.vortex import FilamentField, hopf_link, torus_knot, vortex_ring
 
     P = np.asarray(points, dtype=float)
     lo, hi = P.min(axis=0), P.max(axis=0)
@@ -134,7 +134,7 @@ def write_polylines_obj(path, filaments) -> str:
     Examples
     --------
     >>> import os, tempfile
-    >>> from dhlb.volume import Filament
+    >>> from dhlb.vortex import Filament
     >>> with tempfile.TemporaryDirectory() as d:
     ...     p = write_polylines_obj(os.path.join(d, "f.obj"), [Filament(np.eye(3), True, None)])
     ...     print(open(p).read().splitlines()[-1])
@@ -160,7 +160,7 @@ def write_polylines_ply(path, filaments) -> str:
     Examples
     --------
     >>> import os, tempfile
-    >>> from dhlb.volume import Filament
+    >>> from dhlb.vortex import Filament
     >>> with tempfile.TemporaryDirectory() as d:
     ...     p = write_polylines_ply(os.path.join(d, "f.ply"), [Filament(np.eye(3), False, None)])
     ...     print(open(p).read().splitlines()[-2:])
@@ -186,8 +186,8 @@ def write_polylines_ply(path, filaments) -> str:
 # ---------------------------------------------------------------------------- the command
 def _mesh(args):
     """``(V, T, name)``: the box as a TetMesh (``T`` None), or the arrays of TETMESH (validated later)."""
-    from dhlb.volume import box_tet_mesh
-    from dhlb.volume.meshes import VORTEX_BYTES_PER_CELL, check_box_memory
+    from dhlb.mesh import box_tet_mesh
+    from dhlb.mesh.tet import VORTEX_BYTES_PER_CELL, check_box_memory
 
     if args.mesh is not None and args.box is not None:
         raise UsageError("give either TETMESH or --box N, not both")
@@ -291,7 +291,7 @@ def format_report(meta: dict, data: dict) -> str:
 
 def run(args) -> int:
     """Entry point of ``dhlb vortex``."""
-    from dhlb.volume import vortex_filaments
+    from dhlb.vortex import vortex_filaments
 
     if args.output and args.output != "-":
         ext = os.path.splitext(args.output)[1].lower()

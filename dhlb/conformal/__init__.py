@@ -1,8 +1,8 @@
 """Close-to-conformal deformations of volumes (seed part 3 §2.4): a quaternionic bundle on tet meshes.
 
-Layer 5 (an application beside :mod:`dhlb.surface`, :mod:`dhlb.stripes` and :mod:`dhlb.volume`);
+Layer 5 (an application beside :mod:`dhlb.fields`, :mod:`dhlb.stripes` and :mod:`dhlb.vortex`);
 imports only the layers below (topology, bundles, geometry, fem) and the tet meshes of
-:mod:`dhlb.volume`.
+:mod:`dhlb.vortex`.
 
 * :func:`conformal_deformation` → :class:`ConformalResult` (deformed points, unit quaternions φ,
   λ₁, per-tet distortion and scale error);
@@ -13,7 +13,7 @@ imports only the layers below (topology, bundles, geometry, fem) and the tet mes
 
 Examples
 --------
->>> from dhlb.volume import ball_tet_mesh
+>>> from dhlb.mesh import ball_tet_mesh
 >>> from dhlb.conformal import conformal_deformation, mobius_factor
 >>> res = conformal_deformation(ball_tet_mesh(3), None, mobius_factor((0.0, 0.0, 3.0), 2.5))
 >>> res.statistics["inverted_tets"], bool(abs(res.eigenvalue) < 1e-4), bool(res.statistics["distortion_mean"] < 1.3)

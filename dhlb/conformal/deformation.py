@@ -9,7 +9,7 @@ in ``proofs/derive_conformal_quaternion.py``).  :func:`conformal_deformation` ru
 ========== =====================================================================================
 phase      what
 ========== =====================================================================================
-mesh       :func:`dhlb.volume.check_tet_mesh` (validate, orient), connectedness, charges outside
+mesh       :func:`dhlb.mesh.check_tet_mesh` (validate, orient), connectedness, charges outside
 factor     ``u`` at the vertices and ``g_ij`` = grad u on every edge (at its midpoint for a
            :class:`~dhlb.conformal.ConformalFactor`, central differences of a plain callable,
            recovered from vertex values for an array: see :func:`edge_gradients`)
@@ -28,7 +28,7 @@ quality    per tet: deformation gradient ``F``, ``distortion = σ_max/σ_min``,
 Examples
 --------
 >>> import numpy as np
->>> from dhlb.volume import ball_tet_mesh
+>>> from dhlb.mesh import ball_tet_mesh
 >>> from dhlb.conformal import conformal_deformation, mobius_factor
 >>> mesh = ball_tet_mesh(4)
 >>> res = conformal_deformation(mesh, None, mobius_factor((2.5, 0.0, 0.0), 2.0))
@@ -57,7 +57,7 @@ from dhlb.errors import (
     SectionZeroError,
     ShapeError,
 )
-from dhlb.volume.meshes import TetMesh, check_tet_mesh
+from dhlb.mesh.tet import TetMesh, check_tet_mesh
 
 if TYPE_CHECKING:
     from typing import Any
@@ -77,7 +77,7 @@ def _smallest_pair(A, M, tol, backend):
 
     The plain connection energy ``Σ w_ij |ψ_j − η_ij ψ_i|²`` is PSD for the trivial bundle but not
     in general when some cotangent weights are negative (obtuse dihedral angles, e.g. in
-    :func:`dhlb.volume.ball_tet_mesh`): then λ₁ can be slightly negative.  The engine's default
+    :func:`dhlb.mesh.ball_tet_mesh`): then λ₁ can be slightly negative.  The engine's default
     (any backend, e.g. AMG-LOBPCG on large meshes) is tried first; if it proves A indefinite, the
     engine's ``psd=False`` mode finds the smallest pair certified by the inertia of ``A − σM``.
     """
@@ -123,7 +123,7 @@ class ConformalResult:
 
     Examples
     --------
-    >>> from dhlb.volume import box_tet_mesh
+    >>> from dhlb.mesh import box_tet_mesh
     >>> res = conformal_deformation(box_tet_mesh(2), None, 0.5)            # u = 1/2: scale by e^{1/2}
     >>> bool(abs(res.distortion.max() - 1) < 1e-9), sorted(res.to_json())[:4]
     (True, ['distortion', 'eigenvalue', 'phi', 'points'])
@@ -156,7 +156,7 @@ class ConformalResult:
         Examples
         --------
         >>> import json
-        >>> from dhlb.volume import box_tet_mesh
+        >>> from dhlb.mesh import box_tet_mesh
         >>> d = conformal_deformation(box_tet_mesh(1), None, 0.0).to_json()
         >>> len(d["points"]), len(d["tets"]), len(json.dumps(d)) > 100
         (8, 6, True)
@@ -193,14 +193,14 @@ class ConformalResult:
         --------
         >>> import os, tempfile
         >>> from dhlb.io import read_volume
-        >>> from dhlb.volume import box_tet_mesh
+        >>> from dhlb.mesh import box_tet_mesh
         >>> res = conformal_deformation(box_tet_mesh(1), None, 0.0)
         >>> with tempfile.TemporaryDirectory() as d:
         ...     paths = res.save(os.path.join(d, "f.vtk"))
         ...     print(read_volume(paths[0])[1].shape)
         (6, 4)
         """
-        from dhlb.io import atomic_write  # the io layer is below the applications
+        from dhlb._files import atomic_write
 
         out = os.fspath(path)
         ext = os.path.splitext(out)[1].lower()
@@ -335,7 +335,7 @@ def edge_gradients(mesh: TetMesh, u: Any, values: np.ndarray | None = None) -> n
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.volume import box_tet_mesh
+    >>> from dhlb.mesh import box_tet_mesh
     >>> mesh = box_tet_mesh(2)
     >>> g = edge_gradients(mesh, None, values=mesh.points @ [1.0, 2.0, 3.0])    # linear u: exact
     >>> bool(np.allclose(g, [1.0, 2.0, 3.0]))
@@ -394,7 +394,7 @@ def quaternion_bundle(mesh: TetMesh, edge_gradient: np.ndarray) -> VectorBundle:
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.volume import box_tet_mesh
+    >>> from dhlb.mesh import box_tet_mesh
     >>> mesh = box_tet_mesh(1)
     >>> E = quaternion_bundle(mesh, np.tile([0.0, 0.0, 1.0], (mesh.complex.n_simplices(1), 1)))
     >>> E.rank, E.field, E.metric, E.is_flat()     # constant grad u = g: curvature ½ g (g·(X × Y)) ≠ 0
@@ -456,7 +456,7 @@ def conformal_deformation(
     Parameters
     ----------
     P : (n, 3) float array, or TetMesh
-        Vertex positions, or a validated :class:`~dhlb.volume.TetMesh` (then ``T`` must be None).
+        Vertex positions, or a validated :class:`~dhlb.mesh.TetMesh` (then ``T`` must be None).
     T : (m, 4) int array or None
         Tetrahedra (rows of ``P``), any orientation.
     u : number, (n,) array, callable or ConformalFactor
@@ -469,7 +469,7 @@ def conformal_deformation(
     tol : float
         Backward-error tolerance of the eigen solve.
     orientation : {"fix", "require"}
-        :func:`~dhlb.volume.check_tet_mesh`: re-orient negatively oriented tets, or raise.
+        :func:`~dhlb.mesh.check_tet_mesh`: re-orient negatively oriented tets, or raise.
 
     Returns
     -------
@@ -492,7 +492,7 @@ def conformal_deformation(
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.volume import ball_tet_mesh
+    >>> from dhlb.mesh import ball_tet_mesh
     >>> from dhlb.conformal import point_charge_factor
     >>> res = conformal_deformation(ball_tet_mesh(2), None, point_charge_factor([[0, 0, 1.6, 0.8]]))
     >>> bool(res.eigenvalue > 0), bool(res.distortion.mean() > 1), res.statistics["inverted_tets"]

@@ -10,7 +10,8 @@ whose triangulation, vertex labelling and source are stated in its docstring.
 * quotients of spheres: :func:`lens_space`, :func:`projective_space`
 * constructions: :func:`product` (shuffle triangulation), :func:`join`, :func:`cone`,
   :func:`suspension`
-* mesh arrays: :func:`surface`, :func:`tet_mesh` (returning a :class:`MeshComplex`)
+* (deprecated) ``surface(F, V)``, ``tet_mesh(T, V)``, ``MeshComplex``: now
+  :func:`dhlb.mesh.mesh_complex` ``(V, cells)``
 
 Examples
 --------
@@ -22,7 +23,6 @@ Examples
 
 from dhlb.examples.basic import ball, cone, join, simplex, sphere, suspension
 from dhlb.examples.grids import cube_nd, torus_nd
-from dhlb.examples.meshes import MeshComplex, surface, tet_mesh
 from dhlb.examples.products import product
 from dhlb.examples.quotients import lens_space, projective_space
 from dhlb.examples.surfaces import dunce_hat, klein_bottle, moebius_strip, projective_plane, torus
@@ -44,7 +44,13 @@ __all__ = [
     "lens_space",
     "projective_space",
     "product",
-    "MeshComplex",
-    "surface",
-    "tet_mesh",
 ]
+
+
+def __getattr__(name):
+    # deprecated: mesh arrays moved to dhlb.mesh (argument order (V, cells)); see dhlb.examples.meshes
+    if name in ("surface", "tet_mesh", "MeshComplex"):
+        from dhlb.examples import meshes
+
+        return getattr(meshes, name)
+    raise AttributeError(f"module 'dhlb.examples' has no attribute {name!r}")

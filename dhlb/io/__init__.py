@@ -14,7 +14,6 @@ Examples
 """
 
 from dhlb.io.atomic import atomic_write, refuse_overwrite
-from dhlb.io.compact import compact_mesh
 from dhlb.io.examples import EXAMPLES, example_path
 from dhlb.io.formats import FORMATS, format_of
 from dhlb.io.gmsh import read_gmsh, write_gmsh
@@ -25,6 +24,7 @@ from dhlb.io.simplices import parse_simplices_text, read_simplices, write_simpli
 from dhlb.io.surface import read_obj, read_off, read_surface, write_obj, write_off, write_surface
 from dhlb.io.volume import read_cells, read_volume, write_cells, write_volume
 from dhlb.io.vtk import read_vtk, write_vtk
+from dhlb.mesh.compact import compact_mesh
 
 __all__ = [
     "load",

@@ -275,7 +275,7 @@ def write_vtu_volume(
     Examples
     --------
     >>> import os, tempfile, meshio
-    >>> from dhlb.volume import box_tet_mesh
+    >>> from dhlb.mesh import box_tet_mesh
     >>> mesh = box_tet_mesh(1)
     >>> with tempfile.TemporaryDirectory() as d:
     ...     p = write_vtu_volume(os.path.join(d, "b.vtu"), mesh.points, mesh.tets, cell_data={"vol": mesh.volumes})
@@ -376,7 +376,7 @@ def write_vtp_curves(path: str | os.PathLike[str], curves: Sequence[Any], *, bin
     ----------
     path : str or path-like
     curves : sequence
-        :class:`dhlb.volume.Filament` objects (``.points``, ``.closed``), ``(points, closed)``
+        :class:`dhlb.vortex.Filament` objects (``.points``, ``.closed``), ``(points, closed)``
         pairs, or ``(m, 3)`` arrays (open curves).
     binary : bool
         For the meshio formats: binary or ASCII.

@@ -1,10 +1,10 @@
 """The package's results as ParaView files: which arrays each result carries (through :mod:`dhlb.io.meshio_bridge`).
 
-* :func:`field_to_vtu`: a direction field (:func:`dhlb.surface.direction_field`) as a surface with
+* :func:`field_to_vtu`: a direction field (:func:`dhlb.fields.direction_field`) as a surface with
   its n directions, ``u`` and the face indices;
 * :func:`stripes_to_vtu`: a stripe pattern (:func:`dhlb.stripes.stripe_pattern`) with ψ and the
   per-corner texture (per face: ParaView has no per-corner arrays);
-* :func:`vortex_to_vtu`: a vortex result (:func:`dhlb.volume.vortex_filaments`) as the tet mesh with
+* :func:`vortex_to_vtu`: a vortex result (:func:`dhlb.vortex.vortex_filaments`) as the tet mesh with
   ψ, ``|ψ|`` and the velocity, the filaments beside it as ``.vtp``.
 
 Results are taken by what they carry (duck typing), so this layer imports no application.
@@ -13,7 +13,7 @@ Examples
 --------
 >>> import os, tempfile, meshio
 >>> from dhlb.io import example_path, read_surface
->>> from dhlb.surface import direction_field
+>>> from dhlb.fields import direction_field
 >>> res = direction_field(*read_surface(example_path("torus.obj")), n=2)
 >>> with tempfile.TemporaryDirectory() as d:
 ...     print(sorted(meshio.read(field_to_vtu(res, os.path.join(d, "f.vtu"))).cell_data))
@@ -39,7 +39,7 @@ def _check_result(result, attrs, what, fn):
 
 
 def field_to_vtu(result: Any, path: str | os.PathLike[str], *, binary: bool = True) -> str:
-    """Write a :class:`~dhlb.surface.DirectionField` as a ``.vtu`` surface for ParaView.
+    """Write a :class:`~dhlb.fields.DirectionField` as a ``.vtu`` surface for ParaView.
 
     The mesh is the validated one (``result.mesh.points``, ``.faces``). Arrays:
 
@@ -71,14 +71,14 @@ def field_to_vtu(result: Any, path: str | os.PathLike[str], *, binary: bool = Tr
     --------
     >>> import os, tempfile, meshio
     >>> from dhlb.io import read_surface, example_path
-    >>> from dhlb.surface import direction_field
+    >>> from dhlb.fields import direction_field
     >>> res = direction_field(*read_surface(example_path("torus.obj")), n=4)
     >>> with tempfile.TemporaryDirectory() as d:
     ...     m = meshio.read(field_to_vtu(res, os.path.join(d, "f.vtu")))
     >>> sorted(m.point_data), m.point_data["d3"].shape, int(m.cell_data["index"][0].sum()) == res.index_sum
     (['d0', 'd1', 'd2', 'd3', 'input_vertex', 'u', 'u_abs'], (288, 3), True)
     """
-    _check_result(result, ("mesh", "directions", "u", "face_index", "n"), "dhlb.surface.direction_field",
+    _check_result(result, ("mesh", "directions", "u", "face_index", "n"), "dhlb.fields.direction_field",
                   "field_to_vtu")
     mesh = result.mesh
     pd = {f"d{k}": result.directions[:, k, :] for k in range(result.n)}
@@ -157,7 +157,7 @@ def _velocity(velocity, mesh, path):
 
 def vortex_to_vtu(result: Any, path: str | os.PathLike[str], velocity: Any = None, *,
                   filaments: str | os.PathLike[str] | None = "auto", binary: bool = True) -> list[str]:
-    """Write a :class:`~dhlb.volume.VortexResult`: the tet mesh as ``.vtu`` and the filaments beside it.
+    """Write a :class:`~dhlb.vortex.VortexResult`: the tet mesh as ``.vtu`` and the filaments beside it.
 
     Arrays of the ``.vtu``: point data ``psi`` (``(N, 2)``: Re, Im of ψ in the frames of the
     result's bundle), ``psi_abs`` (``|ψ|``), ``velocity`` (``(N, 3)``, when ``velocity`` is given)
@@ -170,7 +170,7 @@ def vortex_to_vtu(result: Any, path: str | os.PathLike[str], velocity: Any = Non
     path : str or path-like
         The ``.vtu`` file.
     velocity : callable, (n, 3) array or None
-        The velocity given to :func:`~dhlb.volume.vortex_filaments`: a callable is evaluated at the
+        The velocity given to :func:`~dhlb.vortex.vortex_filaments`: a callable is evaluated at the
         mesh points, an array has one row per input vertex. The result does not keep it.
     filaments : path, "auto" or None
         Where to write the filaments: ``"auto"`` is ``STEM-filaments.vtp``, None writes none.
@@ -193,7 +193,8 @@ def vortex_to_vtu(result: Any, path: str | os.PathLike[str], velocity: Any = Non
     Examples
     --------
     >>> import os, tempfile, meshio
-    >>> from dhlb.volume import box_tet_mesh, uniform_flow, vortex_filaments
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> from dhlb.vortex import uniform_flow, vortex_filaments
     >>> v = uniform_flow([0.3, 0.0, 0.0])
     >>> res = vortex_filaments(box_tet_mesh(3), None, v, hbar=1.0)
     >>> with tempfile.TemporaryDirectory() as d:
@@ -203,7 +204,7 @@ def vortex_to_vtu(result: Any, path: str | os.PathLike[str], velocity: Any = Non
     >>> names, sorted(m.point_data), m.cells_dict["tetra"].shape
     (['v.vtu', 'v-filaments.vtp'], ['input_vertex', 'psi', 'psi_abs', 'velocity'], (162, 4))
     """
-    _check_result(result, ("mesh", "psi", "filaments", "statistics"), "dhlb.volume.vortex_filaments",
+    _check_result(result, ("mesh", "psi", "filaments", "statistics"), "dhlb.vortex.vortex_filaments",
                   "vortex_to_vtu")
     where = os.fspath(path)
     mesh = result.mesh

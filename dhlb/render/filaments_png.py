@@ -88,11 +88,11 @@ def render_filaments_png(
     path : str or path-like
         Output file (PNG).
     filaments : sequence of Filament or (m, 3) arrays
-        Polylines; objects with ``.points`` and ``.closed`` (a :class:`dhlb.volume.Filament`) or
+        Polylines; objects with ``.points`` and ``.closed`` (a :class:`dhlb.vortex.Filament`) or
         plain arrays (taken as closed).
     V, F : (N, 3) float and (b, 3) int, optional
         The boundary surface of the domain (e.g. ``mesh.points`` and ``mesh.boundary_faces`` of a
-        :class:`dhlb.volume.TetMesh`), drawn as silhouette and outline.
+        :class:`dhlb.mesh.TetMesh`), drawn as silhouette and outline.
     view, up : 3-vectors
         Camera direction (from the scene toward the camera) and the world direction shown upward.
     size : (width, height) in pixels; dpi : int
@@ -108,7 +108,8 @@ def render_filaments_png(
     Examples
     --------
     >>> import os, tempfile
-    >>> from dhlb.volume import box_tet_mesh, hopf_link
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> from dhlb.vortex import hopf_link
     >>> mesh = box_tet_mesh(2, lower=-1.5, upper=2.5)
     >>> with tempfile.TemporaryDirectory() as d:
     ...     p = render_filaments_png(os.path.join(d, "f.png"), hopf_link(n=40), mesh.points, mesh.boundary_faces,

@@ -117,12 +117,12 @@ def render_field_png(
     path : str or path-like
         Output file (PNG).
     V : (N, 3) float, F : (m, 3) int
-        The mesh (e.g. ``mesh.points`` and ``mesh.faces`` of a :class:`dhlb.surface.SurfaceMesh`).
+        The mesh (e.g. ``mesh.points`` and ``mesh.faces`` of a :class:`dhlb.mesh.SurfaceMesh`).
     directions : (N, k, 3) or (N, 3) float, optional
-        Unit directions per vertex (:func:`dhlb.surface.direction_vectors`); rows of zeros
+        Unit directions per vertex (:func:`dhlb.fields.direction_vectors`); rows of zeros
         draw nothing.
     singularities : Singularities or tuple, optional
-        A :class:`dhlb.surface.Singularities` or a tuple ``(points, index)`` of shapes ``(s, 3)``
+        A :class:`dhlb.fields.Singularities` or a tuple ``(points, index)`` of shapes ``(s, 3)``
         and ``(s,)``; drawn as red (index > 0) and blue (index < 0) dots.
     view, up : 3-vectors
         Camera direction (from the mesh toward the camera) and the world direction shown upward.
@@ -226,7 +226,7 @@ def finish_figure(fig, ax, path, xy, aspect, title, dpi, background) -> str:
     ax.set_ylim(mid[1] - half / min(aspect, 1), mid[1] + half / min(aspect, 1))
     if title:
         ax.text(0.02, 0.98, title, transform=ax.transAxes, va="top", ha="left", fontsize=10)
-    from dhlb.io.atomic import atomic_write
+    from dhlb._files import atomic_write
 
     out = os.fspath(path)
     with atomic_write(out, "wb") as fh:  # a failed or interrupted render leaves no half-written picture

@@ -102,7 +102,7 @@ def render_stripes_png(
     Examples
     --------
     >>> import os, tempfile, numpy as np
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form, texture_coordinates
     >>> from dhlb.render.stripes_png import render_stripes_png
     >>> V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.0]])

@@ -16,7 +16,7 @@ saying what is missing and what to do.
 Examples
 --------
 >>> from dhlb.io import read_surface, example_path
->>> from dhlb.surface import direction_field
+>>> from dhlb.fields import direction_field
 >>> scene = scene_of(direction_field(*read_surface(example_path("torus.obj")), n=4))
 >>> [m.name for m in scene.meshes], sorted(scene.meshes[0].vectors), [p.name for p in scene.points]
 (['mesh'], ['direction 0', 'direction 1', 'direction 2', 'direction 3'], ['singularities'])
@@ -268,7 +268,8 @@ def scene_of(result: Any, *, isolines: bool = True) -> Scene:
 
     Examples
     --------
-    >>> from dhlb.volume import box_tet_mesh, uniform_flow, vortex_filaments
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> from dhlb.vortex import uniform_flow, vortex_filaments
     >>> s = scene_of(vortex_filaments(box_tet_mesh(2), None, uniform_flow([0.1, 0, 0]), hbar=1.0))
     >>> s.title, s.meshes[0].name, s.meshes[0].transparency
     ('0 filaments', 'domain', 0.25)

@@ -184,7 +184,7 @@ def surface_meshes(genus: int | None = None, min_faces: int = 1, max_faces: int 
     Examples
     --------
     >>> from hypothesis import given, settings
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> @settings(max_examples=20)
     ... @given(surface_meshes(max_faces=200))
     ... def genus_from_euler(mesh):

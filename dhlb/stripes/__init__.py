@@ -12,7 +12,7 @@ adjustment, zero indices, the nonlinear interpolant lArg and the subdivision of 
 Examples
 --------
 >>> import numpy as np
->>> from dhlb.surface import validate_surface
+>>> from dhlb.mesh import validate_surface
 >>> from dhlb.stripes import stripe_form, texture_coordinates
 >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
 >>> form = stripe_form(validate_surface(V, [[0, 1, 2], [1, 3, 2]]), np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)

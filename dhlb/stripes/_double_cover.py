@@ -50,7 +50,7 @@ class DoubleCover:
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form, texture_coordinates
     >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
     >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])

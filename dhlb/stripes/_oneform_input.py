@@ -2,7 +2,7 @@
 
 Private helpers of :mod:`dhlb.stripes.oneform`. :func:`checked_directions` turns the user's
 directions into unit tangent vectors and rescaled angles (frames of
-:class:`~dhlb.surface.TangentBundle`), :func:`per_vertex_positive` validates a frequency or a
+:class:`~dhlb.mesh.TangentBundle`), :func:`per_vertex_positive` validates a frequency or a
 spacing; errors name the offending vertex or edge in input labels.
 """
 
@@ -15,8 +15,8 @@ import numpy as np
 from dhlb.errors import InvalidParameterError, NonFiniteError, SectionZeroError, ShapeError
 
 if TYPE_CHECKING:
-    from dhlb.surface.mesh import SurfaceMesh
-    from dhlb.surface.tangent import TangentBundle
+    from dhlb.mesh.surface import SurfaceMesh
+    from dhlb.mesh.tangent import TangentBundle
 
 __all__ = ["vertex_name", "edge_name", "per_vertex_positive", "checked_directions"]
 
@@ -63,7 +63,7 @@ def checked_directions(tb: TangentBundle, directions, method: str) -> tuple[np.n
         W = np.asarray(directions, dtype=np.float64)
     except (TypeError, ValueError):
         raise ShapeError("directions must be a real array of shape (n_vertices, 3) (or (n_vertices, k, 3) from "
-                         "dhlb.surface.direction_vectors)") from None
+                         "dhlb.fields.direction_vectors)") from None
     if W.ndim == 3 and W.shape[2] == 3 and W.shape[1] >= 1:
         W = W[:, 0, :]
     if W.ndim != 2 or W.shape[1] != 3:

@@ -128,7 +128,7 @@ def stripe_matrices(
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form
     >>> from dhlb.stripes.energy import stripe_matrices
     >>> mesh = validate_surface([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], [[0, 1, 2], [1, 3, 2]])

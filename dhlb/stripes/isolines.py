@@ -16,7 +16,7 @@ polyline ends at zeros; branch points are passed (the isolines turn around them)
 Examples
 --------
 >>> import numpy as np
->>> from dhlb.surface import validate_surface
+>>> from dhlb.mesh import validate_surface
 >>> from dhlb.stripes import stripe_form, texture_coordinates, isolines
 >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
 >>> form = stripe_form(validate_surface(V, [[0, 1, 2], [1, 3, 2]]), np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
@@ -68,7 +68,7 @@ class Isolines:
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form, texture_coordinates
     >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
     >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
@@ -135,7 +135,7 @@ def isoline_cost(texture: StripeTexture, level: float = 0.0, *, refine: int = 8)
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form, texture_coordinates
     >>> from dhlb.stripes.isolines import isoline_cost
     >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
@@ -295,7 +295,7 @@ def isolines(texture: StripeTexture, level: float = 0.0, *, refine: int = 8, tol
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form, texture_coordinates
     >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
     >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])

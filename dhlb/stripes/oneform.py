@@ -12,7 +12,7 @@ they represent lines (a line field: ``X_i`` and ``−X_i`` mean the same).
 lengths: ``f = 1 / (s · mean edge length)``.
 
 **Relative orientation** (§3.3). With φ_i the rescaled angle of X_i (frames of
-:class:`~dhlb.surface.TangentBundle`) and ρ_ij its Levi-Civita transport (``n = 1``),
+:class:`~dhlb.mesh.TangentBundle`) and ρ_ij its Levi-Civita transport (``n = 1``),
 ``s_ij = +1`` iff ``φ_j − φ_i − ρ_ij ∈ [−π/2, π/2)`` mod 2π, else −1; for ``n = 1`` all
 ``s_ij = +1``. A face is a **branch triangle** iff ``s_ij s_jk s_ki = −1``.
 
@@ -40,7 +40,7 @@ has twice the energy of ψ in the real bundle.
 Examples
 --------
 >>> import numpy as np
->>> from dhlb.surface import validate_surface
+>>> from dhlb.mesh import validate_surface
 >>> from dhlb.stripes import stripe_form
 >>> mesh = validate_surface([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], [[0, 1, 2], [1, 3, 2]])
 >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)   # period 4
@@ -62,10 +62,10 @@ import numpy as np
 from dhlb.bundles.hermitian import HermitianLineBundle
 from dhlb.bundles.vector_bundle import VectorBundle
 from dhlb.errors import DhlbWarning, InvalidConnectionError, InvalidParameterError
+from dhlb.mesh.surface import SurfaceMesh
+from dhlb.mesh.tangent import TangentBundle
 from dhlb.stripes._double_cover import DoubleCover
 from dhlb.stripes._oneform_input import checked_directions, edge_name, per_vertex_positive
-from dhlb.surface.mesh import SurfaceMesh
-from dhlb.surface.tangent import TangentBundle
 from dhlb.topology.complex import SimplicialComplex
 
 if TYPE_CHECKING:
@@ -86,7 +86,7 @@ class StripeForm:
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form, texture_coordinates
     >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
     >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
@@ -250,7 +250,7 @@ def stripe_form(
     Parameters
     ----------
     surface : SurfaceMesh or TangentBundle
-        The validated mesh (:func:`dhlb.surface.validate_surface`); a TangentBundle of any power
+        The validated mesh (:func:`dhlb.mesh.validate_surface`); a TangentBundle of any power
         is used for its mesh (the stripe form uses the power-1 frames).
     directions : (N, 3) float (or (N, k, 3): the first direction is used)
         One tangent direction per compact vertex or per row of the input V; its tangential part
@@ -285,7 +285,7 @@ def stripe_form(
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form, texture_coordinates
     >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
     >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
@@ -298,7 +298,7 @@ def stripe_form(
     elif isinstance(surface, SurfaceMesh):
         tb = TangentBundle(surface, 1)
     else:
-        raise TypeError("surface must be a SurfaceMesh (dhlb.surface.validate_surface) or a TangentBundle, "
+        raise TypeError("surface must be a SurfaceMesh (dhlb.mesh.validate_surface) or a TangentBundle, "
                         f"got {type(surface).__name__}")
     if isinstance(n, (bool, np.bool_)) or not isinstance(n, numbers.Integral) or n not in (1, 2):
         raise InvalidParameterError(f"n must be 1 (vector field) or 2 (line field), got {n!r}")

@@ -22,7 +22,7 @@ OBJ face to its face of the mesh.
 Examples
 --------
 >>> import json, os, tempfile, numpy as np
->>> from dhlb.surface import validate_surface
+>>> from dhlb.mesh import validate_surface
 >>> from dhlb.stripes import stripe_form, texture_coordinates, write_stripes_obj
 >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
 >>> form = stripe_form(validate_surface(V, [[0, 1, 2], [1, 3, 2]]), np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
@@ -71,7 +71,7 @@ def stripes_sidecar(
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form, texture_coordinates
     >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
     >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
@@ -105,7 +105,7 @@ def stripes_sidecar(
 
 
 def _write_text(path: str, text: str) -> None:
-    from dhlb.io.atomic import atomic_write  # the io layer is below the applications
+    from dhlb._files import atomic_write
 
     with atomic_write(path) as fh:
         fh.write(text)
@@ -156,7 +156,7 @@ def write_stripes_obj(
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form, texture_coordinates
     >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
     >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])

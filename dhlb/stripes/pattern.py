@@ -45,6 +45,8 @@ import numpy as np
 from dhlb._display import Presentable
 from dhlb.errors import DhlbWarning, InvalidParameterError, NotSemidefiniteError
 from dhlb.fem import select_backend, smallest_eigenpairs
+from dhlb.mesh.surface import SurfaceMesh, validate_surface
+from dhlb.mesh.tangent import TangentBundle
 from dhlb.stripes.energy import ENERGIES, stripe_matrices
 from dhlb.stripes.oneform import StripeForm, stripe_form
 from dhlb.stripes.section import (
@@ -58,8 +60,6 @@ from dhlb.stripes.section import (
     unit_section,
 )
 from dhlb.stripes.texture import StripeTexture, texture_coordinates
-from dhlb.surface.mesh import SurfaceMesh, validate_surface
-from dhlb.surface.tangent import TangentBundle
 
 if TYPE_CHECKING:
     from typing import Any
@@ -371,7 +371,7 @@ def stripe_pattern(
     Parameters
     ----------
     V : (k, 3) array, or a SurfaceMesh / TangentBundle (then F = None), or a direction-field result
-        (:func:`dhlb.surface.direction_field`; then F = None and ``directions`` = None).
+        (:func:`dhlb.fields.direction_field`; then F = None and ``directions`` = None).
     F : (m, 3) int array
     directions : (k, 3) or (N, 3) array, (…, j, 3) array (first direction used), or a direction-field
         result with ``n`` = 1 or 2 (its first direction per vertex)
@@ -398,7 +398,7 @@ def stripe_pattern(
     block_size : int, optional
         Subspace size of the eigensolver.
     reorient, components :
-        Passed to :func:`dhlb.surface.validate_surface`.
+        Passed to :func:`dhlb.mesh.validate_surface`.
     warn_aliasing : bool
         Warn when stripes are narrower than two edges (the result stays correct, §4.3).
     section : {"unit", "eigenvector", "power"}
@@ -434,7 +434,7 @@ def stripe_pattern(
     ShapeError, NonFiniteError, SectionZeroError, InvalidParameterError
         Bad directions (NaN, zero or normal to the surface: the vertex is named), non-positive or
         missing frequency, bad n / energy / method; the mesh errors of
-        :func:`dhlb.surface.validate_surface` (naming the face or vertex).
+        :func:`dhlb.mesh.validate_surface` (naming the face or vertex).
     ConvergenceError
         The eigensolver did not reach ``tol``.
 

@@ -100,7 +100,7 @@ class Subdivision:
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form, texture_coordinates
     >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
     >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
@@ -132,7 +132,7 @@ class StripeTexture:
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form, texture_coordinates
     >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
     >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
@@ -301,7 +301,7 @@ def texture_coordinates(form: StripeForm, psi: ArrayLike) -> StripeTexture:
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.surface import validate_surface
+    >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form, texture_coordinates
     >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
     >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])

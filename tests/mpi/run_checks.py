@@ -18,10 +18,10 @@ from mpi4py import MPI  # noqa: E402
 
 from dhlb.errors import InvalidOperatorError  # noqa: E402
 from dhlb.fem import bundle_matrices, smallest_eigenpairs  # noqa: E402
+from dhlb.fields import direction_field  # noqa: E402
 from dhlb.io import read_surface  # noqa: E402
 from dhlb.linalg.backends import _REGISTRY, register_backend  # noqa: E402
 from dhlb.linalg.backends_petsc import PetscBackend  # noqa: E402
-from dhlb.surface import direction_field  # noqa: E402
 from tests.fem_fixtures import flat_torus_landau  # noqa: E402
 
 if "petsc" not in _REGISTRY:  # until the registry lists it

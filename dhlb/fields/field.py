@@ -1,0 +1,239 @@
+"""Globally optimal n-direction fields (seed part 1, §5–§6): smoothest and aligned fields.
+
+* **Smoothest field** (Eq. 6.5): the eigenvector of the smallest eigenvalue of ``A_s u = λ M u``
+  (:func:`dhlb.fields.energy_matrices`, the engine's curvature-corrected matrices), computed by
+  :func:`dhlb.fem.smallest_eigenpairs`; ``u`` is M-normalized and its energy is ``λ = uᴴ A_s u``.
+* **Aligned field** (Eq. 6.6): ``(A_s − λ_t M) ũ = M q`` for a guidance field q, ``u = ũ/‖ũ‖_M``
+  and ``t = (1 + ‖ũ‖_M)⁻¹`` for the guidance scaled to ``‖q‖_M = 1`` (Appendix A: t is the weight of
+  the alignment term in ``E_{s,t} = (1 − t) E_s − t E_l``; it decreases strictly from 1 (λ_t → −∞,
+  pure alignment) to 0 (λ_t → λ_1, the smoothest field); λ_t = 0 is the seed's default).
+  Guidance: principal curvature through the discrete Hopf differential (``"curvature"``: q^{n/2};
+  ``"min-curvature"``: (−q)^{n/2}), the boundary tangent (``"boundary"``, ``"boundary-normal"``),
+  per-vertex 3D vectors, or per-vertex complex values in the frames of
+  :class:`~dhlb.mesh.TangentBundle` (:mod:`dhlb.fields.guidance`).
+  A flat mesh has no principal directions: curvature alignment then falls back to the smoothest
+  field with a warning.
+* **Several components.** The matrices are block diagonal; each component gets its own smallest
+  eigenvector (or its own aligned solve), scaled so that ``‖u‖²_M`` on it is its share of the area.
+
+The result carries the 3D directions, the per-face indices and singularities (mesh orientation)
+and the Poincaré–Hopf check ``index_sum == poincare_hopf`` (``= nχ`` on closed meshes).
+
+Examples
+--------
+>>> from dhlb.io import read_surface, example_path
+>>> from dhlb.fields import direction_field
+>>> res = direction_field(*read_surface(example_path("torus.obj")), n=4)
+>>> res.index_sum, res.euler_characteristic, res.directions.shape[1:]
+(0, 0, (4, 3))
+"""
+
+from __future__ import annotations
+
+import numbers
+import time
+import warnings
+
+import numpy as np
+
+from dhlb.errors import DhlbWarning, InvalidParameterError, ShapeError
+from dhlb.fields.directions import direction_vectors, field_indices
+from dhlb.fields.energy import _tangent, check_s, energy_matrices
+from dhlb.fields.guidance import Guidance, boundary_guidance, curvature_guidance, user_guidance
+from dhlb.fields.result import DirectionField
+from dhlb.linalg import smallest_eigenpairs, solve
+from dhlb.linalg.backends import get_backend
+from dhlb.mesh.tangent import TangentBundle
+
+__all__ = ["direction_field", "guidance_for"]
+
+_NAMED = ("curvature", "min-curvature", "boundary", "boundary-normal")
+
+
+def guidance_for(tb: TangentBundle, align) -> Guidance:
+    """The guidance field named by ``align`` (see :func:`direction_field`) on ``tb``.
+
+    Examples
+    --------
+    >>> from dhlb.mesh import tangent_bundle
+    >>> from dhlb.fields.field import guidance_for
+    >>> tb = tangent_bundle([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], n=1)
+    >>> guidance_for(tb, "boundary").kind
+    'boundary'
+    """
+    if isinstance(align, Guidance):
+        if np.shape(align.values) != (tb.mesh.n_vertices,):
+            raise ShapeError(f"the guidance has {np.shape(align.values)} values for {tb.mesh.n_vertices} vertices")
+        return align
+    if isinstance(align, str):
+        if align == "curvature":
+            return curvature_guidance(tb, "max")
+        if align == "min-curvature":
+            return curvature_guidance(tb, "min")
+        if align in ("boundary", "boundary-normal"):
+            return boundary_guidance(tb, normal=align == "boundary-normal")
+        raise InvalidParameterError(f"align must be one of {', '.join(_NAMED)}, an array of vectors/values or a "
+                                    f"Guidance, got {align!r}")
+    return user_guidance(tb, align)
+
+
+def _check_lam(lam) -> float:
+    if isinstance(lam, bool) or not isinstance(lam, numbers.Real) or not np.isfinite(lam):
+        raise InvalidParameterError(f"lam must be a finite real number, got {lam!r}")
+    return float(lam)
+
+
+def _components(tb: TangentBundle) -> list[np.ndarray]:
+    ncomp, label = tb.mesh.components
+    if ncomp == 1:
+        return [np.arange(tb.mesh.n_vertices)]
+    return [np.nonzero(label == c)[0] for c in range(ncomp)]
+
+
+def _sub(S, idx):
+    return S[idx][:, idx]
+
+
+def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None, lam: float = 0.0, *,
+                    lumped: bool = False, reorient: bool = False, components: str = "all", backend=None,
+                    tol: float | None = None, progress: bool = False) -> DirectionField:
+    """The smoothest (or guidance-aligned) n-direction field of a triangle mesh.
+
+    Parameters
+    ----------
+    V, F : mesh arrays (``(k, 3)`` float, ``(m, 3)`` int), or a SurfaceMesh / TangentBundle as V
+    n : int >= 1, symmetry: 1 vector field, 2 line field, 4 cross field (default: that of a
+        TangentBundle ``V``, else 1)
+    s : float in [−1, 1], energy ``E_s = E_D − s(E_A − E_H)``; +1 holomorphic, −1 anti-holomorphic
+    align : None or str or array or Guidance
+        None: smoothest field. ``"curvature"`` / ``"min-curvature"`` (even n), ``"boundary"`` /
+        ``"boundary-normal"``, real ``(k, 3)`` vectors or complex ``(k,)`` values per vertex.
+    lam : float, λ_t of the aligned problem (must stay below the smallest eigenvalue)
+    lumped : bool
+        Use the lumped (diagonal) mass matrix instead of the consistent one of Theorem 15 (the
+        seed's choice). For strongly aligned fields (λ_t ≪ 0) the consistent mass makes
+        ``(A − λ_t M)⁻¹ M`` oscillate (M is not an M-matrix): spurious ±1 pairs appear near
+        the guidance; the lumped mass avoids them.
+    reorient, components : passed to :func:`dhlb.mesh.validate_surface`
+    backend : solver backend (see :mod:`dhlb.linalg`)
+    tol : float, optional
+        Backward-error tolerance of the eigen solve; default :func:`dhlb.linalg.default_tol`, which scales
+        with the mesh so that the singularities are those of a tol = 1e-14 solve.
+    progress : bool
+        Report the phases (setup, eigen solve, indices) on stderr with tqdm when the run is expected
+        to take more than about two seconds (``pip install 'dhlb[progress]'``); the CLI passes
+        ``not --quiet``.
+
+    Returns
+    -------
+    DirectionField
+
+    Raises
+    ------
+    InvalidParameterError
+        Bad n, s, lam or align (e.g. curvature alignment with odd n).
+    InvalidOperatorError
+        ``A_s − λ_t M`` is singular or indefinite (aligned field with λ_t too large).
+
+    Warns
+    -----
+    DhlbWarning
+        Alignment requested but the guidance vanishes (flat mesh, no boundary): smoothest field.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.fields import direction_field
+    >>> V = [[0, 0, 1], [0, 0, -1], [1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0]]
+    >>> F = [[0, 2, 4], [0, 4, 3], [0, 3, 5], [0, 5, 2], [1, 4, 2], [1, 3, 4], [1, 5, 3], [1, 2, 5]]
+    >>> res = direction_field(V, F, n=1)
+    >>> res.index_sum, res.poincare_hopf          # Poincaré–Hopf on the octahedron: χ = 2
+    (2, 2.0)
+    """
+    from dhlb._progress import progress_bar
+
+    t0 = time.perf_counter()
+    s = check_s(s)
+    lam = _check_lam(lam)
+    faces = np.shape(F)[0] if F is not None else getattr(getattr(V, "mesh", V), "n_faces", 0)
+    bar = progress_bar(3, "direction field", progress=progress, estimate_seconds=1.4e-5 * faces, unit="phase")
+    if n is None:
+        n = V.n if isinstance(V, TangentBundle) else 1
+    if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 1:
+        raise InvalidParameterError(f"n must be an integer >= 1, got {n!r}")
+    tb = _tangent(V, F, int(n), reorient, components)
+    guide = None
+    if align is not None:
+        guide = guidance_for(tb, align)
+        if guide.empty:
+            warnings.warn(f"no alignment: {guide.reason}; computing the smoothest field instead", DhlbWarning,
+                          stacklevel=2)
+            guide = None
+    A, M = energy_matrices(tb, s=s, lumped=lumped)
+    t1 = time.perf_counter()
+    bar.update(1)
+
+    N = tb.mesh.n_vertices
+    u = np.zeros(N, np.complex128)
+    area = np.asarray(tb.geometry.volumes(2)).sum()
+    comps = _components(tb)
+    eigs, ts, stats = [], [], []
+    for idx in comps:
+        Ac, Mc = (A, M) if len(comps) == 1 else (_sub(A, idx), _sub(M, idx))
+        if guide is None:
+            res = smallest_eigenpairs(Ac, Mc, 1, tol=tol, backend=backend)
+            uc = res.eigenvectors[:, 0]
+            eigs.append(float(res.eigenvalues[0]))
+            stats.append({"backend": res.backend, "iterations": int(res.iterations),
+                          "residual": float(res.residuals[0]), "converged": bool(res.converged),
+                          "factorizations": int(res.factorizations), "solves": int(res.solves), "note": res.note})
+        else:
+            q = guide.values[idx]
+            qn = float(np.sqrt(max((q.conj() @ (Mc @ q)).real, 0.0)))
+            if qn == 0.0:
+                raise InvalidParameterError("the guidance vanishes on a connected component; give guidance there")
+            # Appendix A assumes ‖φ‖_M = 1; λ_t must lie below the smallest eigenvalue: A − λ_t M is PD
+            ut = solve(Ac, Mc, lam, Mc @ (q / qn), backend=backend, positive_definite=True)
+            norm = float(np.sqrt(max((ut.conj() @ (Mc @ ut)).real, 0.0)))
+            uc = ut / norm
+            ts.append(1.0 / (1.0 + norm))
+            used = get_backend(backend, n=Ac.shape[0], nnz=Ac.nnz, eigen=False).name   # what solve() used
+            stats.append({"backend": used, "iterations": 0, "residual": None, "converged": True,
+                          "factorizations": 1, "solves": 1, "note": ""})
+        share = np.asarray(tb.geometry.volumes(2))[_faces_of(tb, idx)].sum() / area if len(comps) > 1 else 1.0
+        u[idx] = uc * np.sqrt(share)
+    t2 = time.perf_counter()
+    bar.update(1)
+    energy = float((u.conj() @ (A @ u)).real)
+    dirs = direction_vectors(tb, u)
+    indices = field_indices(tb, u)
+    t3 = time.perf_counter()
+    bar.update(1)
+    bar.close()
+    return DirectionField(
+        n=int(n), s=s, lam=lam, tangent=tb, u=u, directions=dirs, indices=indices, energy=energy,
+        eigenvalue=max(eigs) if eigs else None, t=(ts[0] if len(ts) == 1 else (max(ts) if ts else None)),
+        guidance=guide, component_eigenvalues=tuple(eigs), solver=_merge(stats),
+        timings={"setup": t1 - t0, "solve": t2 - t1, "indices": t3 - t2, "total": t3 - t0})
+
+
+def _faces_of(tb: TangentBundle, vertices: np.ndarray) -> np.ndarray:
+    """Canonical triangles whose first vertex is in ``vertices`` (a component is closed under faces)."""
+    tri = tb.mesh.complex.simplices(2)
+    inside = np.zeros(tb.mesh.n_vertices, bool)
+    inside[vertices] = True
+    return inside[tri[:, 0]]
+
+
+def _merge(stats: list[dict]) -> dict:
+    if len(stats) == 1:
+        return stats[0]
+    out = dict(stats[0])
+    for key in ("iterations", "factorizations", "solves"):
+        out[key] = sum(int(st[key]) for st in stats)
+    out["note"] = "; ".join(st["note"] for st in stats if st["note"])
+    res = [st["residual"] for st in stats if st["residual"] is not None]
+    out["residual"] = max(res) if res else None
+    out["converged"] = all(st["converged"] for st in stats)
+    out["components"] = len(stats)
+    return out

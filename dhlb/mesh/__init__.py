@@ -1,0 +1,33 @@
+"""Meshes: the one place that validates and describes triangle and tetrahedral meshes.
+
+Everything an application needs of its mesh comes from here, with the argument order ``(V, F)`` for
+surfaces and ``(V, T)`` for tetrahedral meshes (libigl, gpytoolbox):
+
+* surfaces: :func:`validate_surface` → :class:`SurfaceMesh` (half-edge tables, vertex fans, boundary),
+  its discrete tangent bundle :func:`tangent_bundle` → :class:`TangentBundle`;
+* tetrahedral meshes: :func:`check_tet_mesh` → :class:`TetMesh` (validated, positively oriented),
+  generators :func:`box_tet_mesh`, :func:`ball_tet_mesh`, and :mod:`dhlb.mesh.tetgen` (any closed
+  surface through fTetWild, optional);
+* arrays: :func:`mesh_complex` (the complex of ``(V, cells)`` with the input orientation),
+  :func:`compact_mesh` (drop unreferenced vertices), :func:`signed_volumes`.
+
+Examples
+--------
+>>> from dhlb.mesh import box_tet_mesh, validate_surface
+>>> validate_surface([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]]).n_faces
+1
+>>> box_tet_mesh(2).complex.counts
+(27, 98, 120, 48)
+"""
+
+from dhlb.mesh.arrays import MeshComplex, mesh_complex
+from dhlb.mesh.compact import compact_mesh
+from dhlb.mesh.surface import SurfaceMesh, validate_surface
+from dhlb.mesh.tangent import TangentBundle, tangent_bundle
+from dhlb.mesh.tet import TetMesh, ball_tet_mesh, box_tet_mesh, check_tet_mesh, signed_volumes
+
+__all__ = [
+    "SurfaceMesh", "validate_surface", "TangentBundle", "tangent_bundle",
+    "TetMesh", "check_tet_mesh", "box_tet_mesh", "ball_tet_mesh", "signed_volumes",
+    "MeshComplex", "mesh_complex", "compact_mesh",
+]

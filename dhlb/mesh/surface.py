@@ -1,0 +1,364 @@
+"""Validated, oriented triangle surface meshes for the direction-field application.
+
+:func:`validate_surface` turns arrays ``(V, F)`` into a :class:`SurfaceMesh`: an oriented
+2-manifold triangle mesh, possibly with boundary and several components, whose vertices are
+compacted (unreferenced input rows dropped with a warning) and whose faces keep the row order
+(the orientation) of the input, or a consistent re-orientation of it (``reorient=True``).
+
+Numbering: errors and warnings name vertices by their **input row in V** and faces by their
+**input row in F**. Inside a :class:`SurfaceMesh` vertices are compact (``0 .. N-1``, increasing
+input rows, ``mesh.vertex_labels[v]`` is the input row of vertex ``v``) and face ``f`` is input
+row ``mesh.face_rows[f]``. The complex ``mesh.complex`` is built from the input labels, so the
+layers below (topology, bundles) also name simplices in input vertex numbers.
+
+Checks, in this order (geometric checks after ``components="largest"`` dropped faces): shapes
+and integer indices; a face repeating a vertex
+(:class:`~dhlb.errors.DegenerateSimplexError`); duplicate faces, in either orientation
+(:class:`~dhlb.errors.InvalidSimplexError`); NaN/inf coordinates of used vertices
+(:class:`~dhlb.errors.NonFiniteError`); zero-area faces (DegenerateSimplexError, the criterion of
+:class:`dhlb.geometry.SimplexStack`); edges with three or more faces and vertices whose faces do
+not form one fan (:class:`~dhlb.errors.NonManifoldError`); non-orientable surfaces such as a
+Möbius band (:class:`~dhlb.errors.NonOrientableError`; direction fields on non-orientable
+surfaces need a twisted bundle and are future work); faces of an orientable surface that are not
+consistently oriented (:class:`~dhlb.errors.InconsistentOrientationError`, or flipped with
+``reorient=True``).
+
+Several connected components are allowed (``components="all"``): every per-vertex and per-face
+quantity is local, the Euler characteristic and degrees add up over components. With
+``components="largest"`` only the component with most faces is kept (a warning says how many
+faces were dropped).
+"""
+
+from __future__ import annotations
+
+import warnings
+from functools import cached_property
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from dhlb.errors import DhlbWarning, InvalidParameterError, NonManifoldError, ShapeError, UnreferencedVertexWarning
+from dhlb.mesh import _surface_checks as checks
+from dhlb.mesh.halfedge import Fans, halfedge_pairs, vertex_fans
+from dhlb.topology.complex import SimplicialComplex
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike
+
+__all__ = ["SurfaceMesh", "validate_surface"]
+
+
+class SurfaceMesh:
+    """An oriented triangle 2-manifold mesh (see :func:`validate_surface`); compact numbering.
+
+    Attributes
+    ----------
+    points : (N, 3) float64
+        Coordinates of the compact vertices.
+    faces : (m, 3) int64
+        Oriented faces in compact vertex numbers (flipped rows reversed: ``(a, c, b)``).
+    complex : SimplicialComplex
+        Built from the input labels: ``complex.vertex_labels[v]`` is the input row of vertex v.
+    face_rows : (m,) int64
+        Input row in F of each face.
+    flipped : (m,) bool
+        Faces whose orientation was reversed by ``reorient=True``.
+    n_input_vertices : int
+        Number of rows of the input V (per-vertex input arrays may have this length).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.mesh import validate_surface
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
+    >>> mesh.n_vertices, mesh.n_faces, mesh.euler_characteristic, mesh.is_closed
+    (4, 2, 1, False)
+    >>> mesh.boundary_halfedges.tolist()
+    [[0, 1], [1, 3], [2, 0], [3, 2]]
+    """
+
+    def __init__(
+        self,
+        points: np.ndarray,
+        faces: np.ndarray,
+        complex: SimplicialComplex,
+        face_rows: np.ndarray,
+        flipped: np.ndarray,
+        n_input_vertices: int | None = None,
+    ):
+        self.n_input_vertices = int(points.shape[0] if n_input_vertices is None else n_input_vertices)
+        self.points = points
+        self.faces = faces
+        self.complex = complex
+        self.face_rows = face_rows
+        self.flipped = flipped
+        for a in (points, faces, face_rows, flipped):
+            a.setflags(write=False)
+
+    @property
+    def n_vertices(self) -> int:
+        """Number of vertices."""
+        return self.points.shape[0]
+
+    @property
+    def n_faces(self) -> int:
+        """Number of triangles."""
+        return self.faces.shape[0]
+
+    @property
+    def vertex_labels(self) -> np.ndarray:
+        """Input row in V of each compact vertex."""
+        return self.complex.vertex_labels
+
+    @cached_property
+    def length_scale(self) -> float:
+        """A power of two near the half-size of the mesh's bounding box (the internal length unit).
+
+        Computations whose floating-point range depends on the unit (areas, Gram determinants)
+        should use :attr:`unit_points` = ``points / length_scale`` and convert lengths back by
+        multiplying with it: dividing by a power of two is exact, so the result does not depend
+        on whether the mesh is given in 1e-150 or 1e+150 units.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from dhlb.mesh import validate_surface
+        >>> V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]); F = [[0, 1, 2]]
+        >>> a, b = validate_surface(V, F), validate_surface(V * 1e-150, F)
+        >>> a.length_scale, float(b.unit_points.max()), bool(np.isclose(a.corner_angles, b.corner_angles).all())
+        (1.0, 1.636695303948071, True)
+        """
+        return checks.length_scale(self.points)
+
+    @cached_property
+    def unit_points(self) -> np.ndarray:
+        """``points / length_scale`` (exact): coordinates of size about 1, whatever the unit."""
+        P = self.points / self.length_scale
+        P.setflags(write=False)
+        return P
+
+    @cached_property
+    def corner_angles(self) -> np.ndarray:
+        """``(m, 3)`` Euclidean angle at each corner of each (oriented) face."""
+        Q = self.unit_points[self.faces]  # angles are scale free; unit points avoid under/overflow
+        E = np.roll(Q, -1, axis=1) - Q  # E[:, p]: the edge from corner p to corner p + 1
+        twice_area = np.linalg.norm(np.cross(E[:, 0], E[:, 1]), axis=-1)  # |e1 × e2| at every corner
+        dot = -np.einsum("fpk,fpk->fp", E, np.roll(E, 1, axis=1))  # <E[p], -E[p - 1]>
+        return np.arctan2(np.broadcast_to(twice_area[:, None], dot.shape), dot)
+
+    @cached_property
+    def halfedge_twin(self) -> np.ndarray:
+        """``(3m,)`` the opposite of half-edge ``3f + k`` (``faces[f, k] → faces[f, k+1]``), ``-1`` on the boundary."""
+        return self._pairs[0]
+
+    @cached_property
+    def halfedge_edge(self) -> np.ndarray:
+        """``(3m,)`` the row in ``complex.simplices(1)`` of the edge of half-edge ``3f + k``."""
+        return self._pairs[1]
+
+    @cached_property
+    def _pairs(self):
+        return halfedge_pairs(self.faces, self.n_vertices)
+
+    @cached_property
+    def fans(self) -> Fans:
+        """The corner fans around the vertices (:mod:`dhlb.mesh.halfedge`); raises if a vertex has several."""
+        return vertex_fans(self.faces, self.n_vertices, self.corner_angles, self._pairs)
+
+    @cached_property
+    def triangle_of_face(self) -> np.ndarray:
+        """Row of each face in ``complex.simplices(2)``.
+
+        The triangles of the complex are sorted by ``(row of the edge (s0, s1), s2)`` for their
+        sorted vertices ``s0 < s1 < s2`` (``dhlb.topology._keys``); the edge ``(s0, s1)`` of a face
+        is its half-edge that does not touch ``s2``, so one sort of these keys gives the rows.
+        """
+        F, m = self.faces, self.n_faces
+        top = np.argmax(F, axis=1)
+        prefix = self.halfedge_edge[3 * np.arange(m) + (top + 1) % 3]
+        order = np.argsort(prefix * self.n_vertices + F[np.arange(m), top])
+        out = np.empty(m, np.int64)
+        out[order] = np.arange(m)
+        return out
+
+    @cached_property
+    def face_sign(self) -> np.ndarray:
+        """±1: orientation of each (oriented) face relative to its sorted, canonical triangle."""
+        return SimplicialComplex.orientation_of(self.faces)
+
+    @cached_property
+    def face_of_triangle(self) -> np.ndarray:
+        """Face of each canonical triangle (inverse of :attr:`triangle_of_face`)."""
+        out = np.empty(self.n_faces, np.int64)
+        out[self.triangle_of_face] = np.arange(self.n_faces)
+        return out
+
+    @cached_property
+    def triangle_sign(self) -> np.ndarray:
+        """The mesh orientation ``o_t`` per canonical triangle (the fundamental cycle on closed meshes)."""
+        return self.face_sign[self.face_of_triangle]
+
+    @cached_property
+    def euler_characteristic(self) -> int:
+        """The Euler characteristic ``V − E + F``."""
+        return self.complex.euler_characteristic
+
+    @cached_property
+    def components(self) -> tuple[int, np.ndarray]:
+        """Number of connected components and a component label per vertex."""
+        return self.complex.connected_components()
+
+    @cached_property
+    def boundary_halfedges(self) -> np.ndarray:
+        """``(b, 2)`` boundary edges ``(a, b)`` as traversed by their face (the induced boundary orientation)."""
+        h = np.stack([self.faces, np.roll(self.faces, -1, axis=1)], axis=-1).reshape(-1, 2)
+        out = h[self.halfedge_twin < 0]
+        return out[np.lexsort((out[:, 1], out[:, 0]))]
+
+    @cached_property
+    def is_boundary_vertex(self) -> np.ndarray:
+        """Bool per vertex: True on the boundary."""
+        mask = np.zeros(self.n_vertices, bool)
+        mask[self.boundary_halfedges.ravel()] = True
+        return mask
+
+    @property
+    def is_closed(self) -> bool:
+        """True if the surface has no boundary."""
+        return self.boundary_halfedges.shape[0] == 0
+
+    def per_vertex(self, values: ArrayLike, what: str = "values") -> np.ndarray:
+        """Per-vertex input data in compact order: ``values`` has one row per compact vertex or per row of V."""
+        arr = np.asarray(values)
+        if arr.ndim >= 1 and arr.shape[0] == self.n_input_vertices:
+            return arr[self.vertex_labels]
+        if arr.ndim >= 1 and arr.shape[0] == self.n_vertices:
+            return arr
+        raise ShapeError(f"{what} must have one row per row of the input V ({self.n_input_vertices}) or per "
+                         f"compact vertex ({self.n_vertices}), got shape {arr.shape}")
+
+    @cached_property
+    def input_vertex_used(self) -> np.ndarray:
+        """``(n_input_vertices,)`` bool: True for the rows of the input V that some face uses.
+
+        Outputs in input order (:meth:`to_input`) hold ``fill`` (NaN) on the other rows; writers
+        store this mask next to them (key ``vertex_used`` in ``.npz`` files) so that a NaN row is
+        never mistaken for a failure.
+
+        Examples
+        --------
+        >>> import warnings
+        >>> from dhlb.mesh import validate_surface
+        >>> with warnings.catch_warnings():
+        ...     warnings.simplefilter("ignore")
+        ...     mesh = validate_surface([[0, 0, 0], [9, 9, 9], [1, 0, 0], [0, 1, 0]], [[0, 2, 3]])
+        >>> mesh.input_vertex_used.tolist(), mesh.to_input([1.0, 2.0, 3.0]).tolist()
+        ([True, False, True, True], [1.0, nan, 2.0, 3.0])
+        """
+        used = np.zeros(self.n_input_vertices, dtype=bool)
+        used[self.vertex_labels] = True
+        used.setflags(write=False)
+        return used
+
+    def to_input(self, values: ArrayLike, fill: Any = np.nan) -> np.ndarray:
+        """Scatter per-vertex values (compact order) back to one row per row of the input V.
+
+        Rows of V that no face uses (see :attr:`input_vertex_used`) get ``fill`` (NaN by default).
+        """
+        arr = np.asarray(values)
+        out = np.full((self.n_input_vertices,) + arr.shape[1:], fill, dtype=np.result_type(arr, np.asarray(fill)))
+        out[self.vertex_labels] = arr
+        return out
+
+    def __repr__(self) -> str:
+        return (f"SurfaceMesh(n_vertices={self.n_vertices}, n_faces={self.n_faces}, "
+                f"chi={self.euler_characteristic}, boundary_edges={len(self.boundary_halfedges)})")
+
+
+def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, components: str = "all") -> SurfaceMesh:
+    """Check a triangle mesh and return it as an oriented :class:`SurfaceMesh`.
+
+    Parameters
+    ----------
+    V : (n, 3) float array (or (n, 2) for a planar mesh, padded with z = 0)
+    F : (m, 3) int array
+        Triangles as rows of V; the vertex order of each row is its orientation.
+    reorient : bool
+        If the surface is orientable but the faces are not consistently oriented, flip faces
+        (keeping the majority orientation of each component) instead of raising.
+    components : {"all", "largest"}
+        Keep all connected components, or only the one with most faces (warning).
+
+    Raises
+    ------
+    InvalidSimplexError, EmptyComplexError, ShapeError
+        Bad shapes, indices outside V, duplicate faces.
+    NonFiniteError
+        A used vertex has a NaN or infinite coordinate.
+    DegenerateSimplexError
+        A face repeats a vertex or has zero area.
+    NonManifoldError
+        An edge with three or more faces, or a vertex whose faces form several fans.
+    NonOrientableError
+        The surface is not orientable (e.g. a Möbius band).
+    InconsistentOrientationError
+        Orientable, but the faces are inconsistently oriented and ``reorient=False``.
+
+    Warns
+    -----
+    UnreferencedVertexWarning
+        Rows of V used by no face are dropped.
+
+    Examples
+    --------
+    >>> from dhlb.mesh import validate_surface
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> try:
+    ...     validate_surface(V, [[0, 1, 2], [1, 2, 3]])
+    ... except Exception as err:
+    ...     print(type(err).__name__)
+    InconsistentOrientationError
+    >>> validate_surface(V, [[0, 1, 2], [1, 2, 3]], reorient=True).flipped.tolist()
+    [False, True]
+    """
+    if components not in ("all", "largest"):
+        raise InvalidParameterError(f"components must be 'all' or 'largest', got {components!r}")
+    P, T = checks.parse(V, F)
+    checks.check_faces(P, T)
+    rows = np.arange(len(T), dtype=np.int64)
+    T0 = T
+    X = SimplicialComplex(T)
+    if components == "largest":
+        ncomp, comp = X.connected_components()
+        if ncomp > 1:
+            fc = comp[np.searchsorted(X.vertex_labels, T[:, 0])]
+            keep = fc == np.argmax(np.bincount(fc))
+            warnings.warn(f"kept the largest of {ncomp} components ({int(keep.sum())} faces); "
+                          f"{int((~keep).sum())} faces dropped", DhlbWarning, stacklevel=2)
+            T, rows = T[keep], rows[keep]
+            X = SimplicialComplex(T)
+    checks.check_geometry(P, T, rows)
+    unused = np.nonzero(np.bincount(T0.ravel(), minlength=len(P)) == 0)[0]  # not counting dropped components
+    if unused.size:
+        warnings.warn(f"{unused.size} vertices of V are used by no face and were dropped (first: "
+                      f"{', '.join(str(int(v)) for v in unused[:5])}); mesh.vertex_labels maps compact "
+                      "vertices to rows of V", UnreferencedVertexWarning, stacklevel=2)
+    fast = checks.fast_topology(T, len(P))
+    if fast:
+        flip = np.zeros(len(T), bool)
+    else:
+        checks.check_manifold(X, T, rows)
+        flip = checks.orient(X, T, rows, reorient)
+        T = np.where(flip[:, None], T[:, [0, 2, 1]], T)
+    compact = np.full(len(P), -1, np.int64)
+    compact[X.vertex_labels] = np.arange(X.vertex_labels.size)
+    mesh = SurfaceMesh(np.ascontiguousarray(P[X.vertex_labels]), compact[T], X, rows, flip, len(P))
+    try:
+        _ = mesh.fans  # one fan per vertex (cached: the tangent bundle uses it)
+    except NonManifoldError:
+        checks.check_manifold(X, T, rows)  # names the vertex in input numbers
+        raise
+    return mesh

@@ -1,0 +1,421 @@
+"""Vortex filaments of a velocity field on a tetrahedral mesh, end to end (seed part 3 §2.3).
+
+The method of Weißmann, Pinkall and Schröder ("Smoke rings from smoke", 2014): the velocity
+field ``v`` is the 1-form ``ω = ⟨v, ·⟩``; on the trivial line bundle with connection
+``∇ψ = dψ − i ω ψ / ħ`` take the section ``ψ`` of unit L² norm with the least Dirichlet energy
+``∫ |∇ψ|²`` (natural boundary conditions); its zero set is the filament configuration.  Where
+``v`` is locally a gradient ``ħ ∇φ`` the section ``e^{iφ}`` is parallel, so the energy is spent
+only near the vorticity, and every zero line of ψ carries the circulation ``2πħ``: a vortex
+tube of circulation ``Γ`` is replaced by about ``Γ / 2πħ`` filaments.
+
+:func:`vortex_filaments` runs the pipeline
+
+========== =====================================================================================
+phase      what
+========== =====================================================================================
+mesh       :func:`~dhlb.mesh.check_tet_mesh` (validate, orient) and the Euclidean geometry
+omega      :func:`~dhlb.vortex.velocity_bundle`: ``ω_ij = ∫_ij v·dl`` (Gauss–Legendre),
+           ``r = exp(iω/ħ)``, ``Ω = dω/ħ`` (real, not wrapped)
+assembly   :func:`dhlb.fem.bundle_matrices`: mass and Dirichlet matrices of Theorems 15 and 17
+           with their Ω-dependent terms (n = 3)
+solve      :func:`dhlb.fem.smallest_eigenpairs`: ``A ψ = λ M ψ``, smallest λ, ``ψᴴ M ψ = 1``
+extraction :func:`~dhlb.vortex.extract_filaments` (index form → crossed triangles → chains
+           through tetrahedra → points at the zeros of the interpolant), then the Gauss linking
+           numbers of the closed filaments (:func:`~dhlb.vortex.gauss_linking_integral`)
+========== =====================================================================================
+
+and returns a :class:`VortexResult` with the filaments, the section, statistics and the time of
+each phase.  A triangle with ``|Ω| > π`` (the flux of ``curl v / ħ`` through it) means that the
+mesh does not resolve the vortex core there; this is reported as an
+:class:`~dhlb.errors.UnresolvedFluxWarning` naming the worst triangle.
+
+Examples
+--------
+>>> import numpy as np
+>>> from dhlb.mesh import box_tet_mesh
+>>> from dhlb.vortex import FilamentField, vortex_filaments, vortex_ring
+>>> mesh = box_tet_mesh(8, lower=-1.5, upper=1.5)
+>>> v = FilamentField([vortex_ring(0.8, center=(0.01, 0.02, 0.03), n=48)], 2 * np.pi, core_radius=0.15)
+>>> res = vortex_filaments(mesh.points, mesh.tets, v, hbar=1.0)
+>>> len(res.filaments), res.filaments[0].closed
+(1, True)
+>>> bool(abs(np.vdot(res.psi, res.matrices[1] @ res.psi) - 1) < 1e-9)     # ψᴴ M ψ = 1
+True
+>>> sorted(res.timings)
+['assembly', 'extraction', 'mesh', 'omega', 'solve', 'total']
+"""
+
+from __future__ import annotations
+
+import json
+import time
+import warnings
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from dhlb._display import Presentable
+from dhlb.errors import (
+    DhlbWarning,
+    InvalidParameterError,
+    InvalidTypeError,
+    NonFiniteError,
+    ShapeError,
+    UnresolvedFluxWarning,
+)
+from dhlb.mesh.tet import TetMesh, check_tet_mesh
+from dhlb.vortex.filaments import extract_filaments
+from dhlb.vortex.linking import gauss_linking_integral
+from dhlb.vortex.velocity import DEFAULT_ORDER, _check_hbar, gauss_legendre, velocity_bundle
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+    from typing import Any
+
+    from numpy.typing import ArrayLike
+
+    from dhlb.vortex.filaments import Filament
+
+__all__ = ["VortexResult", "filament_linking_numbers", "vortex_filaments"]
+
+DEFAULT_TOL = 1e-9
+"""Default backward-error tolerance of the eigen solve (see :func:`dhlb.fem.smallest_eigenpairs`)."""
+
+_LINK_ATOL = 1e-6  # a Gauss integral farther than this from an integer means touching curves
+
+
+@dataclass(frozen=True, eq=False)
+class VortexResult(Presentable):
+    """What :func:`vortex_filaments` found.
+
+    Attributes
+    ----------
+    filaments : list of Filament
+        Oriented polylines (``.points`` (m, 3), ``.closed``, ``.faces``): closed loops, and chains
+        from boundary to boundary.  A filament runs so that the flow circulates right-handedly
+        about it (like the input curve of a :class:`~dhlb.vortex.FilamentField` with ``Γ > 0``).
+    psi : (N,) complex128
+        The section in the frames of :attr:`bundle` (compact vertex order of ``mesh.complex``),
+        with unit L² norm ``ψᴴ M ψ = 1``.
+    eigenvalue : float
+        Its Dirichlet energy ``ψᴴ A ψ`` (the smallest eigenvalue).
+    linking_numbers : (c, c) int64
+        Gauss linking numbers among the closed filaments (zero diagonal); row ``a`` belongs to
+        ``filaments[linking_index[a]]``.
+    linking_index : (c,) int64
+        Positions in :attr:`filaments` of the closed filaments.
+    statistics : dict
+        ``n_vertices``, ``n_edges``, ``n_triangles``, ``n_tets``, ``hbar``, ``max_flux`` (max
+        ``|Ω|`` over triangles), ``n_unresolved_faces`` (``|Ω| > π``), ``n_crossed_faces``,
+        ``tets_by_crossed_faces`` (``{"0": …, "2": …}``; 3 or 4 mean a tetrahedron crossed
+        twice), ``n_filaments``, ``n_closed``, ``n_open``, ``ambiguous_tets``, ``tie_edges``,
+        ``clamped_faces``, ``degenerate_faces`` (counts, see :class:`~dhlb.vortex.FilamentSet`),
+        ``linking_defect`` (largest distance of a Gauss integral from its integer), and
+        ``solver`` (``backend``, ``iterations``, ``converged``, ``residual``, ``shift``).
+    timings : dict
+        Seconds per phase: ``mesh``, ``omega``, ``assembly``, ``solve``, ``extraction``, ``total``.
+    mesh : TetMesh
+    bundle : HermitianLineBundle
+        ``r = exp(iω/ħ)``, ``Ω = dω/ħ``.
+    filament_set : FilamentSet
+        The full extraction result (index form, ambiguous tetrahedra, ties, clamped faces).
+    matrices : tuple (A, M)
+        The Dirichlet and mass matrices (complex Hermitian CSR).
+
+    Examples
+    --------
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> from dhlb.vortex import uniform_flow, vortex_filaments
+    >>> res = vortex_filaments(box_tet_mesh(4), None, uniform_flow([0.3, 0.0, 0.0]), hbar=1.0)   # a gradient
+    >>> len(res.filaments), bool(abs(res.eigenvalue) < 1e-10), res.statistics["n_tets"], res.linking_numbers.shape
+    (0, True, 384, (0, 0))
+    """
+
+    filaments: list
+    psi: np.ndarray
+    eigenvalue: float
+    linking_numbers: np.ndarray
+    linking_index: np.ndarray
+    statistics: dict
+    timings: dict
+    mesh: TetMesh = field(repr=False)
+    bundle: object = field(repr=False)
+    filament_set: object = field(repr=False)
+    matrices: tuple = field(repr=False)
+
+    def __repr__(self) -> str:
+        s = self.statistics
+        return (f"VortexResult({s['n_filaments']} filaments ({s['n_closed']} closed, {s['n_open']} open) on "
+                f"{s['n_tets']} tets, ħ = {s['hbar']:.4g}, λ = {self.eigenvalue:.6g}, "
+                f"{self.timings['total']:.3g} s)")
+
+    def _render_png(self, path, size):
+        from dhlb.render.filaments_png import render_filaments_png
+
+        return render_filaments_png(path, self.filaments, self.mesh.points, self.mesh.boundary_faces,
+                                    title=f"{len(self.filaments)} filament(s)")
+
+    def _summary_rows(self):
+        s = self.statistics
+        return [("filaments", f"{s['n_filaments']} ({s['n_closed']} closed, {s['n_open']} open)"),
+                ("vertices, tetrahedra", f"{s['n_vertices']}, {s['n_tets']}"), ("eigenvalue", f"{self.eigenvalue:.6g}"),
+                ("time", f"{self.timings.get('total', float('nan')):.3g} s")]
+
+    def to_dict(self) -> dict:
+        """A JSON-ready dict.
+
+        Keys ``filaments`` (``[{"points": [[x, y, z], …], "closed": bool}]``), ``linking_numbers``,
+        ``linking_index``, ``timings``, ``eigenvalue``, ``statistics``.
+        """
+        return {
+            "filaments": [{"points": f.points.tolist(), "closed": bool(f.closed)} for f in self.filaments],
+            "linking_numbers": self.linking_numbers.tolist(),
+            "linking_index": self.linking_index.tolist(),
+            "timings": dict(self.timings),
+            "eigenvalue": float(self.eigenvalue),
+            "statistics": self.statistics,
+        }
+
+    def to_json(self, **kwargs: Any) -> str:
+        """:meth:`to_dict` as a JSON string (``kwargs`` go to :func:`json.dumps`)."""
+        return json.dumps(self.to_dict(), **kwargs)
+
+
+def filament_linking_numbers(
+    filaments: Sequence[Filament], *, atol: float = _LINK_ATOL
+) -> tuple[np.ndarray, np.ndarray, float]:
+    """Gauss linking numbers among the closed filaments.
+
+    Returns ``(L, index, defect)``: the symmetric integer matrix, the positions of the closed
+    filaments in ``filaments``, and the largest distance of a Gauss integral from its integer.
+    A defect above ``atol`` (two filaments touching inside an ambiguous tetrahedron) is reported
+    as a :class:`~dhlb.errors.DhlbWarning` naming the pair; the integral is rounded anyway.
+
+    Examples
+    --------
+    >>> from dhlb.vortex import Filament, hopf_link
+    >>> a, b = hopf_link(n=32)
+    >>> L, idx, defect = filament_linking_numbers([Filament(a, True, None), Filament(b, True, None)])
+    >>> L.tolist(), idx.tolist(), defect < 1e-9
+    ([[0, 1], [1, 0]], [0, 1], True)
+    """
+    idx = np.array([i for i, f in enumerate(filaments) if f.closed and len(f) >= 3], dtype=np.int64)
+    k = idx.size
+    L = np.zeros((k, k), np.int64)
+    defect = 0.0
+    for a in range(k):
+        for b in range(a + 1, k):
+            g = gauss_linking_integral(filaments[idx[a]].points, filaments[idx[b]].points)
+            n = int(np.round(g))
+            d = abs(g - n)
+            if d > atol:
+                warnings.warn(f"filaments #{idx[a]} and #{idx[b]} touch or cross (Gauss integral {g:.6g} is not an "
+                              f"integer); their linking number {n} is a guess: refine the mesh", DhlbWarning,
+                              stacklevel=3)
+            defect = max(defect, d)
+            L[a, b] = L[b, a] = n
+    return L, idx, float(defect)
+
+
+def _per_vertex_velocity(velocity, n_rows: int, rows: np.ndarray) -> np.ndarray:
+    """Check a per-vertex velocity array against the input rows and restrict it to the mesh's vertices ``rows``."""
+    try:
+        arr = np.asarray(velocity)
+    except ValueError:
+        raise ShapeError("velocity must be a callable v(x) or an (N, 3) array of numbers, got a ragged "
+                         f"{type(velocity).__name__}") from None
+    if arr.dtype == object or not (np.issubdtype(arr.dtype, np.floating) or np.issubdtype(arr.dtype, np.integer)):
+        raise ShapeError(f"velocity must be a callable v(x) or a real (N, 3) array, got {type(velocity).__name__} "
+                         f"of dtype {arr.dtype}")
+    if arr.shape != (n_rows, 3):
+        raise ShapeError(f"a per-vertex velocity needs one 3-vector per row of V, shape ({n_rows}, 3); got "
+                         f"{arr.shape}")
+    arr = arr.astype(np.float64)[rows]  # rows of V used by the mesh (unreferenced ones are ignored)
+    bad = ~np.isfinite(arr).all(axis=1)
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        more = f"; {int(bad.sum())} vertices are affected" if bad.sum() > 1 else ""
+        raise NonFiniteError(f"the velocity at vertex {int(rows[i])} (row {int(rows[i])} of V) is not finite: "
+                             f"{arr[i].tolist()}{more}")
+    return arr
+
+
+def _check_options(order, tol, placement, orientation) -> None:
+    """Every option of :func:`vortex_filaments` checked before any work (typed errors naming it)."""
+    import numbers
+
+    gauss_legendre(order)  # integer in 1 .. MAX_ORDER
+    if isinstance(tol, (bool, np.bool_)) or not isinstance(tol, numbers.Real):
+        raise InvalidTypeError(f"tol must be a real number in (0, 1), got {type(tol).__name__} {tol!r}")
+    if not (np.isfinite(tol) and 0 < tol < 1):
+        raise InvalidParameterError(f"tol must be a finite number in (0, 1), got {tol!r}")
+    for name, value, allowed in (("placement", placement, ("balanced", "vertex")),
+                                 ("orientation", orientation, ("fix", "require"))):
+        if not isinstance(value, str) or value not in allowed:
+            raise InvalidParameterError(f"{name} must be one of {', '.join(map(repr, allowed))}, got {value!r}")
+
+
+def _warn_flux(X, points, Om) -> int:
+    big = np.abs(Om) > np.pi
+    nbig = int(big.sum())
+    if nbig:
+        t = int(np.argmax(np.abs(Om)))
+        tri = X.simplices(2)[t]
+        labels = tuple(int(v) for v in X.vertex_labels[tri])
+        c = points[tri].mean(axis=0)
+        warnings.warn(
+            f"{nbig} triangles carry a flux |Ω| = |dω|/ħ > π; the largest, Ω = {Om[t]:.4g}, is on the triangle "
+            f"{labels} (rows of V) near {np.round(c, 6).tolist()}: the mesh does not resolve the vortex core "
+            "there, filaments may be misplaced or lost. Refine the mesh there, or increase ħ or the core radius.",
+            UnresolvedFluxWarning, stacklevel=3)
+    return nbig
+
+
+def vortex_filaments(
+    V: ArrayLike | TetMesh,
+    T: ArrayLike | None,
+    velocity: Callable[[np.ndarray], np.ndarray] | ArrayLike,
+    hbar: float,
+    *,
+    order: int = DEFAULT_ORDER,
+    backend: Any = None,
+    tol: float = DEFAULT_TOL,
+    placement: str = "balanced",
+    orientation: str = "fix",
+    progress: bool = False,
+) -> VortexResult:
+    """Vortex filaments of a velocity field on a tetrahedral mesh (see the module docstring).
+
+    Parameters
+    ----------
+    V : (n, 3) float array, or TetMesh
+        Vertex positions; or an already validated :class:`~dhlb.mesh.TetMesh` (then ``T`` must
+        be None).
+    T : (m, 4) int array or None
+        Tetrahedra (0-based rows of ``V``), any orientation (fixed per tetrahedron, see
+        :func:`~dhlb.mesh.check_tet_mesh`).
+    velocity : callable, (n, 3) array, or FilamentField
+        ``v(x)`` mapping ``(k, 3)`` points to ``(k, 3)`` vectors (integrated along every edge by
+        Gauss–Legendre with ``order`` nodes), or one vector per row of ``V`` (``mesh.points`` for a
+        TetMesh), meaning the piecewise-linear field (integrated exactly).
+    hbar : float > 0
+        ħ: every filament carries the circulation ``2πħ``.
+    order : int >= 1
+        Gauss–Legendre nodes per edge for a callable velocity (exact for polynomials of degree
+        ``2·order − 1`` along the edge).
+    backend : str or backend object, optional
+        Linear-algebra backend of :func:`dhlb.fem.smallest_eigenpairs` (default: its default).
+    tol : float
+        Backward-error tolerance of the eigen solve.
+    placement : {"balanced", "vertex"}
+        Local gauge in which the zero on a crossed triangle is interpolated
+        (:func:`~dhlb.vortex.face_zeros`).
+    orientation : {"fix", "require"}
+        Passed to :func:`~dhlb.mesh.check_tet_mesh`: fix negatively oriented tetrahedra, or raise.
+    progress : bool
+        Show a progress bar over the five phases on stderr (needs tqdm, ``pip install
+        'dhlb[progress]'``) when the run is expected to take more than about two seconds.
+
+    Returns
+    -------
+    VortexResult
+
+    Raises
+    ------
+    InvalidParameterError
+        ``hbar`` not a finite number > 0; bad ``order`` (1 .. 64), ``tol`` (in (0, 1)), ``placement``
+        or ``orientation`` — checked before any work.
+    InvalidTypeError
+        ``hbar`` or ``tol`` is not a real number (a string, a complex number).
+    ShapeError, NonFiniteError
+        ``V``/``T`` malformed; a velocity array not of shape (n, 3), not real, or NaN/inf (the
+        vertex is named); a callable returning the wrong shape or NaN/inf (the edge and point are
+        named).
+    DegenerateSimplexError, InconsistentOrientationError, NonManifoldError
+        Flat tetrahedra, folded (inverted) tetrahedra, a non-manifold mesh: the element is named
+        (:func:`~dhlb.mesh.check_tet_mesh`).
+    SectionZeroError
+        The computed ψ vanishes exactly at a vertex (perturb the mesh).
+
+    Warns
+    -----
+    UnresolvedFluxWarning
+        Some triangle has ``|Ω| > π`` (the worst one is named).
+    DhlbWarning
+        Tetrahedra crossed by more than one filament; touching filaments (linking number guessed).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> from dhlb.vortex import FilamentField, vortex_filaments, vortex_ring
+    >>> ring = vortex_ring(0.8, center=(0.01, 0.02, 0.03), n=32)
+    >>> v = FilamentField([ring], 2 * np.pi, core_radius=0.2)    # circulation 2πħ: one filament
+    >>> res = vortex_filaments(box_tet_mesh(6, lower=-1.5, upper=1.5), None, v, hbar=1.0)
+    >>> len(res.filaments), res.filaments[0].closed
+    (1, True)
+    """
+    h = _check_hbar(hbar)
+    _check_options(order, tol, placement, orientation)
+    from dhlb._progress import progress_bar
+    from dhlb.fem import bundle_matrices, smallest_eigenpairs
+    from dhlb.geometry import EuclideanComplex
+
+    timings = {}
+    t0 = t = time.perf_counter()
+    n_tets = V.tets.shape[0] if isinstance(V, TetMesh) else int(np.shape(T)[0]) if T is not None else 0
+    bar = progress_bar(5, "vortex filaments", progress=progress, estimate_seconds=4e-5 * n_tets, unit="phase")
+    if isinstance(V, TetMesh):
+        if T is not None:
+            raise ShapeError("pass either a TetMesh as V (and T=None) or the arrays V and T")
+        mesh, n_rows, rows = V, V.points.shape[0], np.arange(V.points.shape[0])
+    else:
+        mesh = check_tet_mesh(V, T, orientation=orientation)
+        n_rows, rows = np.shape(V)[0], np.asarray(mesh.complex.vertex_labels)
+    X, P = mesh.complex, mesh.points
+    if not callable(velocity):
+        velocity = _per_vertex_velocity(velocity, n_rows, rows)
+    geo = EuclideanComplex(X, points=P)
+    geo.barycentric_gradient_gram  # noqa: B018 -- geometry belongs to the mesh phase
+    timings["mesh"] = (t1 := time.perf_counter()) - t
+    with bar:
+        bar.update(1)
+        L = velocity_bundle(X, P, velocity, h, order=order)
+        n_unresolved = _warn_flux(X, P, L.curvature)
+        timings["omega"] = (t2 := time.perf_counter()) - t1
+        bar.update(1)
+        A, M = bundle_matrices(L, geo)
+        timings["assembly"] = (t3 := time.perf_counter()) - t2
+        bar.update(1)
+        eig = smallest_eigenpairs(A, M, k=1, tol=tol, backend=backend)
+        psi = np.asarray(eig.eigenvectors[:, 0])
+        timings["solve"] = (t4 := time.perf_counter()) - t3
+        bar.update(1)
+        fs = extract_filaments(L, psi, P, placement=placement)
+        Lk, lidx, defect = filament_linking_numbers(fs.filaments)
+        timings["extraction"] = (t5 := time.perf_counter()) - t4
+        bar.update(1)
+    timings["total"] = t5 - t0
+
+    crossed = np.count_nonzero(fs.index[X.faces(3)], axis=1)
+    hist = np.bincount(crossed, minlength=5)
+    n_closed = sum(f.closed for f in fs.filaments)
+    stats = {
+        "n_vertices": int(X.n_vertices), "n_edges": int(X.n_simplices(1)), "n_triangles": int(X.n_simplices(2)),
+        "n_tets": int(X.n_simplices(3)), "hbar": h,
+        "max_flux": float(np.abs(L.curvature).max()) if L.curvature.size else 0.0,
+        "n_unresolved_faces": n_unresolved,
+        "n_crossed_faces": int(np.count_nonzero(fs.index)),
+        "tets_by_crossed_faces": {str(k): int(c) for k, c in enumerate(hist) if c},
+        "n_filaments": len(fs), "n_closed": int(n_closed), "n_open": int(len(fs) - n_closed),
+        "ambiguous_tets": int(fs.ambiguous_tets.size), "tie_edges": int(fs.tie_edges.size),
+        "clamped_faces": int(fs.clamped_faces.size), "degenerate_faces": int(fs.degenerate_faces.size),
+        "linking_defect": defect,
+        "solver": {"backend": str(getattr(eig, "backend", backend)), "iterations": int(getattr(eig, "iterations", -1)),
+                   "converged": bool(getattr(eig, "converged", True)),
+                   "residual": float(np.max(getattr(eig, "residuals", [np.nan]))),
+                   "shift": float(getattr(eig, "shift", np.nan))},
+    }
+    return VortexResult(list(fs.filaments), psi, float(eig.eigenvalues[0]), Lk, lidx, stats, timings, mesh, L, fs,
+                        (A, M))
