@@ -17,7 +17,7 @@ napoleon_numpy_docstring = True
 napoleon_google_docstring = False
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"
-exclude_patterns = ["_build"]
+exclude_patterns = ["_build", "_generated"]  # _generated: includes written at build time
 html_theme = "alabaster"
 suppress_warnings = ["myst.xref_missing"]
 
@@ -49,6 +49,21 @@ def _help_text(parser) -> str:
             del os.environ["COLUMNS"]
         else:
             os.environ["COLUMNS"] = old
+
+
+# --- the layer diagram of docs/architecture.md, generated from the import graph at build time -------
+def _generate_layers(app):
+    """Write ``docs/_generated/architecture.svg`` and ``layers.md`` (``docs/_layers.py``) from the code."""
+    import importlib.util
+    import os
+    import sys
+
+    path = os.path.join(app.confdir, "_layers.py")
+    spec = importlib.util.spec_from_file_location("_dhlb_docs_layers", path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # dataclasses look their module up there
+    spec.loader.exec_module(module)
+    module.generate()  # the source tree next to docs/ (dhlb/), into docs/_generated/
 
 
 def setup(app):
@@ -84,4 +99,5 @@ def setup(app):
             return result
 
     app.add_directive("dhlb-help", DhlbHelp)
+    app.connect("builder-inited", _generate_layers)
     return {"parallel_read_safe": True}
