@@ -16,7 +16,7 @@ One command; every size runs in a fresh child process (peak memory = the child's
   With ``--breakdown`` (default on) the setup is split by timing :func:`validate_surface`,
   :func:`tangent_bundle` (its bundle + geometry) and :func:`energy_matrices` once more.
 * Tets: the Kuhn-triangulated box ``[-1, 1]³`` (:func:`dhlb.mesh.box_tet_mesh`, ``6 m³``
-  tets) with the vortex-ring demo field of ``dhlb vortex`` (:func:`dhlb.commands.vortex.demo_velocity`,
+  tets) with the vortex-ring demo field of ``dhlb vortex`` (:func:`dhlb.cli.vortex.demo_velocity`,
   ħ = 1) through :func:`dhlb.vortex.vortex_filaments`, phases ``mesh``, ``omega`` (Biot–Savart
   line integrals and the bundle), ``assembly``, ``solve``, ``extraction``; backend
   ``--tet-backends`` (default ``amg-lobpcg``).
@@ -163,7 +163,7 @@ def child_surface(label, backend, breakdown):
 
 
 def child_tets(m, backend):
-    from dhlb.commands.vortex import demo_velocity
+    from dhlb.cli.vortex import demo_velocity
     from dhlb.mesh import box_tet_mesh
     from dhlb.vortex import vortex_filaments
 

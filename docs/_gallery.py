@@ -113,7 +113,7 @@ def tube_stripes(section: str) -> list:
 
 def filaments(name: str, kind: str) -> None:
     """Vortex filaments of a demo velocity field (``ring``/``linked-rings``/``trefoil``) in a tet cube."""
-    from dhlb.commands.vortex import demo_velocity
+    from dhlb.cli.vortex import demo_velocity
     from dhlb.mesh import box_tet_mesh
     from dhlb.render import render_filaments_png
     from dhlb.vortex import vortex_filaments

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from dhlb.cli import main
-from dhlb.commands._common import run_command
+from dhlb.cli._common import run_command
 from dhlb.errors import MeshParseError
 from tests.strategies import klein_bottle, rp2
 

@@ -10,8 +10,8 @@ import re
 import numpy as np
 import pytest
 
-import dhlb.commands.field as field_cmd
-from dhlb.commands._common import run_command
+import dhlb.cli.field as field_cmd
+from dhlb.cli._common import run_command
 from dhlb.fields import direction_field
 from dhlb.io import read_ply, write_obj
 from tests.surface_meshes import ellipsoid, grid

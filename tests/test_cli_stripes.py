@@ -8,8 +8,8 @@ import json
 import numpy as np
 import pytest
 
-from dhlb.commands import stripes
-from dhlb.commands._common import run_command
+from dhlb.cli import stripes
+from dhlb.cli._common import run_command
 from dhlb.fields import direction_field
 from dhlb.io import example_path, read_surface
 from dhlb.stripes import stripe_pattern

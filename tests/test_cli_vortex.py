@@ -1,7 +1,7 @@
 """``dhlb vortex``: outputs (PLY/OBJ polylines, JSON, PNG), demo fields, mesh files, exit codes.
 
 The command is not registered in :mod:`dhlb.commands` by these tests: the parser is built from
-``argparse`` and :func:`dhlb.commands.vortex.register`.
+``argparse`` and :func:`dhlb.cli.vortex.register`.
 """
 
 from __future__ import annotations
@@ -12,8 +12,8 @@ import json
 import numpy as np
 import pytest
 
-from dhlb.commands import vortex
-from dhlb.commands._common import run_command
+from dhlb.cli import vortex
+from dhlb.cli._common import run_command
 from dhlb.mesh import box_tet_mesh
 from dhlb.vortex import linking_number, vortex_ring
 

@@ -1,6 +1,6 @@
 """``dhlb conformal``: outputs (.mesh, .vtk, .json, .png), charges and u files, exit codes.
 
-The parser is built here from :func:`dhlb.commands.conformal.register` (the command is registered
+The parser is built here from :func:`dhlb.cli.conformal.register` (the command is registered
 in :mod:`dhlb.commands` by the lead engineer).
 """
 
@@ -11,8 +11,8 @@ import json
 
 import numpy as np
 
-from dhlb.commands import conformal
-from dhlb.commands._common import run_command
+from dhlb.cli import conformal
+from dhlb.cli._common import run_command
 from dhlb.io import read_volume, write_volume
 from dhlb.mesh import ball_tet_mesh, box_tet_mesh
 

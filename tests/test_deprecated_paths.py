@@ -33,6 +33,11 @@ OLD_MODULES = {  # old module -> (a name it exported, the module that now holds 
     "dhlb.volume.vortex": ("vortex_filaments", "dhlb.vortex.pipeline"),
     "dhlb.examples.meshes": ("MeshComplex", "dhlb.mesh.arrays"),
     "dhlb.io.compact": ("compact_mesh", "dhlb.mesh.compact"),
+    "dhlb.commands": ("iter_commands", "dhlb.cli.commands"),
+    **{f"dhlb.commands.{m}": ("register", f"dhlb.cli.{m}")
+       for m in ("conformal", "demo", "field", "info", "stripes", "view", "vortex")},
+    "dhlb.commands._common": ("run_command", "dhlb.cli._common"),
+    "dhlb.commands._demo_steps": ("write_field_npz", "dhlb.cli._demo_steps"),
 }
 
 # every name the two old application packages exported
@@ -102,3 +107,19 @@ def test_new_homes_import_without_warnings():
         warnings.simplefilter("error")
         for module in ("dhlb.mesh", "dhlb.fields", "dhlb.vortex", "dhlb.stripes", "dhlb.conformal"):
             importlib.import_module(module)
+
+
+def test_old_mpi_main_forwards():
+    value, message = _get("dhlb.linalg.backends_petsc", "mpi_main")
+    assert value is importlib.import_module("dhlb.cli.mpi").mpi_main and "dhlb.cli.mpi.mpi_main" in message
+
+
+def test_old_mpi_entry_point_runs_the_new_one():
+    import subprocess
+    import sys
+
+    proc = subprocess.run([sys.executable, "-W", "always::DeprecationWarning", "-m", "dhlb.linalg.backends_petsc",
+                           "--version"], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.startswith("dhlb ")
+    assert "use python -m dhlb.cli.mpi" in proc.stderr

@@ -39,9 +39,6 @@ APPLICATIONS = {"fields", "stripes", "vortex", "conformal"}
 
 KNOWN = {
     ("conformal", "io"): "ConformalResult.save writes through io: becomes Result.save via the io writer registry",
-    ("cli", "commands"): "the subcommands move from dhlb.commands into the dhlb.cli package",
-    ("linalg", "cli"): "the petsc backend's MPI entry point runs the command line (moves to dhlb.cli.mpi)",
-    ("linalg", "commands"): "the petsc backend's MPI entry point runs the command line (moves to dhlb.cli.mpi)",
 }
 
 

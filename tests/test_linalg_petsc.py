@@ -1,7 +1,7 @@
 """The ``petsc`` backend (PETSc/SLEPc, complex scalars): skipped where petsc4py/slepc4py do not import.
 
 In-process tests run on one MPI rank; the ``mpirun -n 2`` tests launch tests/mpi/run_checks.py
-and the MPI command line (``python -m dhlb.linalg.backends_petsc``) when ``mpirun`` is on the path.
+and the MPI command line (``python -m dhlb.cli.mpi``) when ``mpirun`` is on the path.
 Set up the environment with ``.ci/mpi-setup.sh`` (docs/mpi.md) and run this file with its python.
 """
 

@@ -269,7 +269,7 @@ def test_vortex_demo_circulation_is_bounded(capsys):
 
 
 def test_int_in_range_for_pixel_sizes():
-    from dhlb.commands._common import int_in_range
+    from dhlb.cli._common import int_in_range
 
     size = int_in_range(16, 8192)
     for bad in ("0", "-5", "60000", "nan", "", "1e3"):

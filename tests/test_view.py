@@ -135,7 +135,7 @@ def test_cli_view_renders_field_stripes_and_vortex(tmp_path, monkeypatch):
     assert main(["vortex", "--box", "8", "--velocity", "ring", "-o", "v.ply", "--no-png"]) == 0
     import argparse
 
-    from dhlb.commands import view
+    from dhlb.cli import view
 
     for base in ("f", "s", "v"):
         args = argparse.Namespace(base=base, screenshot=f"{base}.png", back=True, size=200, view="1,-1.6,1",

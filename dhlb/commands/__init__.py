@@ -1,32 +1,5 @@
-"""Subcommands of the ``dhlb`` command line (see :mod:`dhlb.cli`).
+"""Deprecated alias package: the subcommands moved to :mod:`dhlb.cli` (dhlb 0.2; removed in 0.3)."""
 
-Each subcommand lives in its own module here and defines
+from dhlb._deprecation import moved_module
 
-* ``NAME`` (the word typed after ``dhlb``) and ``SUMMARY`` (one line for ``dhlb --help``);
-* ``register(subparsers)``: add its parser, built with :func:`dhlb.commands._common.add_command`
-  so that it shares the common options ``-o/--output``, ``--json``, ``--quiet``, ``--debug``;
-* ``run(args) -> int``: do the work, raising :class:`dhlb.errors.DhlbError` (exit 1) or
-  :class:`dhlb.commands._common.UsageError` (exit 2) on user mistakes.
-
-To add a command, write the module and append its name to :data:`COMMAND_MODULES`.
-"""
-
-from __future__ import annotations
-
-import importlib
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from collections.abc import Iterator
-    from types import ModuleType
-
-__all__ = ["COMMAND_MODULES", "iter_commands"]
-
-#: module names under dhlb.commands, in the order ``dhlb --help`` lists them
-COMMAND_MODULES = ("info", "field", "stripes", "vortex", "conformal", "view", "demo")
-
-
-def iter_commands() -> Iterator[ModuleType]:
-    """Yield the command modules listed in :data:`COMMAND_MODULES`."""
-    for name in COMMAND_MODULES:
-        yield importlib.import_module(f"dhlb.commands.{name}")
+__getattr__, __dir__ = moved_module(__name__, "dhlb.cli.commands")

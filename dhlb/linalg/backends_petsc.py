@@ -55,7 +55,7 @@ import scipy.sparse as sp
 
 from dhlb.errors import DhlbError, InvalidOperatorError, ShapeError
 
-__all__ = ["PetscBackend", "comm_rank_size", "install_abort_hook", "mpi_main", "petsc_available", "row_ranges"]
+__all__ = ["PetscBackend", "comm_rank_size", "install_abort_hook", "petsc_available", "row_ranges"]
 
 _SOLVERS = ("mumps", "superlu_dist", "petsc")
 
@@ -445,56 +445,22 @@ if petsc_available():  # under mpirun -n P > 1: from the import on, a failure on
     install_abort_hook()
 
 
-# ---------------------------------------------------------------------- command line under MPI
-def mpi_main(argv=None) -> int:
-    """``dhlb`` under MPI: every rank runs the command, rank 0 alone writes outputs and prints.
+def __getattr__(name):
+    # deprecated: the MPI command line moved to dhlb.cli.mpi (a command line is not a solver backend)
+    if name == "mpi_main":
+        import importlib
 
-    Run as ``mpirun -n P python -m dhlb.linalg.backends_petsc field MESH --backend petsc -o OUT``.
-    Ranks other than 0 write their copy of the outputs into a private temporary directory
-    (deleted afterwards) and print nothing; the exit code is the largest over all ranks.
+        from dhlb._deprecation import warn_moved
 
-    Examples
-    --------
-    >>> mpi_main(["--version"])  # doctest: +ELLIPSIS
-    dhlb ...
-    0
-    """
-    import contextlib
-    import io
-    import os
-    import tempfile
-
-    from dhlb.cli import build_parser, main
-    from dhlb.commands._common import run_command
-    from dhlb.linalg.backends import _REGISTRY, register_backend
-
-    if "petsc" not in _REGISTRY:
-        register_backend("petsc", PetscBackend, ("petsc4py", "slepc4py", "mpi4py"))
-    rank, size = comm_rank_size()
-    argv = list(sys.argv[1:] if argv is None else argv)
-    if size == 1:
-        return main(argv)
-    install_abort_hook()
-    if rank == 0:
-        code = main(argv)
-    else:
-        with tempfile.TemporaryDirectory() as tmp, contextlib.redirect_stdout(io.StringIO()), \
-                contextlib.redirect_stderr(io.StringIO()):
-            try:
-                args, extra = build_parser().parse_known_args(argv)
-            except SystemExit as exc:
-                args, extra, code = None, [], exc.code if isinstance(exc.code, int) else 2
-            if args is not None and not extra and getattr(args, "command", None):
-                out = getattr(args, "output", None)
-                if isinstance(out, str) and out not in ("", "-"):
-                    args.output = os.path.join(tmp, os.path.basename(os.path.normpath(out)) or "out")
-                code = run_command(args)
-            elif args is not None:
-                code = 2
-    from mpi4py import MPI
-
-    return int(MPI.COMM_WORLD.allreduce(int(code), op=MPI.MAX))
+        warn_moved("dhlb.linalg.backends_petsc.mpi_main", "dhlb.cli.mpi.mpi_main")
+        return importlib.import_module("dhlb.cli.mpi").mpi_main
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit(mpi_main())
+if __name__ == "__main__":  # pragma: no cover - the old entry point: python -m dhlb.linalg.backends_petsc
+    import runpy
+    import warnings
+
+    warnings.warn("python -m dhlb.linalg.backends_petsc is deprecated and will be removed in dhlb 0.3; "
+                  "use python -m dhlb.cli.mpi", DeprecationWarning, stacklevel=1)
+    runpy.run_module("dhlb.cli.mpi", run_name="__main__", alter_sys=True)

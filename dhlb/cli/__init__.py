@@ -1,4 +1,4 @@
-"""The ``dhlb`` command line: a thin dispatcher over the subcommands in :mod:`dhlb.commands`.
+"""The ``dhlb`` command line: a thin dispatcher over its subcommands (:mod:`dhlb.cli.commands`).
 
 Examples
 --------
@@ -28,7 +28,7 @@ exit codes: 0 ok, 1 failure (e.g. unparsable or invalid input), 2 usage error
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of ``dhlb`` with one subparser per command module."""
     from dhlb import __version__
-    from dhlb.commands import iter_commands
+    from dhlb.cli.commands import iter_commands
 
     parser = argparse.ArgumentParser(
         prog="dhlb",
@@ -52,7 +52,7 @@ def _subparser(parser: argparse.ArgumentParser, name: str | None) -> argparse.Ar
 
 def main(argv=None) -> int:
     """Run ``dhlb`` with ``argv`` (default ``sys.argv[1:]``); return the exit code."""
-    from dhlb.commands._common import EXIT_USAGE, run_command
+    from dhlb.cli._common import EXIT_USAGE, run_command
 
     parser = build_parser()
     try:

@@ -1,0 +1,319 @@
+"""What every ``dhlb`` subcommand shares: common options, output, error reporting, exit codes.
+
+Exit codes: 0 success; 1 the command failed (unparsable or invalid input, failed computation);
+2 usage error (bad option, missing input file, unknown file format). User mistakes are reported
+in one line on stderr, without a traceback unless ``--debug`` is given.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+import warnings
+
+from dhlb.errors import DhlbError, MeshParseError
+
+__all__ = ["UsageError", "add_command", "common_options", "run_command", "write_output", "resolve_input",
+           "finite_float", "int_in_range", "nonempty_text", "check_outputs", "input_paths", "usage_from"]
+
+EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
+
+
+class UsageError(Exception):
+    """A mistake in how the command was called (reported with exit code 2)."""
+
+
+# ------------------------------------------------------------------------------ value types
+def finite_float(low: float | None = None, high: float | None = None, *, low_open: bool = False,
+                 high_open: bool = False):
+    """An argparse ``type`` for a finite float in ``[low, high]`` (``low_open``/``high_open``: exclusive).
+
+    NaN, ±inf, ``1e400`` (overflows to inf) and non-numbers are usage errors (exit 2) naming the
+    value and the allowed range.
+
+    Examples
+    --------
+    >>> positive = finite_float(0, low_open=True)
+    >>> positive("2.5")
+    2.5
+    >>> positive("nan")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: 'nan' is not a finite number > 0
+    >>> finite_float(-1, 1)("3")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: '3' is out of range: give a finite number in [-1, 1]
+    """
+
+    def describe() -> str:
+        if low is not None and high is not None:
+            return f"in {'(' if low_open else '['}{low:g}, {high:g}{')' if high_open else ']'}"
+        if low is not None:
+            return f"{'>' if low_open else '>='} {low:g}"
+        if high is not None:
+            return f"{'<' if high_open else '<='} {high:g}"
+        return ""
+
+    def convert(text: str) -> float:
+        try:
+            value = float(text)
+        except (TypeError, ValueError):
+            value = float("nan")
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"{text!r} is not a finite number {describe()}".rstrip())
+        if (low is not None and (value < low or (low_open and value == low))) or (
+            high is not None and (value > high or (high_open and value == high))
+        ):
+            raise argparse.ArgumentTypeError(f"{text!r} is out of range: give a finite number {describe()}")
+        return value
+
+    convert.__name__ = "finite number"
+    return convert
+
+
+def int_in_range(low: int, high: int):
+    """An argparse ``type`` for an integer in ``[low, high]`` (usage error otherwise, naming the range).
+
+    Examples
+    --------
+    >>> size = int_in_range(16, 8192)
+    >>> size("800")
+    800
+    >>> size("60000")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: 60000 is out of range: give an integer in [16, 8192]
+    >>> size("0x10")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: '0x10' is not an integer; give an integer in [16, 8192]
+    """
+
+    def convert(text: str) -> int:
+        try:
+            value = int(text)
+        except (TypeError, ValueError):
+            raise argparse.ArgumentTypeError(
+                f"{text!r} is not an integer; give an integer in [{low}, {high}]"
+            ) from None
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"{value} is out of range: give an integer in [{low}, {high}]")
+        return value
+
+    convert.__name__ = "integer"
+    return convert
+
+
+def nonempty_text(text: str) -> str:
+    """An argparse ``type`` refusing an empty or blank value.
+
+    Examples
+    --------
+    >>> nonempty_text("fields")
+    'fields'
+    >>> nonempty_text(" ")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: an empty value is not allowed here
+    """
+    if not text.strip():
+        raise argparse.ArgumentTypeError("an empty value is not allowed here")
+    return text
+
+
+def _finite_floats(container):
+    """Make ``type=float`` options added to ``container`` (a parser or group) accept finite numbers only.
+
+    Every float option of every command thus rejects ``nan``, ``inf`` and ``1e400`` with a usage
+    error (exit 2); commands that need a range pass :func:`finite_float` or :func:`int_in_range`.
+    """
+    plain_argument = container.add_argument
+
+    def add_argument(*args, **kwargs):
+        if kwargs.get("type") is float:
+            kwargs["type"] = finite_float()
+        return plain_argument(*args, **kwargs)
+
+    container.add_argument = add_argument
+    for name in ("add_argument_group", "add_mutually_exclusive_group"):
+        plain_group = getattr(container, name, None)
+        if plain_group is not None:
+            def add_group(*args, _plain=plain_group, **kwargs):
+                return _finite_floats(_plain(*args, **kwargs))
+
+            setattr(container, name, add_group)
+    return container
+
+
+def common_options() -> argparse.ArgumentParser:
+    """Parent parser with the options every subcommand accepts."""
+    parent = argparse.ArgumentParser(add_help=False)
+    group = parent.add_argument_group("common options")
+    group.add_argument("-o", "--output", metavar="FILE", help="write the result to FILE instead of stdout")
+    group.add_argument("--json", action="store_true", help="print machine-readable JSON instead of text")
+    group.add_argument("-q", "--quiet", action="store_true", help="do not print warnings")
+    group.add_argument("--debug", action="store_true", help="show full tracebacks on errors")
+    return parent
+
+
+def add_command(subparsers, name: str, summary: str, description: str, examples: str) -> argparse.ArgumentParser:
+    """Create the parser of a subcommand with the common options and an examples epilog.
+
+    Its ``type=float`` options accept finite numbers only (NaN/inf are usage errors).
+    """
+    return _finite_floats(subparsers.add_parser(
+        name,
+        help=summary,
+        description=description,
+        epilog="examples:\n" + examples.rstrip() + "\n\n" + EXIT_CODES_HELP,
+        parents=[common_options()],
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    ))
+
+
+EXIT_CODES_HELP = (
+    "exit codes: 0 ok, 1 failure (e.g. unparsable or invalid input), 2 usage error\n"
+    "(bad option, missing input file, unknown format)."
+)
+
+
+def resolve_input(path: str, fmt: str | None = None) -> str:
+    """Check that ``path`` is a readable file of a known format; return the format name.
+
+    Raises :class:`UsageError` otherwise.
+    """
+    from dhlb.io.formats import format_of
+
+    if not os.path.exists(path):
+        raise UsageError(f"{path}: no such file")
+    if os.path.isdir(path):
+        raise UsageError(f"{path}: is a directory, not a mesh file")
+    try:
+        return format_of(path, fmt, hint="(or use --format FMT)")
+    except MeshParseError as exc:
+        raise UsageError(str(exc)) from None
+
+
+#: argparse destinations that name input files, checked against every output path
+INPUT_DESTS = ("file", "mesh", "velocity", "field")
+
+
+def input_paths(args) -> list[str]:
+    """The existing input files named on the command line (positional mesh, ``--velocity FILE.npy``...).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> input_paths(argparse.Namespace(file=__file__, output="x.json"))  # doctest: +ELLIPSIS
+    ['.../_common.py']
+    """
+    out = []
+    for dest in INPUT_DESTS:
+        value = getattr(args, dest, None)
+        if isinstance(value, str) and value and os.path.isfile(value):
+            out.append(value)
+    return out
+
+
+def check_outputs(outputs, args=None, inputs=()) -> None:
+    """Refuse (usage error, exit 2) to write any of ``outputs`` over an input file.
+
+    ``inputs`` are added to the input files named in ``args`` (see :func:`input_paths`). Call it
+    with every path a command will write (derived names too, e.g. ``OUT.json`` next to
+    ``OUT.ply``) before the computation starts.
+
+    Examples
+    --------
+    >>> import argparse
+    >>> check_outputs(["other.json"], argparse.Namespace(file=__file__))
+    >>> check_outputs([__file__], argparse.Namespace(file=__file__))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    dhlb.cli._common.UsageError: refusing to write .../_common.py: it is the input file ...
+    """
+    from dhlb._files import refuse_overwrite
+    from dhlb.errors import OverwriteError
+
+    try:
+        refuse_overwrite(list(outputs), (input_paths(args) if args is not None else []) + list(inputs))
+    except OverwriteError as exc:
+        raise UsageError(str(exc)) from None
+
+
+def usage_from(exc: Exception) -> UsageError:
+    """A :class:`UsageError` with the message of ``exc`` (for parameter checks run by a command)."""
+    return UsageError(str(exc))
+
+
+def write_output(args, text: str) -> None:
+    """Write ``text`` to ``args.output`` (or stdout), ending with a newline.
+
+    The file is written atomically (a temporary file renamed at the end) and never over an input
+    file (usage error); disk-full and permission errors are one-line errors naming the path.
+    """
+    from dhlb._files import atomic_write
+
+    if not text.endswith("\n"):
+        text += "\n"
+    if args.output and args.output != "-":
+        check_outputs([args.output], args)
+        with atomic_write(args.output, "w", encoding="utf-8") as fh:
+            fh.write(text)
+    else:
+        sys.stdout.write(text)
+
+
+def _one_line(message) -> str:
+    return " ".join(str(message).split())
+
+
+def run_command(args) -> int:
+    """Run ``args.func(args)`` and turn exceptions into one-line messages and exit codes."""
+    prog = f"dhlb {args.command}"
+    debug = getattr(args, "debug", False)
+
+    def show_warning(message, category, filename, lineno, file=None, line=None):
+        print(f"{prog}: warning: {_one_line(message)}", file=sys.stderr)
+
+    try:
+        output = getattr(args, "output", None)
+        if isinstance(output, str) and output not in ("", "-"):
+            check_outputs([output], args)  # never replace an input file (before any work)
+        with warnings.catch_warnings():
+            if getattr(args, "quiet", False):
+                warnings.simplefilter("ignore")
+            else:
+                warnings.simplefilter("default")
+                warnings.showwarning = show_warning
+            return int(args.func(args))
+    except KeyboardInterrupt:
+        print(f"{prog}: interrupted", file=sys.stderr)
+        return 130
+    except UsageError as exc:
+        if debug:
+            raise
+        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_USAGE
+    except (FileNotFoundError, IsADirectoryError, PermissionError) as exc:
+        if debug:
+            raise
+        what = exc.filename if exc.filename else ""
+        print(f"{prog}: error: cannot open {what}: {exc.strerror or _one_line(exc)}", file=sys.stderr)
+        return EXIT_USAGE
+    except DhlbError as exc:
+        if debug:
+            raise
+        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_FAILURE
+    except Exception as exc:  # a bug: still one line, but say so
+        if debug:
+            raise
+        print(
+            f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} "
+            "(this is a bug in dhlb; rerun with --debug for the traceback)",
+            file=sys.stderr,
+        )
+        return EXIT_FAILURE

@@ -1,0 +1,257 @@
+"""The computations of ``dhlb demo`` (one function per step; each returns summary records).
+
+A record is a dict with ``step``, ``mesh``, ``result``, ``check`` (human-readable), ``ok`` (the
+check passed), ``seconds``, ``picture`` / ``caption`` and ``details`` (JSON-ready numbers).
+"""
+
+from __future__ import annotations
+
+import os
+import time
+
+import numpy as np
+
+__all__ = ["fields", "aligned", "boundary", "stripes", "vortex", "write_field_npz", "NPZ_NOTE"]
+
+_SPOT_VIEW = {"view": (1.0, 0.6, 0.4), "up": (0.0, 1.0, 0.0), "size": (600, 600)}
+
+
+def _back(view: dict) -> dict:
+    """The view from the other side (camera direction negated): every result is shown front and back."""
+    return {**view, "view": tuple(-float(c) for c in view["view"])}
+
+
+def _back_path(png: str) -> str:
+    return png[:-4] + "-back.png"
+
+
+VIEW_ANGLES = {"front": (1.0, 0.6, 0.4), "back": (-1.0, -0.6, -0.4), "left": (-0.4, 0.6, 1.0),
+               "right": (0.4, -0.6, -1.0)}
+"""Camera directions of the polyscope views of each result (when ``dhlb[view]`` and EGL are there)."""
+
+
+def _views(res, out: str, name: str) -> str | None:
+    """A page of polyscope renderings of ``res`` from several angles, where the environment allows it.
+
+    Needs polyscope (``dhlb[view]``) and a headless OpenGL (EGL); returns the page's path, or None
+    (then the demo page shows the matplotlib pictures only).
+    """
+    from dhlb.errors import DhlbError
+    from dhlb.render.gallery import write_gallery
+
+    try:
+        from dhlb.render.view import show
+    except ImportError:
+        return None
+    shots = []
+    for label, view in VIEW_ANGLES.items():
+        path = os.path.join(out, f"{name}-3d-{label}.png")
+        try:
+            shots.append((show(res, screenshot=path, view=view, size=(480, 480)), f"{name}: {label}"))
+        except (ImportError, DhlbError, RuntimeError):
+            return None
+    return write_gallery(os.path.join(out, f"{name}-views.html"), f"{name}: polyscope views", shots)
+
+
+def _spot():
+    from dhlb.io import example_path, read_surface
+
+    return read_surface(example_path("spot.obj"))
+
+
+def _field_record(step, res, png, caption, seconds, mesh_name) -> dict:
+    ok = res.index_sum == round(res.poincare_hopf)
+    closed = res.mesh.is_closed
+    expected = res.n * res.euler_characteristic if closed else res.poincare_hopf
+    ok = ok and (not closed or res.index_sum == expected)
+    check = (f"Σ index = {res.index_sum} = nχ = {res.n}·{res.euler_characteristic}" if closed else
+             f"Σ index = {res.index_sum} = (ΣΩ + rotation)/2π = {res.poincare_hopf:.6f}")
+    step = f"{step} n={res.n} s={res.s:+.0f}"
+    return {"step": step, "mesh": f"{mesh_name} ({res.mesh.n_vertices} v, {res.mesh.n_faces} f)",
+            "result": f"{len(res.singularities.faces)} singularities", "check": check, "ok": bool(ok),
+            "seconds": seconds, "picture": png, "caption": caption,
+            "details": {k: v for k, v in res.to_json().items() if k != "singularities"}}
+
+
+NPZ_NOTE = ("u: the section per mesh vertex (compact order). directions, vertex_used: one row per row of the "
+            "input V; rows with vertex_used == False belong to vertices that no face uses and hold NaN. "
+            "face_index: one entry per row of the input F.")
+
+
+def write_field_npz(path, res) -> str:
+    """Write a direction field as ``.npz`` (atomically), with the unreferenced-vertex mask and a note.
+
+    Keys: ``u``, ``directions`` (NaN rows for unreferenced input vertices), ``vertex_used``
+    (bool mask of those rows), ``face_index`` and ``note`` (a text array saying all this, so that
+    the file documents itself).
+
+    Examples
+    --------
+    >>> import os, tempfile, warnings, numpy as np
+    >>> from dhlb.fields import direction_field
+    >>> V = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1], [5, 5, 5]])
+    >>> F = [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]]
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore")
+    ...     res = direction_field(V, F, n=1)
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     data = dict(np.load(write_field_npz(os.path.join(d, "f.npz"), res)))
+    >>> data["vertex_used"].tolist()[-2:], bool(np.isnan(data["directions"][6]).all()), "NaN" in str(data["note"])
+    ([True, False], True, True)
+    """
+    from dhlb._files import atomic_write
+
+    with atomic_write(path, "wb") as fh:
+        np.savez_compressed(fh, u=res.u, directions=res.input_directions(), vertex_used=res.mesh.input_vertex_used,
+                            face_index=res.input_face_index(), note=np.array(NPZ_NOTE))
+    return os.fspath(path)
+
+
+def _field(out, progress, name, V, F, mesh_name, caption, view, **kw):
+    from dhlb.fields import direction_field
+    from dhlb.render import render_field_png
+
+    def work():
+        t0 = time.perf_counter()
+        res = direction_field(V, F, **kw)
+        m = res.mesh
+        png = render_field_png(os.path.join(out, f"{name}.png"), m.points, m.faces, res.directions,
+                               res.singularities, title=caption, **view)
+        render_field_png(_back_path(png), m.points, m.faces, res.directions, res.singularities,
+                         title=caption + " (back)", **_back(view))
+        write_field_npz(os.path.join(out, f"{name}.npz"), res)
+        return res, png, time.perf_counter() - t0
+
+    res, png, sec = progress.run(caption, work)
+    return {**_field_record(name.split("-")[0], res, png, caption, sec, mesh_name), "views": _views(res, out, name)}
+
+
+def fields(out, progress, *, backend=None) -> list[dict]:
+    """Smoothest fields on Spot for n = 1, 2, 4 and s = −1, 0, +1."""
+    V, F = _spot()
+    recs = []
+    for n in (1, 2, 4):
+        for s in (-1.0, 0.0, 1.0):
+            recs.append(_field(out, progress, f"field-n{n}-s{s:+.0f}", V, F, "spot",
+                               f"smoothest {n}-direction field, s = {s:+.0f}", _SPOT_VIEW, n=n, s=s,
+                               backend=backend))
+    return recs
+
+
+def aligned(out, progress, *, backend=None) -> list[dict]:
+    """The curvature-aligned cross field on Spot (λ = 0)."""
+    V, F = _spot()
+    return [_field(out, progress, "aligned-curvature-n4", V, F, "spot",
+                   "cross field aligned to principal curvature (λ = 0)", _SPOT_VIEW, n=4, align="curvature",
+                   backend=backend)]
+
+
+def boundary(out, progress, *, backend=None) -> list[dict]:
+    """A boundary-aligned cross field on the saddle disk: Poincaré–Hopf with boundary."""
+    from dhlb.io import example_path, read_surface
+
+    V, F = read_surface(example_path("saddle.obj"))
+    view = {"view": (0.3, -1.0, 1.2), "up": (0.0, 0.0, 1.0), "size": (600, 600)}
+    caption = "cross field aligned to the boundary (λ = −10), saddle disk"
+    return [_field(out, progress, "boundary-n4", V, F, "saddle", caption, view, n=4, align="boundary", lam=-10.0,
+                   backend=backend)]
+
+
+def stripes(out, progress, *, backend=None) -> list[dict]:
+    """A stripe pattern on Spot following its smoothest line field."""
+    from dhlb.fields import direction_field
+    from dhlb.render.stripes_png import render_stripes_png
+    from dhlb.stripes import stripe_pattern, write_stripes_obj
+
+    V, F = _spot()
+    caption = "stripe pattern along the smoothest line field (spacing 6 mean edge lengths)"
+
+    def work():
+        t0 = time.perf_counter()
+        field = direction_field(V, F, n=2, backend=backend)
+        res = stripe_pattern(V, F, field, spacing=6.0, backend=backend)
+        png = render_stripes_png(os.path.join(out, "stripes.png"), res.texture, title=caption, **_SPOT_VIEW)
+        render_stripes_png(_back_path(png), res.texture, title=caption + " (back)", **_back(_SPOT_VIEW))
+        write_stripes_obj(os.path.join(out, "stripes.obj"), res.texture)
+        return res, png, time.perf_counter() - t0
+
+    res, png, sec = progress.run(caption, work)
+    info = res.to_json()
+    n_zero, n_branch = len(info["zero_faces"]), len(info["branch_faces"])
+    return [{"step": "stripes", "mesh": f"spot ({len(V)} v, {len(F)} f)",
+             "result": f"{n_zero} zero faces, {n_branch} branch faces", "check": "continuous texture",
+             "ok": True, "seconds": sec, "picture": png, "caption": caption, "views": _views(res, out, "stripes"),
+             "details": {"zero_faces": n_zero, "branch_faces": n_branch, "timings": info.get("timings", {})}}]
+
+
+def vortex(out, progress, *, backend=None) -> list[dict]:
+    """Vortex filaments of a vortex ring and of two linked rings in a tetrahedral cube (ħ = 1)."""
+    from dhlb.cli.vortex import demo_velocity, write_polylines_obj
+    from dhlb.mesh import box_tet_mesh
+    from dhlb.render.filaments_png import render_filaments_png
+    from dhlb.vortex import vortex_filaments
+
+    recs = []
+    mesh = box_tet_mesh(12, lower=(-1.0, -1.0, -1.0), upper=(1.0, 1.0, 1.0))
+    cases = [("vortex-ring", "ring", "a vortex ring (ħ = 1): one closed filament", 1, None),
+             ("vortex-linked", "linked-rings", "two linked rings (ħ = 1): two filaments, linking number ±1", 2, 1)]
+    for name, kind, caption, n_expected, link_expected in cases:
+        def work(name=name, kind=kind, caption=caption):
+            t0 = time.perf_counter()
+            field, _ = demo_velocity(kind, mesh.points)
+            res = vortex_filaments(mesh, None, field, 1.0, backend=backend)
+            write_polylines_obj(os.path.join(out, f"{name}.obj"), res.filaments)
+            png = render_filaments_png(os.path.join(out, f"{name}.png"), res.filaments, res.mesh.points,
+                                       res.mesh.boundary_faces, title=caption)
+            render_filaments_png(_back_path(png), res.filaments, res.mesh.points, res.mesh.boundary_faces,
+                                 title=caption + " (back)", view=(-1.0, 1.6, 0.9))
+            return res, png, time.perf_counter() - t0
+
+        res, png, sec = progress.run(caption, work)
+        closed = [f for f in res.filaments if f.closed]
+        L = np.asarray(res.linking_numbers)
+        ok = len(closed) == n_expected and (link_expected is None or (L.shape == (2, 2) and abs(int(L[0, 1])) == 1))
+        check = f"{n_expected} closed" + ("" if link_expected is None else ", |linking number| = 1")
+        result = f"{len(res.filaments)} filaments ({len(closed)} closed)"
+        if L.shape == (2, 2):
+            result += f", linking {int(L[0, 1])}"
+        recs.append({"step": "vortex " + kind, "mesh": f"cube ({len(mesh.points)} v, {len(mesh.tets)} tets)",
+                     "result": result, "check": check, "ok": bool(ok), "seconds": sec, "picture": png,
+                     "views": _views(res, out, name),
+                     "caption": caption, "details": {"filaments": len(res.filaments), "linking_numbers": L.tolist(),
+                                                     "timings": res.timings}})
+    return recs
+
+
+def conformal(out, progress, *, backend=None) -> list[dict]:
+    """Close-to-conformal deformations of a tetrahedral ball (seed part 3, §2.4): a Möbius factor and point charges."""
+    from dhlb.cli.conformal import boundary_distortion, render_conformal_png
+    from dhlb.conformal import conformal_deformation, mobius_factor, point_charge_factor
+    from dhlb.mesh import ball_tet_mesh
+
+    mesh = ball_tet_mesh(6)
+    cases = [("conformal-mobius", mobius_factor((2.5, 0.0, 0.0), 1.5),
+              "a Möbius factor log(R²/|x − a|²): an exactly conformal map, λ₁ ≈ 0", True),
+             ("conformal-charges", point_charge_factor([(2.0, 0.0, 0.0, 0.5), (0.0, -2.0, 0.0, -0.4)]),
+              "two point charges: close to conformal, λ₁ > 0", False)]
+    recs = []
+    for name, u, caption, exact in cases:
+        def work(name=name, u=u, caption=caption):
+            t0 = time.perf_counter()
+            res = conformal_deformation(mesh.points, mesh.tets, u, backend=backend)
+            F, dF = boundary_distortion(res)
+            png = render_conformal_png(os.path.join(out, f"{name}.png"), mesh.points, res.points, F, dF,
+                                       title=caption)
+            render_conformal_png(_back_path(png), mesh.points, res.points, F, dF, title=caption + " (back)",
+                                 view=(-1.0, 1.6, -0.9))
+            return res, png, time.perf_counter() - t0
+
+        res, png, sec = progress.run(caption, work)
+        ok = (abs(res.eigenvalue) < 1e-6) if exact else (res.eigenvalue > 1e-6 and res.distortion.min() >= 1.0)
+        recs.append({"step": "conformal " + ("Möbius" if exact else "charges"),
+                     "mesh": f"ball ({len(mesh.points)} v, {len(mesh.tets)} tets)",
+                     "result": f"λ₁ = {res.eigenvalue:.2g}, distortion {res.distortion.mean():.3f} mean",
+                     "check": "λ₁ ≈ 0 (|λ₁| < 1e-6)" if exact else "λ₁ > 0, distortion >= 1", "ok": bool(ok),
+                     "seconds": sec, "picture": png, "caption": caption,
+                     "details": {"eigenvalue": float(res.eigenvalue), "timings": res.timings}})
+    return recs

@@ -1,0 +1,298 @@
+"""``dhlb conformal``: close-to-conformal deformation of a tet mesh (:func:`dhlb.conformal.conformal_deformation`).
+
+Also home of :func:`render_conformal_png`, the before/after picture of the boundary coloured by
+distortion.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import warnings
+
+import numpy as np
+
+from dhlb.cli._common import UsageError, add_command, check_outputs, resolve_input
+from dhlb.errors import DhlbWarning
+
+__all__ = ["NAME", "SUMMARY", "boundary_distortion", "format_report", "parse_charge", "register",
+           "render_conformal_png", "run"]
+
+NAME = "conformal"
+SUMMARY = "close-to-conformal deformation of a tet mesh with a target conformal factor (point charges or u.npy)"
+
+_DESCRIPTION = """\
+Deform the tetrahedral mesh TETMESH (.mesh .msh .vtk) so that it scales every direction by about e^u
+(seed part 3, section 2.4; Chern, Pinkall, Schroeder 2015): the smallest eigenvector psi of the
+quaternionic connection d + 1/2 (grad u x dx) on M x H gives unit quaternions phi = psi/|psi|, and the
+map f solves the least-squares problem df(X) = e^u conj(phi) X phi (one Poisson solve).
+
+u is the potential of point charges, u(x) = sum q / |x - a| (--charge x,y,z,q, repeatable; the
+charges must lie outside the solid), or one value per mesh vertex (--u FILE.npy). Without -o or --u
+the default is one charge q = 0.5 diam at distance 0.3 diam above the top of the bounding box.
+
+With -o OUT.mesh or -o OUT.vtk the deformed mesh is written to OUT.mesh and OUT.vtk, the result
+(statistics, timings) to OUT.json and a picture of the boundary before and after, coloured by the
+distortion of each tetrahedron (sigma_max / sigma_min of the deformation gradient), to OUT.png
+(unless --no-png; needs matplotlib)."""
+
+_EXAMPLES = """\
+  dhlb conformal solid.mesh --charge 0,0,2,1 --charge 1.5,0,0,-0.5 -o deformed.mesh
+  dhlb conformal solid.vtk --u u.npy -o out.vtk --json
+  dhlb conformal --ball 6 -o ball.mesh           # a tetrahedralised ball, default charge"""
+
+
+def register(subparsers) -> None:
+    """Add the ``conformal`` parser to ``subparsers``."""
+    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
+    p.add_argument("mesh", nargs="?", metavar="TETMESH", help="tetrahedral mesh file (.mesh .msh .vtk)")
+    p.add_argument("--ball", type=int, metavar="N", help="use the unit ball (dhlb.mesh.ball_tet_mesh(N)) instead")
+    p.add_argument("--format", dest="fmt", metavar="FMT", help="mesh format if the extension does not say it")
+    p.add_argument("--charge", action="append", default=[], metavar="X,Y,Z,Q",
+                   help="a point charge at (X, Y, Z) with charge Q (repeatable)")
+    p.add_argument("--u", dest="u_file", metavar="FILE.npy", help="one value of u per mesh vertex")
+    p.add_argument("--backend", metavar="B", help="linear-algebra backend (default: dhlb's)")
+    p.add_argument("--no-png", action="store_true", help="with -o: do not render the PNG picture")
+    p.set_defaults(func=run)
+
+
+def parse_charge(text: str) -> list[float]:
+    """``"x,y,z,q"`` → four floats (raises :class:`UsageError` otherwise).
+
+    Examples
+    --------
+    >>> parse_charge("0, 0, 2.5, -1")
+    [0.0, 0.0, 2.5, -1.0]
+    """
+    parts = text.replace(" ", "").split(",")
+    try:
+        vals = [float(t) for t in parts]
+    except ValueError:
+        vals = []
+    if len(vals) != 4 or not np.all(np.isfinite(vals)):
+        raise UsageError(f"--charge needs four finite numbers x,y,z,q, got {text!r}")
+    return vals
+
+
+def render_conformal_png(path, before, after, faces, distortion_faces, *, title=None, size=(1200, 600),
+                         dpi: int = 100, view=(1.0, -1.6, 0.9), up=(0.0, 0.0, 1.0)) -> str:
+    r"""Two panels, the boundary surface before and after, each triangle coloured by the distortion of its tet.
+
+    Parameters
+    ----------
+    path : str or path-like
+    before, after : (N, 3) points
+    faces : (b, 3) int boundary triangles (outward)
+    distortion_faces : (b,) the distortion of the tet of each boundary triangle (1 = conformal)
+
+    Examples
+    --------
+    >>> import os, tempfile, numpy as np
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> m = box_tet_mesh(2)
+    >>> F = m.boundary_faces
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = render_conformal_png(os.path.join(d, "c.png"), m.points, 2 * m.points, F, np.ones(len(F)),
+    ...                              size=(300, 150))
+    ...     open(p, "rb").read(4) == b"\x89PNG"
+    True
+    """
+    from dhlb.render.png import _camera, _matplotlib
+
+    Figure, FigureCanvasAgg, PolyCollection = _matplotlib()
+    from matplotlib import colormaps
+    from matplotlib.colors import Normalize
+
+    right, upv, w = _camera(view, up)
+    F = np.asarray(faces, dtype=np.int64)
+    B, A = np.asarray(before, float), np.asarray(after, float)
+    U, _, Vt = np.linalg.svd((A - A.mean(0)).T @ (B - B.mean(0)))   # f is defined up to a rigid motion:
+    D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])          # show it best aligned with the input
+    after = (A - A.mean(0)) @ U @ D @ Vt + B.mean(0)
+    d = np.asarray(distortion_faces, dtype=float)
+    hi = max(float(np.nanmax(d)) if d.size else 1.0, 1.0 + 1e-6)
+    norm = Normalize(1.0, hi)
+    cmap = colormaps["viridis"]
+    fig = Figure(figsize=(size[0] / dpi, size[1] / dpi), dpi=dpi)
+    FigureCanvasAgg(fig)
+    for k, (V, name) in enumerate(((np.asarray(before, float), "before"), (np.asarray(after, float), "after"))):
+        ax = fig.add_axes([k / 2, 0.0, 0.5, 0.92])
+        ax.set_axis_off()
+        xy = np.c_[V @ right, V @ upv]
+        depth = V[F].mean(axis=1) @ w
+        n = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+        front = n @ w > 0
+        order = np.argsort(depth)
+        order = order[front[order]]
+        shade = 0.55 + 0.45 * np.abs(n[order] @ w) / np.maximum(np.linalg.norm(n[order], axis=1), 1e-300)
+        colors = cmap(norm(d[order]))
+        colors[:, :3] *= shade[:, None]
+        ax.add_collection(PolyCollection(xy[F[order]], facecolors=colors, edgecolors="none"))
+        lo, hi_ = xy.min(0), xy.max(0)
+        mid, half = (lo + hi_) / 2, 0.55 * max((hi_ - lo).max(), 1e-12)
+        ax.set_xlim(mid[0] - half, mid[0] + half)
+        ax.set_ylim(mid[1] - half, mid[1] + half)
+        ax.set_aspect("equal")
+        ax.set_title(name, fontsize=10)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    from dhlb._files import atomic_write
+
+    out = os.fspath(path)
+    with atomic_write(out, "wb") as fh:
+        fig.savefig(fh, format="png", dpi=dpi, facecolor="white")
+    return out
+
+
+def boundary_distortion(result) -> tuple[np.ndarray, np.ndarray]:
+    """The boundary triangles of a :class:`~dhlb.conformal.ConformalResult` and the distortion of their tets.
+
+    Examples
+    --------
+    >>> from dhlb.conformal import conformal_deformation, point_charge_factor
+    >>> from dhlb.mesh import ball_tet_mesh
+    >>> m = ball_tet_mesh(2)
+    >>> F, d = boundary_distortion(conformal_deformation(m.points, m.tets, point_charge_factor([(3, 0, 0, 0.5)])))
+    >>> F.shape[0] == d.shape[0] and bool((d >= 1).all())
+    True
+    """
+    mesh = result.mesh
+    F = mesh.boundary_faces
+    local = np.array([[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]])  # the tet of each boundary triangle
+    allf = np.sort(mesh.tets[:, local].reshape(-1, 3), axis=1)
+    tet_of = np.repeat(np.arange(mesh.tets.shape[0]), 4)
+    keys = {tuple(f): t for f, t in zip(allf.tolist(), tet_of.tolist())}
+    return F, np.array([result.distortion[keys[tuple(sorted(f))]] for f in F.tolist()])
+
+
+def _mesh(args):
+    from dhlb.mesh import ball_tet_mesh, check_tet_mesh
+
+    if args.mesh is not None and args.ball is not None:
+        raise UsageError("give either TETMESH or --ball N, not both")
+    if args.mesh is None:
+        n = 6 if args.ball is None else args.ball
+        if n < 1:
+            raise UsageError(f"--ball needs N >= 1, got {n}")
+        m = ball_tet_mesh(n)
+        return m, m.points.shape[0], f"ball {n}"
+    from dhlb.io import read_volume
+
+    fmt = resolve_input(args.mesh, args.fmt)
+    V, T = read_volume(args.mesh, fmt)
+    return check_tet_mesh(V, T), np.shape(V)[0], args.mesh
+
+
+def _factor(args, mesh, n_rows):
+    from dhlb.conformal import point_charge_factor
+
+    if args.charge and args.u_file:
+        raise UsageError("give either --charge ... or --u FILE.npy, not both")
+    if args.u_file:
+        if not args.u_file.endswith(".npy"):
+            raise UsageError(f"--u must name a .npy file, got {args.u_file!r}")
+        if not os.path.isfile(args.u_file):
+            raise UsageError(f"{args.u_file}: no such file")
+        try:
+            arr = np.load(args.u_file, allow_pickle=False)
+        except (ValueError, OSError) as exc:
+            raise UsageError(f"{args.u_file}: not a readable .npy array ({exc})") from None
+        return arr, f"{args.u_file} (per vertex)"
+    if args.charge:
+        C = [parse_charge(c) for c in args.charge]
+    else:
+        P = mesh.points
+        lo, hi = P.min(0), P.max(0)
+        diam = float(np.linalg.norm(hi - lo))
+        C = [[0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), hi[2] + 0.3 * diam, 0.5 * diam]]
+    u = point_charge_factor(C)
+    return u, "; ".join(u.labels)
+
+
+MESH_EXTENSIONS = (".mesh", ".vtk", ".vtu")
+"""``-o`` extensions; the deformed tets are always written as ``.mesh`` and ``.vtk`` beside it, ``.vtu`` when asked."""
+
+
+def _mesh_outputs(out: str) -> list[str]:
+    """The deformed-mesh files ``-o OUT`` writes: ``.mesh`` and ``.vtk``, and ``.vtu`` if asked."""
+    stem, ext = os.path.splitext(out)
+    return [stem + e for e in (".mesh", ".vtk")] + ([out] if ext.lower() == ".vtu" else [])
+
+
+def _outputs(args, result, meta) -> list[str]:
+    from dhlb._files import atomic_write
+
+    out = args.output
+    if not out or out == "-":
+        return []
+    stem = os.path.splitext(out)[0]
+    written = []
+    for path in _mesh_outputs(out):
+        written += result.save(path)
+    with atomic_write(stem + ".json") as fh:
+        json.dump({**meta, **_summary(result)}, fh, indent=1)
+    written.append(stem + ".json")
+    if not args.no_png:
+        try:
+            F, dF = boundary_distortion(result)
+            title = f"{meta['u']}: distortion (colour) 1 .. {result.distortion.max():.3g}"
+            written.append(render_conformal_png(stem + ".png", result.mesh.points, result.points, F, dF, title=title))
+        except ImportError as exc:
+            warnings.warn(f"no PNG written: {exc}", DhlbWarning, stacklevel=2)
+    return written
+
+
+def _summary(result) -> dict:
+    return {"eigenvalue": float(result.eigenvalue), "statistics": result.statistics, "timings": result.timings}
+
+
+def format_report(meta: dict, data: dict) -> str:
+    """Human-readable summary of a run.
+
+    Examples
+    --------
+    >>> print(format_report({"mesh": "m", "u": "u"}, {"eigenvalue": 0.0, "statistics": {"n_vertices": 1,
+    ...       "n_tets": 0, "distortion_mean": 1.0, "distortion_max": 1.0, "scale_error_rms": 0.0,
+    ...       "inverted_tets": 0, "solver": {"backend": "superlu"}}, "timings": {"total": 0.1}}).splitlines()[0])
+    mesh           m (1 vertices, 0 tetrahedra)
+    """
+    s, t = data["statistics"], data["timings"]
+    rows = [
+        ("mesh", f"{meta['mesh']} ({s['n_vertices']} vertices, {s['n_tets']} tetrahedra)"),
+        ("u", meta["u"]),
+        ("eigenvalue", f"{data['eigenvalue']:.6g}"),
+        ("distortion", f"mean {s['distortion_mean']:.4g}, max {s['distortion_max']:.4g}"),
+        ("scale error", f"rms {s['scale_error_rms']:.3g}"),
+        ("inverted", f"{s['inverted_tets']} tetrahedra"),
+        ("solver", s["solver"]["backend"]),
+        ("timings", ", ".join(f"{k} {v:.3g} s" for k, v in t.items())),
+    ]
+    if meta.get("written"):
+        rows.append(("wrote", ", ".join(meta["written"])))
+    return "\n".join(f"{key:<14} {value}" for key, value in rows)
+
+
+def run(args) -> int:
+    """Entry point of ``dhlb conformal``."""
+    from dhlb.conformal import conformal_deformation
+
+    if args.output and args.output != "-":
+        ext = os.path.splitext(args.output)[1].lower()
+        if ext not in MESH_EXTENSIONS:
+            raise UsageError(f"-o must name a .mesh, .vtk or .vtu file for the deformed mesh, got {args.output!r}")
+        stem = os.path.splitext(args.output)[0]
+        derived = _mesh_outputs(args.output) + [stem + ".json"] + ([] if args.no_png else [stem + ".png"])
+        check_outputs(derived, args, inputs=[args.u_file])  # never over the input mesh or the u file
+    mesh, n_rows, mesh_name = _mesh(args)
+    u, uname = _factor(args, mesh, n_rows)
+    if isinstance(u, np.ndarray) and u.shape != (n_rows,):
+        raise UsageError(f"--u: the array must have one value per mesh vertex, shape ({n_rows},), got {u.shape}")
+    if isinstance(u, np.ndarray):
+        u = u[np.asarray(mesh.complex.vertex_labels)]
+    result = conformal_deformation(mesh, None, u, backend=args.backend)
+    meta = {"mesh": mesh_name, "u": uname}
+    meta["written"] = _outputs(args, result, meta)
+    data = _summary(result)
+    if args.json or not args.quiet:
+        print(json.dumps({**data, **meta}, indent=1) if args.json else format_report(meta, data))
+    return 0

@@ -1,0 +1,226 @@
+"""``dhlb field``: the globally optimal n-direction field of a triangle mesh (smoothest or aligned).
+
+Writes ``OUT.ply`` (the mesh with the n unit directions as vertex properties ``d{k}x d{k}y d{k}z``),
+``OUT.npz`` (``u``, ``directions``, ``frames``, ``face_index`` and the singularities, all in the
+input numbering: rows of the file's vertices and faces), ``OUT.json`` (the summary of
+:meth:`dhlb.fields.DirectionField.to_json` plus output timings) and ``OUT.png`` (the shaded mesh,
+direction glyphs, singularities red (+) / blue (−)).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import time
+
+import numpy as np
+
+from dhlb.cli._common import UsageError, add_command, resolve_input, write_output
+
+__all__ = ["NAME", "SUMMARY", "read_alignment", "read_singularities", "register", "run", "write_field"]
+
+NAME = "field"
+SUMMARY = "smoothest or aligned n-direction field of a triangle mesh, its singularities and a picture"
+
+_DESCRIPTION = """\
+Compute the globally optimal n-direction field of an oriented triangle mesh (.obj .off .ply):
+the smoothest field for the energy E_s = E_D - s (E_A - E_H) (s = 0 Dirichlet, +1 holomorphic,
+-1 anti-holomorphic), or with --align a field aligned to principal curvature (even n), to the
+boundary, or to user vectors. Unreferenced vertices are dropped with a warning; each connected
+component gets its own field.
+
+Outputs (OUT is a base path): OUT.ply (mesh + directions as vertex properties), OUT.npz
+(u, directions, frames, face_index, singularities), OUT.json (singularities, index sum,
+Euler characteristic, eigenvalue, timings) and OUT.png (picture). --json prints the summary.
+
+With --singularity (repeatable) the field has exactly the given singularities instead
+(dualised trivial connections, dhlb.fields.prescribed_field): FACE:K puts index K/n on the
+face with row FACE of the file, x,y,z:K on the face nearest to the point; K is an integer in
+{-1, 0, 1} per face and on a closed surface the K sum to n * chi (Poincare-Hopf)."""
+
+_EXAMPLES = """\
+  dhlb field bunny.obj --n 4 -o bunny-cross            # smoothest cross field
+  dhlb field kitten.obj --n 2 --s 1 --align curvature --lambda 0 -o kitten
+  dhlb field part.off --n 4 --align boundary -o part --json
+  dhlb field face.ply --n 1 --align guide.npy -o face   # guide.npy: (k, 3) vectors or complex (k,)
+  dhlb field spot.obj --n 1 --singularity 0:1 --singularity 3000:1 -o spot-two
+  dhlb field torus.obj --n 4 --singularity 0.5,0,1.2:1 --singularity 12:-1 -o torus-pair"""
+
+_ALIGN = ("curvature", "min-curvature", "boundary", "boundary-normal")
+
+
+def register(subparsers) -> None:
+    """Add the ``field`` parser to ``subparsers``."""
+    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
+    p.add_argument("mesh", metavar="MESH", help="triangle mesh file (.obj, .off, .ply)")
+    p.add_argument("--n", type=int, default=1, help="symmetry: 1 vector, 2 line, 4 cross field (default 1)")
+    p.add_argument("--s", type=float, default=0.0, help="energy parameter in [-1, 1] (default 0, Dirichlet)")
+    p.add_argument("--align", metavar="WHAT",
+                   help=f"alignment: {', '.join(_ALIGN)}, or a .npy file of (k, 3) vectors or complex (k,) values")
+    p.add_argument("--lambda", dest="lam", type=float, default=0.0,
+                   help="lambda_t of the aligned problem, below the smallest eigenvalue (default 0)")
+    p.add_argument("--singularity", action="append", metavar="FACE:K | x,y,z:K",
+                   help="prescribe index K/n at a face (row of the file) or at the face nearest to a point; "
+                        "repeatable; the result has exactly these singularities (write --singularity=-1,0,0:1 "
+                        "when x is negative)")
+    p.add_argument("--backend", default=None, help="superlu, cholmod, cholespy, amg-lobpcg (default: by size, memory)")
+    p.add_argument("--reorient", action="store_true", help="flip inconsistently oriented faces")
+    p.add_argument("--format", dest="fmt", metavar="FMT", help="file format if the extension does not say it")
+    p.add_argument("--no-png", action="store_true", help="do not render OUT.png")
+    p.set_defaults(func=run)
+
+
+def read_alignment(value):
+    """The ``align`` argument of :func:`dhlb.fields.direction_field` for ``--align VALUE``.
+
+    Examples
+    --------
+    >>> read_alignment("curvature"), read_alignment(None)
+    ('curvature', None)
+    """
+    if value is None or value in _ALIGN:
+        return value
+    if not value.endswith(".npy"):
+        raise UsageError(f"--align must be one of {', '.join(_ALIGN)} or a .npy file, got {value!r}")
+    if not os.path.isfile(value):
+        raise UsageError(f"{value}: no such file")
+    try:
+        arr = np.load(value, allow_pickle=False)
+    except (OSError, ValueError) as exc:
+        raise UsageError(f"{value}: not a readable .npy array ({exc})") from None
+    return arr
+
+
+def read_singularities(values):
+    """The ``singularities`` of :func:`dhlb.fields.prescribed_field` for ``--singularity`` values.
+
+    Examples
+    --------
+    >>> read_singularities(["3:1", "0.5,0,1:-1"])
+    [(3, 1), ((0.5, 0.0, 1.0), -1)]
+    """
+    out = []
+    for value in values or []:
+        where, sep, k = value.rpartition(":")
+        try:
+            index = int(k)
+        except ValueError:
+            raise UsageError(f"--singularity {value!r}: the index K after ':' must be an integer") from None
+        if not sep or not where:
+            raise UsageError(f"--singularity {value!r}: expected FACE:K or x,y,z:K")
+        parts = where.split(",")
+        try:
+            if len(parts) == 1:
+                out.append((int(parts[0]), index))
+            elif len(parts) == 3:
+                p = tuple(float(c) for c in parts)
+                if not all(np.isfinite(p)):
+                    raise ValueError
+                out.append((p, index))
+            else:
+                raise ValueError
+        except ValueError:
+            raise UsageError(f"--singularity {value!r}: the location must be a face number or three finite "
+                             "coordinates x,y,z") from None
+    return out
+
+
+FIELD_NPZ_NOTE = ("u, directions, frames, vertex_used: one row per row of the input V; rows with vertex_used == False "
+                  "belong to vertices that no face uses and hold NaN. face_index: one entry per row of the input F. "
+                  "vertex_rows: the input rows of the mesh's vertices. singular_*: faces (input rows), indices "
+                  "(of the n-th power field) and points of the singularities.")
+
+
+def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
+    """Write OUT.ply, OUT.npz (and OUT.png) for the field ``res`` of the input ``(V, F)``; return the paths.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from dhlb.io import read_surface, example_path
+    >>> from dhlb.fields import direction_field
+    >>> V, F = read_surface(example_path("torus.obj"))
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     paths = write_field(os.path.join(d, "t"), direction_field(V, F, n=2), V, F, png=False)
+    ...     sorted(os.path.basename(p) for p in paths.values() if os.path.exists(p))
+    ['t.npz', 't.ply']
+    """
+    mesh = res.mesh
+    D = res.input_directions()  # (len(V), n, 3), NaN rows for dropped vertices
+    used = np.zeros(len(V), bool)
+    used[mesh.vertex_labels] = True
+    props = {f"d{k}{c}": np.where(used, D[:, k, i], 0.0) for k in range(res.n) for i, c in enumerate("xyz")}
+    paths = {"ply": out + ".ply", "npz": out + ".npz", "json": out + ".json"}
+    from dhlb.io import write_ply
+
+    write_ply(paths["ply"], V, F, binary=True, vertex_properties=props)
+    sing = res.singularities
+    from dhlb._files import atomic_write
+
+    with atomic_write(paths["npz"], "wb") as fh:  # NaN rows for unreferenced vertices: said by vertex_used and note
+        np.savez_compressed(
+            fh, u=mesh.to_input(res.u, fill=np.nan + 0j), directions=D, frames=mesh.to_input(res.frames),
+            face_index=res.input_face_index(), singular_faces=sing.input_faces, singular_index=sing.index,
+            singular_points=sing.points, vertex_rows=mesh.vertex_labels, vertex_used=used,
+            note=np.array(FIELD_NPZ_NOTE))
+    if png:
+        from dhlb.render import render_field_png
+
+        paths["png"] = render_field_png(out + ".png", mesh.points, mesh.faces, res.directions, sing,
+                                        title=f"n = {res.n}, s = {res.s:g}, index sum {res.index_sum}")
+    return paths
+
+
+def run(args) -> int:
+    """Entry point of ``dhlb field``."""
+    from dhlb.fields import direction_field, prescribed_field
+    from dhlb.io import read_surface
+
+    if not args.output or args.output == "-":
+        raise UsageError("give the output base path with -o OUT (writes OUT.ply, OUT.npz, OUT.json, OUT.png)")
+    out = args.output
+    vtu = out.lower().endswith(".vtu")  # also write the surface with its directions and indices for ParaView
+    for ext in (".ply", ".npz", ".json", ".png", ".vtu"):
+        out = out.removesuffix(ext)
+    parent = os.path.dirname(os.path.abspath(out))
+    if not os.path.isdir(parent):
+        raise UsageError(f"cannot write {out}.*: the directory {parent} does not exist")
+    t0 = time.perf_counter()
+    fmt = resolve_input(args.mesh, args.fmt)  # every surface read_surface reads (also via meshio); see below
+    align = read_alignment(args.align)
+    sing = read_singularities(args.singularity)
+    if args.singularity and (align is not None or args.s != 0.0):
+        raise UsageError("--singularity prescribes the field; it does not combine with --align or --s")
+    V, F = read_surface(args.mesh, fmt)
+    t1 = time.perf_counter()
+    if args.singularity:
+        res = prescribed_field(V, F, args.n, sing, reorient=args.reorient, backend=args.backend)
+    else:
+        res = direction_field(V, F, n=args.n, s=args.s, align=align, lam=args.lam, reorient=args.reorient,
+                              backend=args.backend, progress=not (args.quiet or args.json))
+    t2 = time.perf_counter()
+    note = (getattr(res, "solver", None) or {}).get("note")
+    if note and not args.quiet:
+        print(f"dhlb field: note: {note}", file=sys.stderr)
+    summary = res.to_json()
+    paths = write_field(out, res, V, F, png=not args.no_png)
+    if vtu:
+        from dhlb.io.paraview import field_to_vtu
+
+        paths["vtu"] = field_to_vtu(res, out + ".vtu")
+    t3 = time.perf_counter()
+    summary["timings"] = dict(summary["timings"], io=t1 - t0, output=t3 - t2, end_to_end=t3 - t0)
+    summary["files"] = paths
+    summary["input"] = args.mesh
+    with open(paths["json"], "w", encoding="utf-8") as fh:
+        json.dump(summary, fh, indent=2)
+    if args.json:
+        args.output = None  # the summary goes to stdout; -o named the output files
+        write_output(args, json.dumps(summary, indent=2))
+    elif not args.quiet:
+        s = summary
+        print(f"{args.mesh}: {s['n_vertices']} vertices, {s['n_faces']} faces, chi = {s['euler_characteristic']}; "
+              f"n = {s['n']}, s = {s['s']:g}: {len(s['singularities'])} singularities, index sum {s['index_sum']} "
+              f"(Poincare-Hopf {s['poincare_hopf']:g}); wrote {', '.join(paths.values())}")
+    return 0

@@ -1,0 +1,71 @@
+"""``dhlb`` under MPI: ``mpirun -n P python -m dhlb.cli.mpi COMMAND ...`` (the petsc backend, docs/mpi.md)."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import os
+import sys
+import tempfile
+
+from dhlb.cli import build_parser, main
+from dhlb.cli._common import run_command
+from dhlb.linalg.backends import _REGISTRY, register_backend
+from dhlb.linalg.backends_petsc import PetscBackend, comm_rank_size, install_abort_hook
+
+__all__ = ["mpi_main"]
+
+
+def mpi_main(argv=None) -> int:
+    """``dhlb`` under MPI: every rank runs the command, rank 0 alone writes outputs and prints.
+
+    Run as ``mpirun -n P python -m dhlb.cli.mpi field MESH --backend petsc -o OUT``.
+    Ranks other than 0 write their copy of the outputs into a private temporary directory
+    (deleted afterwards) and print nothing; the exit code is the largest over all ranks.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``dhlb`` (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        The exit code, the largest over all ranks (0 ok, 1 failure, 2 usage error).
+
+    Examples
+    --------
+    >>> mpi_main(["--version"])  # doctest: +ELLIPSIS
+    dhlb ...
+    0
+    """
+    if "petsc" not in _REGISTRY:
+        register_backend("petsc", PetscBackend, ("petsc4py", "slepc4py", "mpi4py"))
+    rank, size = comm_rank_size()
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if size == 1:
+        return main(argv)
+    install_abort_hook()
+    if rank == 0:
+        code = main(argv)
+    else:
+        with tempfile.TemporaryDirectory() as tmp, contextlib.redirect_stdout(io.StringIO()), \
+                contextlib.redirect_stderr(io.StringIO()):
+            try:
+                args, extra = build_parser().parse_known_args(argv)
+            except SystemExit as exc:
+                args, extra, code = None, [], exc.code if isinstance(exc.code, int) else 2
+            if args is not None and not extra and getattr(args, "command", None):
+                out = getattr(args, "output", None)
+                if isinstance(out, str) and out not in ("", "-"):
+                    args.output = os.path.join(tmp, os.path.basename(os.path.normpath(out)) or "out")
+                code = run_command(args)
+            elif args is not None:
+                code = 2
+    from mpi4py import MPI  # present: comm_rank_size() returned size > 1
+
+    return int(MPI.COMM_WORLD.allreduce(int(code), op=MPI.MAX))
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(mpi_main())

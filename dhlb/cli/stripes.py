@@ -1,0 +1,271 @@
+"""``dhlb stripes``: a stripe pattern on a surface mesh → OBJ with per-corner UVs, JSON sidecar, isolines, PNG."""
+
+from __future__ import annotations
+
+import json
+import os
+
+import numpy as np
+
+from dhlb.cli._common import UsageError, add_command, resolve_input
+
+__all__ = ["NAME", "SUMMARY", "register", "run", "output_paths"]
+
+NAME = "stripes"
+SUMMARY = "stripe pattern along a direction field: OBJ with texture coordinates, isolines, PNG"
+
+_DESCRIPTION = """\
+Compute a stripe pattern (seed part 2) on a triangle surface mesh (.obj .off .ply): stripes
+orthogonal to a direction field, with --frequency stripes per unit length or a period of
+--spacing mean edge lengths. The field is the smoothest one (--field smoothest, default), the
+principal curvature lines (--field curvature) or read from FILE (one 3D vector per vertex row,
+text or .npy). --n 2 treats the directions as lines (branch points at their ±1/2 singularities);
+the default is 2 for curvature and 1 otherwise.
+
+--section unit (default) keeps the stripe spacing everywhere: after the smallest eigenvector it
+iterates towards the unit-modulus section of least energy (the seed's energy of a unit function,
+part 2 section 2.1), so parts of different girth get their own number of stripes, joined by
+dislocations. --section eigenvector gives the relaxed eigenvector (the seed's pattern), --section
+power the seed's Algorithm 9 (--iterations inverse power steps from a random start, --seed).
+Parameters that scale the work (--frequency/--spacing for the isolines, --size) are checked
+against a memory estimate before the work starts (exit 2 with the estimate and the allowed range).
+No output may be the input mesh or field file; every file is written to a temporary file in its
+folder and renamed when complete.
+
+Writes, for -o OUT (default: the mesh name with -stripes):
+  OUT.obj           the mesh with one texture coordinate per face corner, u = alpha/2pi
+  OUT.json          sidecar: zero faces (index, lArg interpolation) and branch faces (cone values)
+  OUT-isolines.obj  the isolines alpha = 0 (mod 2pi) as polylines ('l' records)
+  OUT.png           a rendering of cos(alpha), fine enough to show lArg and branch points
+--json prints one JSON object (zero_faces as [{"face", "index"}] in input face rows,
+branch_faces, timings, eigenvalue, solver, the written files)."""
+
+_EXAMPLES = """\
+  dhlb stripes bunny.obj --spacing 6 -o bunny-stripes
+  dhlb stripes spot.obj --frequency 8 --field curvature --json
+  dhlb stripes torus.off --spacing 5 --field dirs.txt --n 2 --orthogonal --no-png
+  dhlb stripes vase.obj --spacing 6 --section eigenvector -o vase-relaxed"""
+
+
+def register(subparsers) -> None:
+    """Add the ``stripes`` parser to ``subparsers``."""
+    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
+    p.add_argument("file", metavar="MESH", help="triangle surface mesh (.obj .off .ply ...)")
+    size = p.add_mutually_exclusive_group(required=True)
+    size.add_argument("--frequency", type=float, metavar="F", help="stripes per unit length (period 1/F)")
+    size.add_argument("--spacing", type=float, metavar="S", help="period in mean edge lengths (scale free)")
+    p.add_argument("--field", default="smoothest", metavar="FIELD",
+                   help="smoothest (default), curvature, or a FILE of per-vertex 3D vectors")
+    p.add_argument("--n", type=int, choices=(1, 2), default=None, help="1: oriented directions, 2: lines")
+    p.add_argument("--energy", choices=("cotan", "fem"), default="cotan",
+                   help="the seed's cotangent energy (default) or the curvature-corrected FEM energy")
+    p.add_argument("--section", choices=("unit", "eigenvector", "power"), default="unit",
+                   help="unit (default): unit-modulus section after the eigenvector, keeps the spacing; "
+                        "eigenvector: the relaxed eigenvector; power: the seed's Algorithm 9")
+    p.add_argument("--iterations", type=int, default=None, metavar="K",
+                   help="unit: maximum number of steps (default 100); power: number of steps (default 20)")
+    p.add_argument("--seed", type=int, default=None, help="random start of --section power")
+    p.add_argument("--backend", default=None, metavar="B", help="factorization backend (default superlu)")
+    p.add_argument("--orthogonal", action="store_true", help="also the pattern of the field turned by 90 degrees")
+    p.add_argument("--format", dest="fmt", metavar="FMT", help="mesh format if the extension does not say it")
+    p.add_argument("--no-png", action="store_true", help="do not render the PNG")
+    p.add_argument("--no-isolines", action="store_true", help="do not write the isolines")
+    p.add_argument("--level", type=float, default=0.0, help="isoline level c of alpha = c (mod 2pi), default 0")
+    p.add_argument("--size", type=int, default=800, metavar="PX", help="PNG size in pixels (default 800)")
+    p.set_defaults(func=run)
+
+
+def output_paths(base: str) -> dict:
+    """The files written for the output base ``base`` (a trailing ``.obj`` is dropped)."""
+    if base.lower().endswith(".obj"):
+        base = base[:-4]
+    return {"obj": base + ".obj", "sidecar": base + ".json", "isolines": base + "-isolines.obj", "png": base + ".png"}
+
+
+def _directions(args, V, F, n):
+    from dhlb.fields import direction_field
+
+    fld = args.field
+    if fld in ("smoothest", "curvature"):
+        if fld == "curvature" and n == 1:
+            raise UsageError("--field curvature gives lines (principal directions have no orientation): use --n 2")
+        return direction_field(V, F, n=n, align=None if fld == "smoothest" else "curvature", backend=args.backend)
+    if not os.path.isfile(fld):
+        raise UsageError(f"--field {fld}: not 'smoothest', 'curvature' or an existing file of per-vertex vectors")
+    try:
+        X = np.load(fld) if fld.lower().endswith(".npy") else np.loadtxt(fld, ndmin=2)
+    except (OSError, ValueError) as exc:
+        raise UsageError(f"--field {fld}: cannot read per-vertex vectors ({exc})") from None
+    if X.ndim != 2 or X.shape[1] != 3:
+        raise UsageError(f"--field {fld}: expected one 3D vector per line (shape (n, 3)), got shape {X.shape}")
+    return X
+
+
+MAX_BYTES = 1_000_000_000
+"""Memory budget of one ``dhlb stripes`` run's outputs (isolines, PNG), checked before the work."""
+_PNG_BYTES_PER_PIXEL = 40
+_SIZE_RANGE = (16, 8192)
+
+
+def _check_size(size):
+    low, high = _SIZE_RANGE
+    if not low <= size <= high:
+        raise UsageError(f"--size must be between {low} and {high} pixels, got {size}")
+    est = size * size * _PNG_BYTES_PER_PIXEL
+    if est > MAX_BYTES:
+        from dhlb.errors import ResourceLimitError
+
+        allowed = int((MAX_BYTES / _PNG_BYTES_PER_PIXEL) ** 0.5)
+        raise ResourceLimitError("--size", size, est, MAX_BYTES, f"allowed: --size {low} to {allowed}")
+
+
+def _check_density(args, V, F, n):
+    """Refuse a frequency whose isolines cannot fit in MAX_BYTES, before any solve.
+
+    A lower estimate of the isoline work: every face is crossed about ``f · perimeter / 2`` times
+    per level (zero faces, found only after the solve, add more; :func:`dhlb.stripes.isolines`
+    checks the exact count before allocating).
+    """
+    if args.no_isolines:
+        return
+    from dhlb.errors import ResourceLimitError
+    from dhlb.stripes.isolines import BYTES_PER_SEGMENT, BYTES_PER_SUBTRIANGLE
+
+    P = np.asarray(V, float)
+    T = np.asarray(F, np.int64)
+    if P.ndim != 2 or T.ndim != 2 or T.shape[1] != 3 or T.size == 0 or T.min() < 0 or T.max() >= len(P):
+        return  # the mesh checks of stripe_pattern report it
+    e = np.linalg.norm(P[T[:, [1, 2, 0]]] - P[T], axis=2)
+    if not np.all(np.isfinite(e)):
+        return
+    mean_edge = float(e.mean())
+    f = args.frequency if args.frequency is not None else 1.0 / (args.spacing * mean_edge)
+    levels = 1 if n == 1 or abs(np.sin(args.level)) < 1e-6 else 2
+    crossings = levels * f * float(e.sum()) / 2.0
+    est = len(T) * BYTES_PER_SUBTRIANGLE + crossings * BYTES_PER_SEGMENT
+    if est > MAX_BYTES:
+        f_ok = f * (MAX_BYTES - len(T) * BYTES_PER_SUBTRIANGLE) / (crossings * BYTES_PER_SEGMENT)
+        if args.frequency is not None:
+            name, value, advice = "--frequency", args.frequency, f"allowed: 0 < --frequency <= {f_ok:.3g} on this mesh"
+        else:
+            name, value = "--spacing", args.spacing
+            advice = f"allowed: --spacing >= {1.0 / (max(f_ok, 1e-300) * mean_edge):.3g} mean edge lengths"
+        raise ResourceLimitError(name, value, est, MAX_BYTES,
+                                 f"{advice} (isolines of ~{crossings:.3g} crossings), or --no-isolines")
+
+
+def _write_isolines(path, iso_list) -> int:
+    lines = ["# dhlb stripe isolines: one 'l' polyline per isoline"]
+    offset, count = 0, 0
+    for iso in iso_list:
+        lines += [f"v {p[0]:.17g} {p[1]:.17g} {p[2]:.17g}" for p in iso.points]
+        for poly in iso.polylines:
+            lines.append("l " + " ".join(str(int(i) + 1 + offset) for i in poly))
+            count += 1
+        offset += len(iso.points)
+    from dhlb._files import atomic_write
+
+    with atomic_write(path) as fh:
+        fh.write("\n".join(lines) + "\n")
+    return count
+
+
+def _outputs(res, paths, args) -> dict:
+    from dhlb.stripes import isolines, write_stripes_obj
+
+    written = {}
+    iso = None
+    if not args.no_isolines:  # computed first: refused (memory) before any file is written
+        iso = [isolines(res.texture, level=args.level, max_bytes=MAX_BYTES)]
+        if res.orthogonal is not None:
+            iso.append(isolines(res.orthogonal.texture, level=args.level, max_bytes=MAX_BYTES))
+    obj, side = write_stripes_obj(paths["obj"], res.texture)
+    written.update(obj=obj, sidecar=side)
+    if iso is not None:
+        written["isolines"] = paths["isolines"]
+        written["n_isolines"] = _write_isolines(paths["isolines"], iso)
+    if not args.no_png:
+        from dhlb.render.stripes_png import render_stripes_png  # written atomically by the render layer
+
+        written["png"] = render_stripes_png(paths["png"], res.texture, size=(args.size, args.size),
+                                            mark_singularities=True)
+    if res.orthogonal is not None:
+        o = output_paths(paths["obj"][:-4] + "-orthogonal")
+        written["orthogonal_obj"], written["orthogonal_sidecar"] = write_stripes_obj(o["obj"], res.orthogonal.texture)
+    return written
+
+
+def _all_outputs(paths, args) -> list:
+    out = [paths["obj"], paths["sidecar"]]
+    if not args.no_isolines:
+        out.append(paths["isolines"])
+    if not args.no_png:
+        out.append(paths["png"])
+    if args.orthogonal:
+        o = output_paths(paths["obj"][:-4] + "-orthogonal")
+        out += [o["obj"], o["sidecar"]]
+    return out
+
+
+def _check_args(args) -> None:
+    for name in ("frequency", "spacing"):
+        v = getattr(args, name)
+        if v is not None and not (np.isfinite(v) and v > 0):
+            raise UsageError(f"--{name} must be a positive number, got {v}")
+    if not np.isfinite(args.level):
+        raise UsageError(f"--level must be a finite number, got {args.level}")
+    if args.iterations is not None:
+        low = 1 if args.section == "power" else 0
+        if not low <= args.iterations <= 100_000:
+            raise UsageError(f"--iterations must be between {low} and 100000 for --section {args.section}, "
+                             f"got {args.iterations}")
+    if not args.no_png:
+        _check_size(args.size)
+
+
+def run(args) -> int:
+    """Entry point of ``dhlb stripes``."""
+    from dhlb.errors import OverwriteError, ResourceLimitError
+
+    try:
+        return _run(args)
+    except (ResourceLimitError, OverwriteError) as exc:  # a bad choice of parameters: usage error (exit 2)
+        raise UsageError(str(exc)) from None
+
+
+def _run(args) -> int:
+    from dhlb._files import refuse_overwrite
+    from dhlb.io import read_surface
+    from dhlb.stripes import stripe_pattern
+
+    fmt = resolve_input(args.file, args.fmt)
+    _check_args(args)
+    base = args.output or os.path.splitext(os.path.basename(args.file))[0] + "-stripes"
+    paths = output_paths(base)
+    refuse_overwrite(_all_outputs(paths, args), [args.file], role=f"the input mesh {args.file}")
+    if args.field not in ("smoothest", "curvature"):
+        refuse_overwrite(_all_outputs(paths, args), [args.field], role=f"the input field {args.field}")
+    n = args.n if args.n is not None else (2 if args.field == "curvature" else 1)
+    V, F = read_surface(args.file, fmt)
+    _check_density(args, V, F, n)
+    directions = _directions(args, V, F, n)
+    res = stripe_pattern(V, F, directions, args.frequency, spacing=args.spacing, n=n, energy=args.energy,
+                         backend=args.backend, orthogonal=args.orthogonal, section=args.section,
+                         iterations=args.iterations, seed=args.seed, progress=not (args.quiet or args.json))
+    written = _outputs(res, paths, args)
+    summary = res.to_json()
+    summary["files"] = written
+    summary["mesh"] = args.file
+    if args.json:
+        print(json.dumps(summary))
+    elif not args.quiet:
+        t = summary["timings"]
+        print(f"{args.file}: {summary['n_vertices']} vertices, {summary['n_faces']} faces; n = {summary['n']}, "
+              f"energy {summary['energy']}, eigenvalue {summary['eigenvalue']:.6g}")
+        it = summary["iteration"]
+        steps = f" after {it['iterations']} steps" if it else ""
+        print(f"section {summary['section']}{steps}: unit energy {summary['unit_energy']:.6g}")
+        print(f"zeros: {len(summary['zero_faces'])} faces, branch faces: {len(summary['branch_faces'])}")
+        print(f"time: setup {t['setup']:.3f} s, solve {t['solve']:.3f} s, texture {t['texture']:.3f} s")
+        print("wrote " + ", ".join(str(v) for k, v in written.items() if isinstance(v, str)))
+    return 0
