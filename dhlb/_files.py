@@ -188,8 +188,14 @@ def refuse_overwrite(
     Parameters
     ----------
     output_paths, input_paths : iterable of path or None
+        The files to be written and the files read.
     role : str
         How the message calls an input ("the input mesh", ...).
+
+    Raises
+    ------
+    OverwriteError
+        An output path is the same file as an input path, or as an earlier output path.
 
     Examples
     --------

@@ -71,7 +71,30 @@ class NonFiniteError(DhlbError, ValueError):
 
 
 class MeshParseError(DhlbError, ValueError):
-    """A file cannot be parsed; the message names the file and the line."""
+    """A file cannot be parsed; the message names the file and the line.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong.
+    path : str or None, optional
+        The file; when given, the message starts with ``"{path}: "``.
+    line : int or None, optional
+        The 1-based line number in ``path``; when given (with ``path``), the message starts with
+        ``"{path}, line {line}: "``.
+
+    Attributes
+    ----------
+    path : str or None
+        The file, as given.
+    line : int or None
+        The line number, as given.
+
+    Examples
+    --------
+    >>> print(MeshParseError("expected 3 vertex indices", path="m.off", line=7))
+    m.off, line 7: expected 3 vertex indices
+    """
 
     def __init__(self, message: str, path: str | None = None, line: int | None = None):
         where = ""
@@ -126,7 +149,29 @@ class CurvatureMismatchError(DhlbError, ValueError):
 
 
 class IntegralityError(DhlbError, ValueError):
-    """A 2-form is not integral (Weil): some integer 2-cycle has a period outside 2πZ."""
+    """A 2-form is not integral (Weil): some integer 2-cycle has a period outside 2πZ.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong.
+    cycle : object, optional
+        The offending integer 2-cycle (e.g. an int array of coefficients on the triangles), if known.
+    defect : float or None, optional
+        How far its period is from the nearest multiple of 2π, if known.
+
+    Attributes
+    ----------
+    cycle : object
+        The offending cycle, as given.
+    defect : float or None
+        The defect, as given.
+
+    Examples
+    --------
+    >>> IntegralityError("period 1.0 is not in 2πZ", defect=1.0).defect
+    1.0
+    """
 
     def __init__(self, message: str, cycle=None, defect: float | None = None):
         super().__init__(message)
@@ -144,6 +189,13 @@ class InvalidMetricError(DhlbError, ValueError):
 
 class ConvergenceError(DhlbError, RuntimeError):
     """An iterative solver did not reach its tolerance.
+
+    Parameters
+    ----------
+    message : str
+        What did not converge, and what to do about it.
+    result : object, optional
+        The partial result, kept as the attribute ``result``.
 
     Attributes
     ----------
@@ -163,6 +215,15 @@ class ConvergenceError(DhlbError, RuntimeError):
 
 class InsufficientMemoryError(DhlbError, MemoryError):
     """A factorization (or another step) would need more memory than is available.
+
+    Parameters
+    ----------
+    message : str
+        What would need the memory, and what to do about it.
+    needed : int, optional
+        The estimated number of bytes needed (0 when unknown).
+    available : int, optional
+        The number of bytes available (0 when unknown).
 
     Attributes
     ----------
@@ -257,6 +318,18 @@ class OutputError(DhlbError, OSError):
 
     The message names the path; nothing half-written is left at that path.
 
+    Parameters
+    ----------
+    path : str
+        The output path.
+    reason : str
+        Why it cannot be written (e.g. the ``strerror`` of the underlying :class:`OSError`).
+
+    Attributes
+    ----------
+    path, reason : str
+        As given.
+
     Examples
     --------
     >>> err = OutputError("out/x.obj", "No space left on device")
@@ -288,6 +361,18 @@ class ViewerUnavailableError(DhlbError, RuntimeError):
 class OverwriteError(DhlbError, ValueError):
     """An output path is (or resolves to) one of the input files; dhlb never replaces an input.
 
+    Parameters
+    ----------
+    path : str
+        The output path.
+    role : str, optional
+        What the file at ``path`` is, as a noun phrase (``"the input mesh"``).
+
+    Attributes
+    ----------
+    path, role : str
+        As given.
+
     Examples
     --------
     >>> print(OverwriteError("spot.obj", "the input mesh"))
@@ -304,6 +389,28 @@ class ResourceLimitError(InvalidParameterError):
     """A parameter would make the work exceed the memory (or time) budget; refused before starting.
 
     The message names the parameter, its value, the estimate and the allowed range.
+
+    Parameters
+    ----------
+    parameter : str
+        The name of the parameter (e.g. a command-line option ``"--box"``).
+    value : object
+        Its value.
+    estimate_bytes : float
+        The estimated memory the work would need, in bytes.
+    limit_bytes : float
+        The memory allowed, in bytes.
+    advice : str, optional
+        What to do instead; appended to the message after ``"; "``.
+
+    Attributes
+    ----------
+    parameter : str
+        As given.
+    value : object
+        As given.
+    estimate_bytes, limit_bytes : float
+        As given, converted to float.
 
     Examples
     --------
@@ -341,6 +448,17 @@ class InvalidTypeError(DhlbError, TypeError, ValueError):
 def format_bytes(n: float) -> str:
     """A byte count for messages: ``'310 GB'``, ``'12 MB'`` (decimal units, 2 significant digits).
 
+    Parameters
+    ----------
+    n : float
+        A number of bytes.
+
+    Returns
+    -------
+    str
+        ``n`` with at most 2 significant digits and the largest of the units TB, GB, MB, kB that is at most ``|n|``,
+        or as a whole number of bytes (``'512 B'``) below 1 kB.
+
     Examples
     --------
     >>> format_bytes(3.1e11), format_bytes(12_345_678), format_bytes(512)
@@ -359,6 +477,19 @@ def differing_digits(a: float, b: float, min_digits: int = 6) -> tuple[str, str]
     For messages that compare two numbers (e.g. :class:`CurvatureMismatchError`): ``%.6g`` can
     print two different numbers identically; this adds digits until they differ (at most 17,
     which is exact for float64).
+
+    Parameters
+    ----------
+    a, b : float
+        The two numbers.
+    min_digits : int, optional
+        The number of significant digits to start from.
+
+    Returns
+    -------
+    sa, sb : str
+        ``a`` and ``b`` with the fewest significant digits (at least ``min_digits``) at which the texts differ;
+        their ``repr`` when they do not differ at 17 digits (equal numbers).
 
     Examples
     --------

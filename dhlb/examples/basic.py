@@ -49,6 +49,23 @@ def simplex(n: int, return_points: bool = False) -> SimplicialComplex | tuple[Si
 def ball(n: int, return_points: bool = False) -> SimplicialComplex | tuple[SimplicialComplex, np.ndarray]:
     """The n-ball as a single n-simplex; the same as :func:`simplex`.
 
+    Parameters
+    ----------
+    n : int, >= 0
+    return_points : bool
+        Also return coordinates: vertex 0 at the origin, vertex ``i`` at ``e_i`` in ``R^n``.
+
+    Returns
+    -------
+    X : SimplicialComplex
+        The full n-simplex ``(0, 1, ..., n)`` with all its faces.
+    points : (n + 1, n) float64, only if ``return_points``
+
+    Raises
+    ------
+    InvalidParameterError
+        ``n`` is not an integer >= 0.
+
     Examples
     --------
     >>> from dhlb.examples import ball

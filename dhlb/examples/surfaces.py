@@ -21,6 +21,11 @@ def torus() -> SimplicialComplex:
     unique 7-vertex torus and the minimal triangulation of the torus. Each listed triple is
     positively oriented for one orientation of the torus.
 
+    Returns
+    -------
+    T : SimplicialComplex
+        The 7-vertex torus: vertices ``0 .. 6``, 21 edges, 14 triangles.
+
     Examples
     --------
     >>> from dhlb.examples import torus
@@ -46,6 +51,11 @@ def projective_plane() -> SimplicialComplex:
     (``i = 1 .. 5``, indices in ``1 .. 5`` read cyclically). The 1-skeleton is ``K_6``. Deleting
     the open star of vertex 0 (a disk) leaves :func:`moebius_strip`, via ``i -> 2 (i - 1) mod 5``.
 
+    Returns
+    -------
+    P : SimplicialComplex
+        The 6-vertex projective plane: vertices ``0 .. 5``, 15 edges, 10 triangles.
+
     Examples
     --------
     >>> from dhlb.examples import projective_plane
@@ -63,6 +73,11 @@ def moebius_strip() -> SimplicialComplex:
     interior; the boundary is the single pentagon ``0, 2, 4, 1, 3`` of edges ``(i, i+2)`` (an
     annulus would have two boundary circles). It is :func:`projective_plane` minus the open star
     of vertex 0, relabelled by ``i -> 2 (i - 1) mod 5``.
+
+    Returns
+    -------
+    M : SimplicialComplex
+        The 5-vertex Möbius strip: vertices ``0 .. 4``, 10 edges, 5 triangles.
 
     Examples
     --------
@@ -98,6 +113,11 @@ def klein_bottle() -> SimplicialComplex:
     Triangles (vertex labels ``0 .. 7``)::
 
         014 017 023 025 034 056 067 123 124 136 156 157 245 345 357 367
+
+    Returns
+    -------
+    K : SimplicialComplex
+        The 8-vertex Klein bottle: vertices ``0 .. 7``, 24 edges, 16 triangles.
 
     Examples
     --------
@@ -139,6 +159,11 @@ def dunce_hat() -> SimplicialComplex:
     * the inner pentagon ``345 356 367``.
 
     All 17 triples are listed counter-clockwise in the disk.
+
+    Returns
+    -------
+    D : SimplicialComplex
+        The 8-vertex dunce hat: vertices ``0 .. 7``, 24 edges, 17 triangles.
 
     Examples
     --------

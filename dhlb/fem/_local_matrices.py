@@ -127,6 +127,35 @@ def local_matrices(
 ) -> tuple[np.ndarray, np.ndarray]:
     """Both local matrices ``(M, A)``; see :func:`local_mass_matrices` and :func:`local_dirichlet_matrices`.
 
+    Parameters
+    ----------
+    gram : array_like, shape (m, n+1, n+1) or (n+1, n+1)
+        ``<∇x_a, ∇x_b>`` of the barycentric coordinates of each simplex.
+    volume : float or array_like, shape (m,)
+        Simplex volumes.
+    omega : array_like, shape (m, C(n+1, 3)) or (C(n+1, 3),)
+        Curvature on the local triangles in lexicographic order (must be closed per simplex).
+    connection : array_like, shape (m, C(n+1, 2)), optional
+        Unit complex ``r_ab`` on the local edges, as in :func:`local_mass_matrices`.
+
+    Returns
+    -------
+    M : ndarray, shape (m, n+1, n+1) or (n+1, n+1), complex
+        The local mass matrices, as :func:`local_mass_matrices`.
+    A : ndarray, shape (m, n+1, n+1) or (n+1, n+1), complex
+        The local Dirichlet matrices, as :func:`local_dirichlet_matrices`.
+
+    Raises
+    ------
+    ShapeError
+        When a shape is wrong or the inputs give different numbers of simplices.
+    NonFiniteError
+        When an input has a NaN or infinite value.
+    InvalidMetricError, DegenerateSimplexError
+        When ``gram`` is not a valid Gram matrix, or a volume is not positive.
+    CurvatureMismatchError, NotClosedError, InvalidConnectionError
+        When ``omega`` is not real or not closed, or ``connection`` is not unit or does not fit ``omega``.
+
     Examples
     --------
     >>> import numpy as np

@@ -137,6 +137,23 @@ def mass_matrix(
 def dirichlet_matrix(bundle: HermitianLineBundle, geometry: EuclideanComplex) -> sp.csr_matrix:
     """The Dirichlet matrix ``A`` of Theorem 17: ``∫ |∇ψ̃|² = ψᴴ A ψ`` (the generalised cotangent Laplacian).
 
+    Parameters
+    ----------
+    bundle : HermitianLineBundle
+        Connection and curvature on the complex ``geometry.complex``.
+    geometry : EuclideanComplex
+        The metric (points or edge lengths) of a pure n-dimensional complex.
+
+    Returns
+    -------
+    A : (n_vertices, n_vertices) complex scipy.sparse.csr_matrix
+        Hermitian positive semidefinite, on the vertex-adjacency pattern of the complex.
+
+    Raises
+    ------
+    ShapeError
+        When the bundle and the geometry live on different complexes, or the complex is not pure.
+
     Examples
     --------
     >>> from dhlb import EuclideanComplex, HermitianLineBundle
@@ -156,6 +173,27 @@ def bundle_matrices(
 ) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """``(A, M)``: Dirichlet and mass matrix in one pass (the moments are shared).
 
+    Parameters
+    ----------
+    bundle : HermitianLineBundle
+        Connection and curvature on the complex ``geometry.complex``.
+    geometry : EuclideanComplex
+        The metric (points or edge lengths) of a pure n-dimensional complex.
+    lumped : bool, optional
+        Return the diagonal lumped mass (as :func:`mass_matrix` with ``lumped=True``) as ``M``.
+
+    Returns
+    -------
+    A : (n_vertices, n_vertices) complex scipy.sparse.csr_matrix
+        The Dirichlet matrix, as :func:`dirichlet_matrix`.
+    M : (n_vertices, n_vertices) complex scipy.sparse.csr_matrix
+        The mass matrix, as :func:`mass_matrix`.
+
+    Raises
+    ------
+    ShapeError
+        When the bundle and the geometry live on different complexes, or the complex is not pure.
+
     Examples
     --------
     >>> from dhlb import EuclideanComplex, HermitianLineBundle
@@ -172,6 +210,16 @@ def bundle_matrices(
 
 def lumped_mass(geometry: EuclideanComplex) -> np.ndarray:
     """The lumped mass ``Σ_{σ ∋ i} vol(σ)/(n+1)`` per vertex, as a vector.
+
+    Parameters
+    ----------
+    geometry : EuclideanComplex
+        The metric of an n-dimensional complex; its top simplices are the n-simplices.
+
+    Returns
+    -------
+    (n_vertices,) float array
+        The lumped mass of each vertex (0 for a vertex of no n-simplex).
 
     Examples
     --------

@@ -124,6 +124,26 @@ def cotan_edge_weights(geometry: EuclideanComplex, *, simplex_weights: ArrayLike
     For triangle meshes ``w_ij = (cot β_ij + cot β_ji)/2`` (one term on boundary edges); the
     weighted graph Laplacian with these weights is the P1 stiffness matrix.
 
+    Parameters
+    ----------
+    geometry : EuclideanComplex
+        The metric of a complex of any dimension n; its top simplices are the n-simplices.
+    simplex_weights : float or (n_top,) float array, optional
+        A factor ``s_σ >= 0`` per top simplex (default 1; 0 removes the simplex).
+
+    Returns
+    -------
+    w : (n_edges,) float array
+        The weight of each canonical edge, in the row order of ``geometry.complex.simplices(1)``
+        (all 0 for a 0-dimensional complex).
+
+    Raises
+    ------
+    ShapeError
+        When ``simplex_weights`` is not one number per top simplex.
+    NonFiniteError, InvalidParameterError
+        NaN/inf or negative ``simplex_weights`` (naming the top simplex).
+
     Examples
     --------
     >>> from dhlb import SimplicialComplex
@@ -169,6 +189,9 @@ def connection_laplacian(
         Bundle and geometry on different complexes, a non-pure complex, bad ``simplex_weights`` shape.
     NonFiniteError, InvalidParameterError
         NaN/inf or negative ``simplex_weights`` (naming the top simplex); a bundle over a finite field.
+    TypeError
+        ``bundle`` is neither a VectorBundle nor a HermitianLineBundle, or ``geometry`` is not an
+        EuclideanComplex.
 
     Examples
     --------
@@ -230,9 +253,21 @@ def connection_mass(geometry: EuclideanComplex, rank: int = 1, *, lumped: bool =
     Parameters
     ----------
     geometry : EuclideanComplex
+        The metric of the complex.
     rank : int >= 1
+        The rank k of the bundle (number of components per vertex).
     lumped : bool
         Diagonal lumped mass (default) or the consistent P1 mass of each component.
+
+    Returns
+    -------
+    (N k, N k) float scipy.sparse.csr_matrix
+        ``N = geometry.complex.n_vertices``; section index ``i·k + a`` as in :func:`connection_laplacian`.
+
+    Raises
+    ------
+    InvalidParameterError
+        When ``rank`` is not an integer >= 1.
 
     Examples
     --------

@@ -116,6 +116,15 @@ def expi_divided_difference(phases: ArrayLike, multiplicities: ArrayLike) -> np.
     ndarray, shape (...)
         Complex values, relative accuracy about 1e-15 (see :mod:`dhlb.fem._expdd`).
 
+    Raises
+    ------
+    ShapeError
+        When ``phases`` is complex or a scalar.
+    InvalidParameterError
+        When ``multiplicities`` are not ``C`` integers >= 1.
+    NonFiniteError
+        When a phase is NaN or infinite.
+
     Examples
     --------
     >>> import numpy as np
@@ -150,6 +159,13 @@ def expi_moment(phases: ArrayLike, powers: ArrayLike) -> np.ndarray:
     -------
     ndarray, shape (...)
         ``n! Π p_m! exp[iθ_0^(p_0+1), ..., iθ_n^(p_n+1)]`` (Hermite–Genocchi).
+
+    Raises
+    ------
+    InvalidParameterError
+        When ``powers`` are not ``n+1`` integers >= 0 (or ``phases`` is a scalar).
+    ShapeError, NonFiniteError
+        When ``phases`` is complex, or not finite.
 
     Examples
     --------
@@ -194,6 +210,15 @@ def theta(omega: ArrayLike, i: int, j: int, k: int, l: int, *, dim: int | None =
     -------
     ndarray of shape (m,), or a complex scalar for a single simplex.
 
+    Raises
+    ------
+    InvalidParameterError
+        When a local vertex index is not an integer in ``0..n``, or ``dim`` is not an integer >= 1.
+    ShapeError
+        When ``omega`` has the wrong shape (not one value per local triangle).
+    CurvatureMismatchError, NonFiniteError
+        When ``omega`` is not real, or not finite.
+
     Examples
     --------
     >>> import numpy as np
@@ -210,6 +235,29 @@ def theta(omega: ArrayLike, i: int, j: int, k: int, l: int, *, dim: int | None =
 def lambda_(omega: ArrayLike, i: int, j: int, *, dim: int | None = None) -> np.ndarray | complex:
     """Λ of Definition 19: ``(1/vol) ∫_σ exp(-i Σ_m Ω_ijm x_m)``.
 
+    Parameters
+    ----------
+    omega : array_like, shape (m, C(n+1, 3)) or (C(n+1, 3),)
+        Curvature on the local triangles (order of :func:`local_triangles`).
+    i, j : int
+        Local vertex indices ``0..n``.
+    dim : int, optional
+        Simplex dimension; needed only for n = 1.
+
+    Returns
+    -------
+    (m,) complex array, or a complex scalar for a single simplex
+        The value of ``Λ_ij`` on each simplex.
+
+    Raises
+    ------
+    InvalidParameterError
+        When a local vertex index is not an integer in ``0..n``, or ``dim`` is not an integer >= 1.
+    ShapeError
+        When ``omega`` has the wrong shape (not one value per local triangle).
+    CurvatureMismatchError, NonFiniteError
+        When ``omega`` is not real, or not finite.
+
     Examples
     --------
     >>> import numpy as np
@@ -222,6 +270,31 @@ def lambda_(omega: ArrayLike, i: int, j: int, *, dim: int | None = None) -> np.n
 
 def xi(omega: ArrayLike, i: int, j: int, k: int, l: int, *, dim: int | None = None) -> np.ndarray | complex:
     """Ξ of Definition 19: ``(1/vol) ∫_σ x_i x_j x_k x_l exp(-i Σ_m Ω_ijm x_m)``.
+
+    Parameters
+    ----------
+    omega : array_like, shape (m, C(n+1, 3)) or (C(n+1, 3),)
+        Curvature on the local triangles (order of :func:`local_triangles`).
+    i, j : int
+        Local vertex indices ``0..n`` of the pair whose phase ``Ω_ijm`` is integrated.
+    k, l : int
+        Two more local vertex indices ``0..n`` of the monomial ``x_i x_j x_k x_l``.
+    dim : int, optional
+        Simplex dimension; needed only for n = 1.
+
+    Returns
+    -------
+    (m,) complex array, or a complex scalar for a single simplex
+        The value of ``Ξ_ij(k, l)`` on each simplex.
+
+    Raises
+    ------
+    InvalidParameterError
+        When a local vertex index is not an integer in ``0..n``, or ``dim`` is not an integer >= 1.
+    ShapeError
+        When ``omega`` has the wrong shape (not one value per local triangle).
+    CurvatureMismatchError, NonFiniteError
+        When ``omega`` is not real, or not finite.
 
     Examples
     --------

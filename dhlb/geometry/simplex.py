@@ -59,6 +59,16 @@ def default_rtol(n: int) -> float:
 def squared_lengths_from_points(points: ArrayLike) -> np.ndarray:
     """Squared edge lengths ``(m, n+1, n+1)`` of simplices given by points ``(m, n+1, d)``.
 
+    Parameters
+    ----------
+    points : (m, n+1, d) float array
+        The vertex positions of ``m`` n-simplices in ``R^d``.
+
+    Returns
+    -------
+    L2 : (m, n+1, n+1) float array
+        ``L2[s, a, b] = |p_a - p_b|²`` for the vertices ``p_a, p_b`` of simplex ``s`` (symmetric, zero diagonal).
+
     Examples
     --------
     >>> squared_lengths_from_points([[[0, 0], [3, 0], [0, 4]]])[0]
@@ -75,6 +85,17 @@ def metric_from_squared_lengths(sq_lengths: ArrayLike) -> np.ndarray:
     """Metric ``g`` ``(m, n, n)`` in the edge basis from squared lengths ``(m, n+1, n+1)``.
 
     ``g_ab = (L2[0,a] + L2[0,b] - L2[a,b]) / 2`` (polarization identity; see module docstring).
+
+    Parameters
+    ----------
+    sq_lengths : (m, n+1, n+1) float array
+        Squared edge lengths of ``m`` n-simplices, ``sq_lengths[s, a, b] = |p_a - p_b|²``. Not checked
+        (use :meth:`SimplexStack.from_squared_lengths` for checked input).
+
+    Returns
+    -------
+    g : (m, n, n) float array
+        The symmetric metric in the edge basis ``e_a = p_a - p_0`` (``a = 1..n``) of each simplex.
 
     Examples
     --------
@@ -105,6 +126,21 @@ class SimplexStack:
     Build it with :meth:`from_points` or :meth:`from_squared_lengths`.  Quantities that need a
     positive-definite metric are ``nan`` on simplices that are not (see :attr:`status`, or call
     :meth:`check`, which raises).
+
+    Parameters
+    ----------
+    metric : (m, n, n) float array
+        The symmetric metric ``g`` of each simplex in its edge basis ``e_a = p_a - p_0``.
+    factor : (m, n, n) float array, optional
+        An upper-triangular ``R`` with ``g = RᵀR`` (e.g. from a QR of the edge vectors); computed when needed
+        if not given.
+    sq_lengths : (m, n+1, n+1) float array, optional
+        The squared edge lengths, if known (else computed from ``points``).
+    points : (m, n+1, d) float array, optional
+        The vertex positions, if known.
+    rtol : float, optional
+        Relative threshold below which ``λ_min(g)/λ_max(g)`` counts as zero (degenerate); default
+        ``100 n eps``.
 
     Examples
     --------

@@ -25,6 +25,11 @@ def example_path(name: str = "torus.obj") -> str:
         One of :data:`EXAMPLES` (``"torus.obj"``, ``"solid-torus.mesh"``, ``"spot.obj"``, ``"saddle.obj"``,
         ``"double-torus.obj"``).
 
+    Returns
+    -------
+    str
+        The path of the file in the installed package (``dhlb/data/``).
+
     Raises
     ------
     FileNotFoundError

@@ -30,6 +30,20 @@ def format_of(path: str | os.PathLike[str], fmt: str | None = None, hint: str = 
     file line); any other extension that meshio reads (``.vtu``, ``.stl``, ``.xdmf``, ...) is
     ``"meshio"`` when meshio is installed (``dhlb[meshio]``).
 
+    Parameters
+    ----------
+    path : str or path-like
+        The file; only its extension (case-insensitive) is used, and its name in messages.
+    fmt : str, optional
+        A format name or extension (``"off"``, ``".txt"``, ``"meshio"``) that overrides the extension.
+    hint : str, optional
+        Appended to the message for an unknown extension (what the caller can do instead).
+
+    Returns
+    -------
+    str
+        One of ``"obj"``, ``"off"``, ``"ply"``, ``"mesh"``, ``"msh"``, ``"vtk"``, ``"simplices"``, ``"meshio"``.
+
     Raises
     ------
     MeshParseError

@@ -192,6 +192,11 @@ def _nodes_and_elements(sec, version: str, path: str):
 def read_gmsh(path: str | os.PathLike[str]) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     """Read an ASCII Gmsh ``.msh`` file (format 2.2 or 4.1).
 
+    Parameters
+    ----------
+    path : str or path-like
+        The file to read.
+
     Returns
     -------
     V : (n, 3) float64
@@ -284,9 +289,22 @@ def write_gmsh(
 
     Parameters
     ----------
+    path : str or path-like
+        The output file, written atomically (:func:`~dhlb.io.atomic_write`); its folder must exist.
     V : (n, 3) float
     cells : (m, k+1) int array (k = 0..3) or dict {k: array}
     version : {"2.2", "4.1"}
+
+    Raises
+    ------
+    ValueError
+        ``version`` is neither ``"2.2"`` nor ``"4.1"``.
+    InvalidSimplexError
+        A wrong shape, a non-integer cell array, or a cell index out of range.
+    NonFiniteError
+        A vertex has a NaN or infinite coordinate.
+    OutputError
+        The file cannot be written (missing folder, no permission, disk full); nothing is left at ``path``.
 
     Examples
     --------

@@ -56,6 +56,11 @@ def _value_after(lines, toks, line, path, what):
 def read_medit(path: str | os.PathLike[str]) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     """Read a Medit ``.mesh`` file.
 
+    Parameters
+    ----------
+    path : str or path-like
+        The file to read.
+
     Returns
     -------
     V : (n, 3) float64
@@ -186,8 +191,19 @@ def write_medit(path: str | os.PathLike[str], V: ArrayLike, cells: ArrayLike | M
 
     Parameters
     ----------
+    path : str or path-like
+        The output file, written atomically (:func:`~dhlb.io.atomic_write`); its folder must exist.
     V : (n, 3) float
     cells : (m, k+1) int array with k in {1, 2, 3}, or dict {k: array}
+
+    Raises
+    ------
+    InvalidSimplexError
+        A wrong shape, a dimension other than 1, 2, 3, a non-integer cell array, or a cell index out of range.
+    NonFiniteError
+        A vertex has a NaN or infinite coordinate.
+    OutputError
+        The file cannot be written (missing folder, no permission, disk full); nothing is left at ``path``.
 
     Examples
     --------

@@ -29,6 +29,24 @@ __all__ = ["read_simplices", "parse_simplices_text", "write_simplices"]
 def parse_simplices_text(text: str, source: str = "<string>") -> list[tuple[int, ...]]:
     r"""Parse the text of a simplex list (see :func:`read_simplices`); ``source`` names it in errors.
 
+    Parameters
+    ----------
+    text : str
+        One simplex per line as whitespace-separated non-negative integer vertex labels; ``#`` starts a comment.
+    source : str, optional
+        The name of the text (a file name) in the messages of errors.
+
+    Returns
+    -------
+    list of tuple of int
+        The simplices in text order, vertices as written.
+
+    Raises
+    ------
+    MeshParseError
+        No simplices, a token that is not an integer, a negative label, or a repeated vertex within a line;
+        the message names ``source`` and the line.
+
     Examples
     --------
     >>> parse_simplices_text("# a triangle and a dangling edge\n0 1 2\n2 3  # edge\n")
@@ -108,6 +126,20 @@ def write_simplices(
     path: str | os.PathLike[str], simplices: SimplicialComplex | Iterable[Sequence[int]] | ArrayLike
 ) -> None:
     """Write simplices (an iterable of vertex tuples, or an int array) one per line.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The output file, written atomically (:func:`~dhlb.io.atomic_write`); its folder must exist.
+    simplices : iterable of sequence of int, or (m, k+1) int array
+        The simplices; each is written as its vertex labels in the given order.
+
+    Raises
+    ------
+    InvalidSimplexError
+        A simplex is empty or has a label that is not a non-negative integer (``bool`` included).
+    OutputError
+        The file cannot be written; nothing is left at ``path``.
 
     Examples
     --------

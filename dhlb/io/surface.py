@@ -58,6 +58,7 @@ def read_obj(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
     Parameters
     ----------
     path : str or path-like
+        The file to read.
 
     Returns
     -------
@@ -137,6 +138,24 @@ def read_obj(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
 def write_obj(path: str | os.PathLike[str], V: ArrayLike, F: ArrayLike) -> None:
     """Write a triangle (or polygon) mesh as OBJ, 1-based, coordinates exact (shortest repr).
 
+    Parameters
+    ----------
+    path : str or path-like
+        The output file, written atomically (:func:`~dhlb.io.atomic_write`); its folder must exist.
+    V : (n, 3) float array
+        Vertex positions.
+    F : (m, k) int array
+        0-based faces with ``k >= 3`` corners each (triangles: ``k = 3``).
+
+    Raises
+    ------
+    InvalidSimplexError
+        A wrong shape, a non-integer cell array, or a cell index out of range.
+    NonFiniteError
+        A vertex has a NaN or infinite coordinate.
+    OutputError
+        The file cannot be written (missing folder, no permission, disk full); nothing is left at ``path``.
+
     Examples
     --------
     >>> import os, tempfile, numpy as np
@@ -163,6 +182,11 @@ def read_off(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
     r"""Read an OFF file (also ``COFF``, ``NOFF``, ``STOFF``... : extra vertex/face values are skipped).
 
     Faces are ``k i_1 .. i_k [colour]`` with 0-based indices; polygons are fan-triangulated.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file to read.
 
     Returns
     -------
@@ -251,6 +275,24 @@ def read_off(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
 def write_off(path: str | os.PathLike[str], V: ArrayLike, F: ArrayLike) -> None:
     """Write a triangle (or polygon) mesh as ASCII OFF (0-based, exact coordinates).
 
+    Parameters
+    ----------
+    path : str or path-like
+        The output file, written atomically (:func:`~dhlb.io.atomic_write`); its folder must exist.
+    V : (n, 3) float array
+        Vertex positions.
+    F : (m, k) int array
+        0-based faces with ``k >= 3`` corners each (triangles: ``k = 3``).
+
+    Raises
+    ------
+    InvalidSimplexError
+        A wrong shape, a non-integer cell array, or a cell index out of range.
+    NonFiniteError
+        A vertex has a NaN or infinite coordinate.
+    OutputError
+        The file cannot be written (missing folder, no permission, disk full); nothing is left at ``path``.
+
     Examples
     --------
     >>> import os, tempfile, numpy as np
@@ -277,10 +319,26 @@ def read_surface(path: str | os.PathLike[str], fmt: str | None = None) -> tuple[
     Formats: ``obj``, ``off``, ``ply``; also ``mesh`` / ``msh`` / ``vtk`` files that contain
     triangles and no tetrahedra.
 
+    Parameters
+    ----------
+    path : str or path-like
+        The file to read.
+    fmt : str, optional
+        The format name (or extension) to use instead of the extension of ``path``
+        (:func:`~dhlb.io.format_of`); ``"meshio"`` reads the triangles of any format meshio reads.
+
     Returns
     -------
     V : (n, 3) float64
     F : (m, 3) int64, 0-based. Unreferenced vertices are kept (see :func:`dhlb.io.compact_mesh`).
+
+    Raises
+    ------
+    MeshParseError
+        Unknown format or one that holds no surfaces, a volume file with tetrahedra, a file without
+        triangles, or the errors of the reader of the format (which name the line).
+    NonFiniteError
+        A vertex has a NaN or infinite coordinate.
 
     Examples
     --------
@@ -318,6 +376,33 @@ def write_surface(
     """Write a triangle mesh; the format comes from the extension (``obj``, ``off``, ``ply``) or ``fmt``.
 
     Extra keyword arguments go to the writer (e.g. ``binary=True`` for PLY).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The output file, written atomically (:func:`~dhlb.io.atomic_write`); its folder must exist.
+    V : (n, 3) float array
+        Vertex positions.
+    F : (m, 3) int array
+        0-based triangles.
+    fmt : str, optional
+        ``"obj"``, ``"off"``, ``"ply"``, or ``"mesh"``, ``"msh"``, ``"vtk"`` (a surface in a volume format);
+        default: from the extension of ``path``.
+    **kwargs
+        Passed to the writer of the format (:func:`write_obj`, :func:`write_off`, :func:`~dhlb.io.write_ply`,
+        :func:`~dhlb.io.write_cells`).
+
+    Returns
+    -------
+    None
+        The writers return nothing.
+
+    Raises
+    ------
+    MeshParseError
+        Unknown format, or one that cannot store a surface.
+    InvalidSimplexError, NonFiniteError, OutputError
+        As the writer of the format: bad arrays, NaN/inf coordinates, a file that cannot be written.
 
     Examples
     --------

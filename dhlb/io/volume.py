@@ -25,10 +25,25 @@ __all__ = ["read_volume", "write_volume", "read_cells", "write_cells"]
 def read_cells(path: str | os.PathLike[str], fmt: str | None = None) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     """Read points and simplices by dimension from a ``.mesh``, ``.msh`` or ``.vtk`` file.
 
+    Parameters
+    ----------
+    path : str or path-like
+        The file to read.
+    fmt : str, optional
+        ``"mesh"``, ``"msh"`` or ``"vtk"`` (or the extension) instead of the extension of ``path``.
+
     Returns
     -------
     V : (n, 3) float64
     cells : dict {k: (m_k, k+1) int64}, 0-based, only the dimensions present in the file.
+
+    Raises
+    ------
+    MeshParseError
+        Unknown format or one that is not a volume format, or the errors of the reader
+        (:func:`~dhlb.io.read_medit`, :func:`~dhlb.io.read_gmsh`, :func:`~dhlb.io.read_vtk`), which name the line.
+    NonFiniteError
+        A vertex has a NaN or infinite coordinate.
 
     Examples
     --------
@@ -50,6 +65,13 @@ def read_cells(path: str | os.PathLike[str], fmt: str | None = None) -> tuple[np
 def read_volume(path: str | os.PathLike[str], fmt: str | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Read a tetrahedral mesh from a ``.mesh`` (Medit), ``.msh`` (Gmsh) or ``.vtk`` (legacy) file.
 
+    Parameters
+    ----------
+    path : str or path-like
+        The file to read.
+    fmt : str, optional
+        ``"mesh"``, ``"msh"`` or ``"vtk"`` (or the extension) instead of the extension of ``path``.
+
     Returns
     -------
     V : (n, 3) float64
@@ -59,7 +81,9 @@ def read_volume(path: str | os.PathLike[str], fmt: str | None = None) -> tuple[n
     Raises
     ------
     MeshParseError
-        Unparsable file, or a file without tetrahedra.
+        Unparsable file, unknown or non-volume format, or a file without tetrahedra.
+    NonFiniteError
+        A vertex has a NaN or infinite coordinate.
 
     Examples
     --------
@@ -86,6 +110,35 @@ def write_cells(
 ) -> None:
     """Write points and simplices to ``.mesh``, ``.msh`` or ``.vtk`` (format from the extension or ``fmt``).
 
+    Parameters
+    ----------
+    path : str or path-like
+        The output file, written atomically (:func:`~dhlb.io.atomic_write`); its folder must exist.
+    V : (n, 3) float array
+        Vertex positions.
+    cells : (m, k+1) int array or dict {k: (m_k, k+1) int array}
+        0-based k-simplices (k = 1..3 for Medit, 0..3 for Gmsh and VTK).
+    fmt : str, optional
+        ``"mesh"``, ``"msh"`` or ``"vtk"``; default: from the extension of ``path``.
+    **kwargs
+        Passed to the writer (e.g. ``version="4.1"`` for :func:`~dhlb.io.write_gmsh`).
+
+    Returns
+    -------
+    None
+        The writers return nothing.
+
+    Raises
+    ------
+    MeshParseError
+        Unknown format, or one that is not a volume format.
+    InvalidSimplexError
+        A wrong shape, a dimension the format does not store, a non-integer cell array, or a cell index out of range.
+    NonFiniteError
+        A vertex has a NaN or infinite coordinate.
+    OutputError
+        The file cannot be written; nothing is left at ``path``.
+
     Examples
     --------
     >>> import os, tempfile, numpy as np
@@ -110,6 +163,26 @@ def write_volume(
     path: str | os.PathLike[str], V: ArrayLike, T: ArrayLike, fmt: str | None = None, **kwargs: Any
 ) -> None:
     """Write a tetrahedral mesh ``(V, T)`` to ``.mesh``, ``.msh`` or ``.vtk``.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The output file, written atomically (:func:`~dhlb.io.atomic_write`); its folder must exist.
+    V : (n, 3) float array
+        Vertex positions.
+    T : (m, 4) int array
+        0-based tetrahedra.
+    fmt : str, optional
+        ``"mesh"``, ``"msh"`` or ``"vtk"``; default: from the extension of ``path``.
+    **kwargs
+        Passed to the writer, as in :func:`write_cells`.
+
+    Raises
+    ------
+    InvalidSimplexError
+        ``T`` is not an ``(m, 4)`` array, or as :func:`write_cells`.
+    MeshParseError, NonFiniteError, OutputError
+        As :func:`write_cells`.
 
     Examples
     --------

@@ -111,6 +111,11 @@ def _legacy_offsets(data: np.ndarray, lines: np.ndarray, n_cells: int, path: str
 def read_vtk(path: str | os.PathLike[str]) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     """Read a legacy ASCII VTK ``UNSTRUCTURED_GRID`` file.
 
+    Parameters
+    ----------
+    path : str or path-like
+        The file to read.
+
     Returns
     -------
     V : (n, 3) float64
@@ -234,8 +239,19 @@ def write_vtk(path: str | os.PathLike[str], V: ArrayLike, cells: ArrayLike | Map
 
     Parameters
     ----------
+    path : str or path-like
+        The output file, written atomically (:func:`~dhlb.io.atomic_write`); its folder must exist.
     V : (n, 3) float
     cells : (m, k+1) int array (k = 0..3) or dict {k: array}
+
+    Raises
+    ------
+    InvalidSimplexError
+        A wrong shape, a non-integer cell array, or a cell index out of range.
+    NonFiniteError
+        A vertex has a NaN or infinite coordinate.
+    OutputError
+        The file cannot be written (missing folder, no permission, disk full); nothing is left at ``path``.
 
     Examples
     --------

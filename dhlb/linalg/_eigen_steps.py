@@ -24,28 +24,36 @@ __all__ = ["EigenResult", "m_orthonormalize"]
 class EigenResult:
     """Result of :func:`~dhlb.linalg.smallest_eigenpairs`.
 
-    Attributes
+    Every parameter is kept as the attribute of the same name.
+
+    Parameters
     ----------
-    eigenvalues : (k,) float, ascending
-    eigenvectors : (n, k) array, columns M-orthonormal (``Uᴴ M U = I``)
+    eigenvalues : (k,) float array
+        The eigenvalues, ascending.
+    eigenvectors : (n, k) float or complex array
+        The eigenvectors as columns, M-orthonormal (``Uᴴ M U = I``).
     iterations : int
         Applications of the shifted inverse (ARPACK), LOBPCG iterations, or 0 (dense).
-    residuals : (k,) float, normwise backward errors ``η``
+    residuals : (k,) float array
+        The normwise backward errors ``η`` of the pairs.
     converged : bool
+        Whether every pair passed the backward-error test.
     backend : str
         The factorization backend actually used.
-    shift : float, the shift ``σ`` that was factorized (``A − σM``)
-    block_size : int
+    shift : float
+        The shift ``σ`` that was factorized (``A − σM``).
+    block_size : int, optional
         The number of Krylov vectors (ARPACK's ``ncv``) or of the LOBPCG block.
-    method : str, ``"arpack"``, ``"dense"`` or ``"lobpcg"``
-    factorizations : int
+    method : str, optional
+        ``"arpack"``, ``"dense"``, ``"lobpcg"``, or ``"rayleigh-ritz"`` (the warm start passed as it was).
+    factorizations : int, optional
         The number of sparse factorizations done.
-    solves : int
+    solves : int, optional
         The number of solves with the factorization (right-hand sides).
-    note : str
+    note : str, optional
         Empty, or why the solver departed from the requested method (e.g. the factorization would
         not fit in memory and an iterative backend was used instead).
-    factor : object or None
+    factor : object or None, optional
         The factorization of ``A − shift·M`` that was used (``factor.solve(B)`` solves
         ``(A − shift·M) X = B``), so that callers can reuse it without refactorizing; ``None`` for
         iterative backends.  Not part of equality or ``repr``.

@@ -284,6 +284,11 @@ def register_backend(name: str, factory, requires=()) -> None:
 def available_backends() -> list[str]:
     """Names of the backends whose dependencies are importable, in registry order.
 
+    Returns
+    -------
+    list of str
+        The names; ``"superlu"`` is always among them.
+
     Examples
     --------
     >>> "superlu" in available_backends()                           # always available (scipy)
@@ -377,6 +382,24 @@ def select_backend(n: int, nnz: int, *, eigen: bool = True, shifted: bool = Fals
 
     ``shifted`` (``sigma`` given: interior eigenvalues, indefinite ``A − σM``) excludes the
     iterative path.
+
+    Parameters
+    ----------
+    n : int
+        The number of unknowns.
+    nnz : int
+        The number of nonzeros of the matrix.
+    eigen : bool, optional
+        Whether the problem is a smallest-eigenpair problem (else a linear solve).
+    shifted : bool, optional
+        Whether a shift ``sigma`` is given (interior eigenvalues).
+    dimension : float or callable or None, optional
+        The :func:`pattern_dimension` of the matrix, or a callable returning it (called only when needed).
+
+    Returns
+    -------
+    str
+        A backend name: ``"amg-lobpcg"``, ``"superlu"`` or ``"cholmod"``.
 
     Examples
     --------

@@ -81,6 +81,18 @@ DENSE_MAX = 400
 def default_shift(A: sp.csr_matrix, M: sp.csr_matrix) -> float:
     """``ε = sqrt(eps) ρ`` with ``ρ = max_i Σ_j |A_ij| / sqrt(M_ii M_jj)`` (see module docstring).
 
+    Parameters
+    ----------
+    A : (n, n) scipy.sparse matrix
+        The Hermitian operator (not checked).
+    M : (n, n) scipy.sparse matrix
+        The Hermitian mass matrix, with a positive diagonal (not checked).
+
+    Returns
+    -------
+    float
+        The shift ``ε`` (with ``ρ = 1`` when ``A`` is zero).
+
     Examples
     --------
     >>> import scipy.sparse as sp
@@ -98,6 +110,32 @@ def backward_errors(A, M, eigenvalues, eigenvectors) -> np.ndarray:
 
     ``η_i`` is (up to the choice of norms) the smallest relative perturbation of ``(A, M)`` that
     makes ``(λ_i, u_i)`` an exact eigenpair; it is the residual used by :func:`smallest_eigenpairs`.
+
+    Parameters
+    ----------
+    A : (n, n) scipy.sparse matrix or array
+        The Hermitian operator.
+    M : (n, n) scipy.sparse matrix or array
+        The Hermitian mass matrix, with a positive diagonal.
+    eigenvalues : (k,) float array
+        The approximate eigenvalues ``λ_i`` (a scalar counts as ``k = 1``).
+    eigenvectors : (n, k) float or complex array
+        The approximate eigenvectors ``u_i`` as columns (an ``(n,)`` array counts as one column).
+
+    Returns
+    -------
+    eta : (k,) float array
+        The backward error of each pair (0 where the denominator vanishes and the residual is 0).
+
+    Raises
+    ------
+    ShapeError
+        When ``A`` or ``M`` is not a non-empty square numeric matrix, their shapes differ, or
+        ``eigenvectors`` does not have shape ``(n, k)``.
+    NonFiniteError
+        When ``A`` or ``M`` has a NaN or infinite entry.
+    InvalidOperatorError
+        When ``A`` or ``M`` is not Hermitian, or ``M`` has a non-positive diagonal entry.
 
     Examples
     --------
@@ -119,6 +157,16 @@ def backward_errors(A, M, eigenvalues, eigenvectors) -> np.ndarray:
 
 def default_tol(n: int) -> float:
     """The default backward-error tolerance for ``n`` unknowns, ``min(1e-10, 3e-6 / n)`` (module docstring).
+
+    Parameters
+    ----------
+    n : int
+        The number of unknowns (values below 1 count as 1).
+
+    Returns
+    -------
+    float
+        The tolerance.
 
     Examples
     --------

@@ -21,11 +21,38 @@ def solve(A, M, lam, b, *, backend=None, positive_definite: bool = False) -> np.
     symmetric ``L D Lᴴ``) at no extra cost; an iterative backend (CG) can only check the
     necessary condition ``Re xᴴ b > 0``.
 
+    Parameters
+    ----------
+    A : (n, n) scipy.sparse matrix or array
+        The Hermitian operator.
+    M : (n, n) scipy.sparse matrix or array
+        The Hermitian mass matrix, with a positive diagonal.
+    lam : float
+        The shift ``λ``.
+    b : (n,) or (n, r) float or complex array
+        The right-hand side(s).
+    backend : str or backend object, optional
+        ``None``/``"auto"``, a name from :func:`available_backends`, or an object with ``name`` and
+        ``factorize(K, positive_definite=False)``.
+    positive_definite : bool, optional
+        Assert, and check, that ``A − λM`` is positive definite.
+
+    Returns
+    -------
+    x : (n,) or (n, r) float or complex array
+        The solution, of the shape of ``b``; complex when ``A``, ``M`` or ``b`` is.
+
     Raises
     ------
     ShapeError, NonFiniteError, InvalidOperatorError
         Bad shapes, NaN/inf, non-Hermitian input, ``A − λM`` singular, or (``positive_definite``)
         not positive definite: the message names ``λ``.
+    InvalidParameterError
+        When ``lam`` is not a finite scalar, or ``backend`` names an unknown or uninstalled backend.
+    InsufficientMemoryError
+        When the factorization would not fit in the available memory.
+    TypeError
+        When ``backend`` is an object without ``name`` and ``factorize``.
 
     Examples
     --------

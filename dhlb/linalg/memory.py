@@ -47,6 +47,11 @@ def set_memory_limit(nbytes: int | None) -> None:
     ``min(nbytes, available_bytes())``.  The environment variable ``DHLB_MEMORY_LIMIT`` (bytes,
     or with a suffix ``K``, ``M``, ``G``) does the same.
 
+    Parameters
+    ----------
+    nbytes : int or None
+        The number of bytes to pretend are at most available, or ``None`` to drop the limit set before.
+
     Examples
     --------
     >>> set_memory_limit(10**6); available_bytes() <= 10**6
@@ -105,6 +110,13 @@ def _rlimit_available() -> int | None:
 
 def available_bytes() -> int:
     """Bytes this process can still allocate: the least of free memory, cgroup and ``RLIMIT_AS`` room.
+
+    A limit set by :func:`set_memory_limit` or ``DHLB_MEMORY_LIMIT`` counts as one more figure.
+
+    Returns
+    -------
+    int
+        The least of the figures that can be read here, at least 0; ``2**62`` when none can.
 
     Examples
     --------

@@ -36,7 +36,9 @@ __all__ = [
 class Known:
     """A triangulated space together with what is known about it from its construction.
 
-    Attributes
+    Every parameter is kept as the attribute of the same name.
+
+    Parameters
     ----------
     simplices : tuple of tuple of int
         The top simplices with their (random, non-contiguous) vertex labels, in the order the
@@ -46,13 +48,15 @@ class Known:
     dim : int
         Its dimension.
     euler_characteristic : int
+        Its Euler characteristic.
     orientable : bool
+        Whether it is orientable.
     homology : tuple of (int, tuple of int)
         Integer homology ``H_k`` for ``k = 0 .. dim`` as ``(rank, torsion coefficients)``;
         e.g. ``((1, ()), (0, (2,)), (0, ()))`` for RP².
-    seed : str
+    seed : str, optional
         The starting triangulation (``"rp2"``, ``"torus7"``, ``"kuhn(3,3,3)"``, …).
-    moves : tuple of str
+    moves : tuple of str, optional
         The local moves applied to the seed, in order (``"flip(3,5)"``, ``"stellar_edge(0,2)"``,
         ``"stellar_simplex(4)"``); the vertex numbers are those before the final relabeling.
 
@@ -431,6 +435,13 @@ def closed_surfaces(orientable: bool | None = None, max_moves: int = 6, names=No
         Restrict to these spaces (``"S^2"``, ``"T^2"``, ``"RP^2"``, ``"Klein bottle"``,
         ``"genus-2 surface"``, ``"RP^2 # T^2"``) or seeds (``"torus7"``, …).
 
+    Other Parameters
+    ----------------
+    _legacy : bool, optional
+        For the adapters in the test suite (``tests/strategies.py``) only: only the original seed
+        spaces and the vertex-label range of the former strategy, so that the examples of the
+        former strategies keep their shapes.
+
     Returns
     -------
     SearchStrategy of Known
@@ -477,6 +488,13 @@ def closed_manifolds(dim: int, max_moves: int = 3, names=None, orientable: bool 
         Restrict to these spaces (``"S^3"``, ``"T^3"``, ``"RP^3"``, ``"S^1 x S^2"``, …) or seeds.
     orientable : bool, optional
 
+    Other Parameters
+    ----------------
+    _legacy : bool, optional
+        For the adapters in the test suite (``tests/strategies.py``) only: only the original seed
+        spaces and the vertex-label range of the former strategy, so that the examples of the
+        former strategies keep their shapes.
+
     Returns
     -------
     SearchStrategy of Known
@@ -511,11 +529,22 @@ def balls(dim: int, max_moves: int = 4, *, _legacy: bool = False) -> st.SearchSt
     max_moves : int
         Largest number of stellar subdivisions (of edges and top simplices).
 
+    Other Parameters
+    ----------------
+    _legacy : bool, optional
+        For the adapters in the test suite (``tests/strategies.py``) only: the vertex-label range
+        of the former strategy, so that the examples of the former strategy keep their shapes.
+
     Returns
     -------
     SearchStrategy of Known
         ``name = "B^dim"``, Euler characteristic 1, orientable, homology ``Z`` in degree 0 and
         0 elsewhere. Shrinks towards the ``dim``-simplex.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``dim`` is not an integer >= 1, or ``max_moves`` not an integer >= 0.
 
     Examples
     --------
