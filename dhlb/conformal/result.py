@@ -1,4 +1,7 @@
-"""What :func:`~dhlb.conformal.conformal_deformation` returns: :class:`ConformalResult` (deformed points, φ, distortion)."""
+"""What :func:`~dhlb.conformal.conformal_deformation` returns.
+
+:class:`ConformalResult` (deformed points, φ, distortion).
+"""
 
 from __future__ import annotations
 
@@ -54,6 +57,7 @@ class ConformalResult:
 
     Examples
     --------
+    >>> from dhlb.conformal import conformal_deformation
     >>> from dhlb.mesh import box_tet_mesh
     >>> res = conformal_deformation(box_tet_mesh(2), None, 0.5)            # u = 1/2: scale by e^{1/2}
     >>> bool(abs(res.distortion.max() - 1) < 1e-9), sorted(res.to_json())[:4]
@@ -87,6 +91,7 @@ class ConformalResult:
         Examples
         --------
         >>> import json
+        >>> from dhlb.conformal import conformal_deformation
         >>> from dhlb.mesh import box_tet_mesh
         >>> d = conformal_deformation(box_tet_mesh(1), None, 0.0).to_json()
         >>> len(d["points"]), len(d["tets"]), len(json.dumps(d)) > 100
@@ -124,6 +129,7 @@ class ConformalResult:
         --------
         >>> import os, tempfile
         >>> from dhlb.io import read_volume
+        >>> from dhlb.conformal import conformal_deformation
         >>> from dhlb.mesh import box_tet_mesh
         >>> res = conformal_deformation(box_tet_mesh(1), None, 0.0)
         >>> with tempfile.TemporaryDirectory() as d:

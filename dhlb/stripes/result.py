@@ -1,4 +1,7 @@
-"""What :func:`~dhlb.stripes.stripe_pattern` returns: :class:`StripePattern` (texture, section, zeros and branch faces)."""
+"""What :func:`~dhlb.stripes.stripe_pattern` returns.
+
+:class:`StripePattern` (texture, section, zeros and branch faces).
+"""
 
 from __future__ import annotations
 

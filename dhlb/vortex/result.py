@@ -1,4 +1,7 @@
-"""What :func:`~dhlb.vortex.vortex_filaments` returns: :class:`VortexResult` (filaments, section, bundle, linking numbers)."""
+"""What :func:`~dhlb.vortex.vortex_filaments` returns.
+
+:class:`VortexResult` (filaments, section, bundle, linking numbers).
+"""
 
 from __future__ import annotations
 
