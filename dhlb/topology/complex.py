@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import scipy.sparse as sp
 
-from dhlb.errors import InvalidSimplexError, SimplexNotFoundError
+from dhlb.errors import InvalidParameterError, InvalidSimplexError, SimplexNotFoundError
 from dhlb.topology import _incidence, _keys
 from dhlb.topology._incidence import VertexAdjacency
 from dhlb.topology._input import parse_rows, parse_simplices
@@ -392,3 +392,85 @@ class SimplicialComplex:
         return all(np.array_equal(a, b) for a, b in zip(self._rows, other._rows))
 
     __hash__ = None  # mutable-free but array-valued: compare, don't hash
+
+    # ------------------------------------------------------------------ graphs (networkx, optional)
+    @classmethod
+    def from_graph(cls, G, kind: str = "clique", max_dim: int | None = None) -> SimplicialComplex:
+        """The complex of a networkx graph: its clique (flag) complex.
+
+        Vertex ``i`` is the node ``list(G.nodes)[i]``;
+        :func:`~dhlb.topology.networkx_bridge.flag_complex` also returns that list, and says how
+        directed graphs and multigraphs are read.
+
+        Parameters
+        ----------
+        G : networkx.Graph (or DiGraph, MultiGraph, MultiDiGraph)
+            The graph; any hashable nodes, no self-loops.
+        kind : {"clique"}
+            ``"clique"``: the k-simplices are the (k+1)-cliques of ``G``.
+        max_dim : int >= 0, optional
+            The largest simplex dimension kept; default every clique (clique number − 1).
+
+        Returns
+        -------
+        SimplicialComplex
+            The flag complex; ``X.vertex_labels`` is ``0 .. n-1``.
+
+        Raises
+        ------
+        InvalidParameterError
+            ``kind`` is not ``"clique"``, or ``max_dim`` is negative.
+        ImportError
+            networkx is not installed (the message names ``pip install "dhlb[graph]"``).
+        InvalidTypeError
+            ``G`` is not a networkx graph, or ``max_dim`` is not an integer.
+        InvalidSimplexError
+            ``G`` has a self-loop.
+
+        Examples
+        --------
+        >>> import networkx as nx
+        >>> SimplicialComplex.from_graph(nx.complete_graph(4)).counts
+        (4, 6, 4, 1)
+        """
+        if kind != "clique":
+            raise InvalidParameterError(f"kind must be one of ('clique',), got {kind!r}")
+        from dhlb.topology.networkx_bridge import flag_complex
+
+        return flag_complex(G, max_dim)[0]
+
+    def to_networkx(self, kind: str = "skeleton"):
+        """The complex as a networkx graph: its 1-skeleton or its dual graph.
+
+        Parameters
+        ----------
+        kind : {"skeleton", "dual"}
+            ``"skeleton"``: :func:`~dhlb.topology.networkx_bridge.skeleton_graph` (vertex indices,
+            edge attribute ``'index'``); ``"dual"``: :func:`~dhlb.topology.networkx_bridge.dual_graph`
+            (top-simplex indices, edge attribute ``'face'``).
+
+        Returns
+        -------
+        networkx.Graph
+            A new graph (changing it does not change the complex).
+
+        Raises
+        ------
+        InvalidParameterError
+            ``kind`` is not one of ``"skeleton"``, ``"dual"``.
+        ImportError
+            networkx is not installed (the message names ``pip install "dhlb[graph]"``).
+
+        Examples
+        --------
+        >>> from dhlb import examples
+        >>> T = examples.torus()
+        >>> T.to_networkx().number_of_edges(), T.to_networkx("dual").number_of_edges()
+        (21, 21)
+        """
+        from dhlb.topology import networkx_bridge
+
+        graphs = {"skeleton": networkx_bridge.skeleton_graph, "dual": networkx_bridge.dual_graph}
+        if kind not in graphs:
+            raise InvalidParameterError(f"kind must be one of {tuple(graphs)}, got {kind!r}")
+        return graphs[kind](self)
