@@ -7,7 +7,6 @@ from hypothesis import strategies as st
 
 from dhlb import SimplicialComplex
 from dhlb.bundles import HermitianLineBundle, check_integrality
-from dhlb.bundles._util import coboundary, wrap_angle
 from dhlb.errors import (
     CurvatureMismatchError,
     InvalidConnectionError,
@@ -16,6 +15,8 @@ from dhlb.errors import (
     NonOrientableError,
     NotClosedError,
 )
+from dhlb.forms import wrap_angle
+from dhlb.topology._incidence import coboundary_values as coboundary
 from dhlb.topology.homology import cohomology
 from tests.strategies import closed_manifolds, closed_surfaces, rich_complexes, rp2, sphere, torus7
 

@@ -7,8 +7,8 @@ from hypothesis import strategies as st
 
 from dhlb import SimplicialComplex
 from dhlb.bundles import HermitianLineBundle, index_form, index_sum, line_bundle_with_curvature, rotation_form
-from dhlb.bundles._util import coboundary
 from dhlb.errors import NonFiniteError, SectionZeroError
+from dhlb.topology._incidence import coboundary_values as coboundary
 from dhlb.topology.homology import cohomology, homology
 from tests.strategies import balls, closed_manifolds, closed_surfaces, connected_sum, rp2, sphere, torus7
 

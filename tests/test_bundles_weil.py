@@ -16,9 +16,10 @@ from dhlb.bundles import (
     integer_cycle_basis,
     line_bundle_with_curvature,
 )
-from dhlb.bundles._util import coboundary, wrap_angle
 from dhlb.errors import IntegralityError, NotClosedError
 from dhlb.examples import klein_bottle, lens_space, projective_plane, projective_space, torus
+from dhlb.forms import wrap_angle
+from dhlb.topology._incidence import coboundary_values as coboundary
 from dhlb.topology.homology import cohomology, homology
 from tests.strategies import closed_manifolds, closed_surfaces, connected_sum, rich_complexes, torus7
 

@@ -26,7 +26,7 @@ def test_exact_forms_are_closed_and_exact(X, seed):
         for group in GROUPS:
             beta = random_form(rng, X, k, group).d()
             assert beta.is_closed()
-            assert beta.is_exact()
+            assert is_exact(beta)
             res = solve_d(beta)
             assert res.exact and res.residual <= 1e-8
             assert res.solution.group == group and res.solution.k == k
@@ -44,12 +44,12 @@ def test_lemma2_exact_iff_zero_periods_over_R(X, seed):
         beta = random_form(rng, X, k, "R")
         r = solve_d(beta)
         periods_vanish = bool(np.all(np.abs(C.T @ beta.values) <= 1e-8))
-        assert r.exact == periods_vanish == beta.is_exact()
+        assert r.exact == periods_vanish == is_exact(beta)
         # the least-squares residual β − dα is a real cycle, orthogonal to im d
         resid = beta.values - r.solution.d().values
         assert np.allclose(X.boundary(k) @ resid, 0.0, atol=1e-8)
         exact_part = Cochain(X, k, r.solution.d().values)
-        assert exact_part.is_exact() and np.allclose(C.T @ exact_part.values, 0.0, atol=1e-8)
+        assert is_exact(exact_part) and np.allclose(C.T @ exact_part.values, 0.0, atol=1e-8)
 
 
 def test_least_squares_residuals_analytic():
@@ -92,7 +92,7 @@ def test_solve_over_Z():
     assert solve_d(Cochain(P, 2, e)).exact
     with pytest.raises(NotExactError, match="torsion"):
         solve_d(Cochain(P, 2, e, "Z"))
-    assert not Cochain(P, 2, e, "Z").is_exact()
+    assert not is_exact(Cochain(P, 2, e, "Z"))
     assert solve_d(Cochain(P, 2, 2 * e, "Z")).exact
     # the group argument converts
     assert solve_d(Cochain(P, 2, e, "Z"), group="R").exact
@@ -103,9 +103,9 @@ def test_circle_one_forms_with_winding():
     X = SimplicialComplex(cycle(3))  # edges 01, 02, 12; the loop 0→1→2→0 is (1, -1, 1)
     step = 2 * np.pi / 3
     w = Cochain(X, 1, [step, -step, step], "S1")  # winds once: period 2π ≡ 0
-    assert not Cochain(X, 1, w.values).is_exact()  # over R it is not exact
+    assert not is_exact(Cochain(X, 1, w.values))  # over R it is not exact
     f = integrate_closed_1form(w)
-    assert f.d().allclose(w) and w.is_exact()
+    assert f.d().allclose(w) and is_exact(w)
     near = Cochain(X, 1, [3.1, 6.2 - 2 * np.pi, 3.1], "S1")  # path sums pass ±π
     f = integrate_closed_1form(near)
     assert f.values[0] == 0.0 and f.values[2] == pytest.approx(wrap_angle(6.2))
@@ -120,7 +120,7 @@ def test_circle_one_forms_with_winding():
     e[0] = 1
     for mult in (1, 2):
         w = Cochain(P, 1, 2 * np.pi * solve_d(Cochain(P, 2, mult * e)).solution.values, "S1")
-        assert w.is_closed() and w.is_exact() == (mult == 2)
+        assert w.is_closed() and is_exact(w) == (mult == 2)
         if mult == 1:
             with pytest.raises(NotExactError) as info:
                 solve_d(w)
@@ -149,13 +149,13 @@ def test_top_forms_on_closed_surfaces(surface, seed, winding):
     off[0] += 0.25
     beta = Cochain(X, 2, off, "S1")
     if orientable:
-        assert not beta.is_exact() and not Cochain(X, 2, off).is_exact()
+        assert not is_exact(beta) and not is_exact(Cochain(X, 2, off))
         with pytest.raises(NotExactError) as info:
             solve_d(beta)
         assert abs(info.value.defect) == pytest.approx(0.25, abs=1e-8)
         assert abs(beta.pair(info.value.cycle)) == pytest.approx(0.25, abs=1e-8)
     else:
-        assert beta.is_exact() and solve_d(beta).solution.d().allclose(beta, tol=1e-8)
+        assert is_exact(beta) and solve_d(beta).solution.d().allclose(beta, tol=1e-8)
 
 
 def test_circle_two_forms_on_a_three_complex_with_torsion():
@@ -168,7 +168,7 @@ def test_circle_two_forms_on_a_three_complex_with_torsion():
         xi = solve_d(Cochain(Y, 3, mult * m)).solution
         beta = Cochain(Y, 2, 2 * np.pi * xi.values, "S1")
         assert beta.is_closed()
-        assert beta.is_exact() == exact
+        assert is_exact(beta) == exact
         if exact:
             assert solve_d(beta).solution.d().allclose(beta, tol=1e-8)
         else:
@@ -212,7 +212,7 @@ def test_cstar_solve_and_obstructions():
     theta = rng.uniform(-1, 1, 4)
     theta += (2 * np.pi - c @ theta) / 4 * c  # total flux 2π: exact over C* (not over C)
     flux = Cochain(S2, 2, 2.0 * np.exp(1j * theta), "C*")
-    assert flux.is_exact() and not Cochain(S2, 2, theta).is_exact()
+    assert is_exact(flux) and not is_exact(Cochain(S2, 2, theta))
     assert solve_d(flux).solution.d().allclose(flux)
 
 
@@ -243,9 +243,9 @@ def test_integrate_names_a_failing_cycle(X, seed):
             assert err.cycle[0] == err.cycle[-1] and len(err.cycle) >= 4
             assert group_distance(group, w.pair(Chain.path(X, err.cycle)), err.defect) <= 1e-9
             assert get_group(group).distance(np.asarray(err.defect)) > 1e-9
-            assert not w.is_exact()
+            assert not is_exact(w)
         else:
-            assert f.d().allclose(w) and w.is_exact()
+            assert f.d().allclose(w) and is_exact(w)
 
 
 def test_integrate_forest_and_large_mesh():
@@ -299,3 +299,13 @@ def test_bad_arguments_of_chains_and_solvers():
         solve_d(np.zeros(4))
     assert is_exact(Cochain(X, 0, np.zeros(4))) and not is_exact(Cochain(X, 0, [0, 1, 0, 0], "Z"))
     assert solve_d(Cochain(X, 3, [])).exact
+
+
+def test_cochain_is_exact_method_is_deprecated_and_still_answers():
+    X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])  # a circle: the loop form is closed, not exact
+    loop, grad = Cochain(X, 1, [1.0, -1.0, 1.0]), Cochain(X, 0, [0.0, 1.0, 3.0]).d()
+    with pytest.warns(DeprecationWarning, match=r"dhlb\.forms\.is_exact"):
+        assert loop.is_exact() is False
+    with pytest.warns(DeprecationWarning, match=r"dhlb\.forms\.is_exact"):
+        assert grad.is_exact() is True
+    assert is_exact(loop) is False and is_exact(grad) is True

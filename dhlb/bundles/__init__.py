@@ -16,14 +16,9 @@ from dhlb.bundles.morphisms import (
     is_morphism,
     tensor,
 )
-from dhlb.bundles.paths import (
-    LoopGroupPresentation,
-    SpanningForest,
-    fundamental_cycles,
-    loop_group_presentation,
-    spanning_forest,
-)
+from dhlb.bundles.paths import LoopGroupPresentation, loop_group_presentation
 from dhlb.bundles.vector_bundle import VectorBundle
+from dhlb.topology.graph import SpanningForest, fundamental_cycles, spanning_forest
 
 __all__ = [
     "VectorBundle",

@@ -13,8 +13,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.bundles._util import coboundary, simplex_name, wrap_angle
 from dhlb.errors import CurvatureMismatchError, InvalidConnectionError, NonFiniteError, NotClosedError, differing_digits
+from dhlb.forms.groups import wrap_angle
+from dhlb.topology._incidence import coboundary_values as coboundary
+from dhlb.topology._names import simplex_name
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike

@@ -26,8 +26,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from dhlb.bundles._util import wrap_angle
-from dhlb.bundles.paths import spanning_forest
+from dhlb.forms.groups import wrap_angle
+from dhlb.topology.graph import spanning_forest
 
 __all__ = ["solve_mod_2pi"]
 

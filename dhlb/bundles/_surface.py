@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from dhlb.bundles.paths import bfs_forest, tree_accumulate
+from dhlb.topology.graph import bfs_forest, tree_accumulate
 
 __all__ = ["SurfaceCycles", "surface_cycles"]
 

@@ -11,8 +11,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.bundles._util import simplex_name
 from dhlb.errors import InvalidConnectionError
+from dhlb.topology._names import simplex_name
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike

@@ -25,12 +25,16 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.bundles import paths
+from dhlb.bundles import _sections
 from dhlb.bundles._hermitian_checks import checked_connection, checked_curvature, from_cochain
 from dhlb.bundles._hermitian_checks import real_vector as _real_vector  # also imported by weil.py
-from dhlb.bundles._util import coboundary, simplex_name, wrap_angle
+from dhlb.bundles.integrality import check_integrality
 from dhlb.bundles.vector_bundle import VectorBundle
 from dhlb.errors import IntegralityError, InvalidConnectionError, NonManifoldError, NonOrientableError, NotClosedError
+from dhlb.forms.groups import wrap_angle
+from dhlb.topology import graph
+from dhlb.topology._incidence import coboundary_values as coboundary
+from dhlb.topology._names import simplex_name
 
 if TYPE_CHECKING:
     from typing import Any
@@ -183,8 +187,8 @@ class HermitianLineBundle:
 
     # ------------------------------------------------------------------ classification
     @cached_property
-    def _forest(self) -> paths.SpanningForest:
-        return paths.spanning_forest(self._X)
+    def _forest(self) -> graph.SpanningForest:
+        return graph.spanning_forest(self._X)
 
     def class_angles(self) -> np.ndarray:
         """The class in Hom(ker ∂₁, S¹): holonomy angle around each fundamental cycle of the BFS forest."""
@@ -193,7 +197,7 @@ class HermitianLineBundle:
         child = np.nonzero(T.parent >= 0)[0]
         step = np.zeros(self._X.n_vertices)
         step[child] = np.where(T.parent[child] < child, 1.0, -1.0) * w[T.parent_edge[child]]
-        phi = paths.tree_accumulate(T, step, np.add, 0.0)
+        phi = graph.tree_accumulate(T, step, np.add, 0.0)
         E = self._X.simplices(1)[T.nontree]
         return wrap_angle(phi[E[:, 0]] + w[T.nontree] - phi[E[:, 1]])
 
@@ -223,7 +227,7 @@ class HermitianLineBundle:
         ratio = self.connection_angles - other.connection_angles
         step = np.zeros(self._X.n_vertices)
         step[child] = np.where(T.parent[child] < child, 1.0, -1.0) * ratio[T.parent_edge[child]]
-        return np.exp(1j * paths.tree_accumulate(T, step, np.add, 0.0))
+        return np.exp(1j * graph.tree_accumulate(T, step, np.add, 0.0))
 
     def is_isomorphic(self, other: HermitianLineBundle) -> bool:
         """Isomorphic as bundles with curvature: equal Ω and equal class in Hom(ker ∂₁, S¹)."""
@@ -314,20 +318,15 @@ class HermitianLineBundle:
         return deg
 
     def check_integrality(self) -> np.ndarray:
-        """Theorem 7: periods ``∫_C Ω / 2π`` over an integer basis of 2-cycles (see :func:`weil.check_integrality`)."""
-        from dhlb.bundles.weil import check_integrality
-
+        """Theorem 7: periods ``∫_C Ω / 2π`` over an integer basis of 2-cycles (see :func:`check_integrality`)."""
         return check_integrality(self._X, self._Om, atol=self._atol)
 
     # ------------------------------------------------------------------ sections and indices
     def rotation_form(self, section: ArrayLike) -> np.ndarray:
         """Rotation form ξ of a nowhere-vanishing section (see :func:`dhlb.bundles.index.rotation_form`)."""
-        from dhlb.bundles.index import rotation_form
-
-        return rotation_form(self, section)
+        return _sections.rotation_angles(self._X.simplices(1), _sections.checked_section(self._X, section),
+                                         self.connection)
 
     def index_form(self, section: ArrayLike) -> np.ndarray:
         """Index form ``(dξ + Ω)/2π`` as int64 per triangle (see :func:`dhlb.bundles.index.index_form`)."""
-        from dhlb.bundles.index import index_form
-
-        return index_form(self, section)
+        return _sections.index_values(self._X, self.rotation_form(section), self.curvature)

@@ -28,8 +28,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.bundles._util import coboundary, simplex_name
-from dhlb.errors import CurvatureMismatchError, NonFiniteError, SectionZeroError
+from dhlb.bundles._sections import checked_section, index_values, rotation_angles
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -38,27 +37,6 @@ if TYPE_CHECKING:
 
 __all__ = ["rotation_form", "index_form", "index_sum"]
 
-
-def _section(L, section) -> np.ndarray:
-    X = L.X
-    z = np.asarray(section)
-    try:
-        z = z.astype(np.complex128).reshape(-1)
-    except (TypeError, ValueError):
-        raise SectionZeroError(f"a section is one complex number per vertex ({X.n_vertices})") from None
-    if z.size != X.n_vertices:
-        raise SectionZeroError(f"a section has one complex number per vertex: length {X.n_vertices}, got {z.size}")
-    if not np.all(np.isfinite(z)):
-        v = int(np.argmin(np.isfinite(z)))
-        raise NonFiniteError(f"the section is NaN or infinite at vertex {int(X.vertex_labels[v])}")
-    zero = z == 0
-    if np.any(zero):
-        v = int(np.argmax(zero))
-        raise SectionZeroError(
-            f"the section vanishes at vertex {int(X.vertex_labels[v])}; rotation and index forms need a "
-            "nowhere-vanishing section (perturb it there)"
-        )
-    return z
 
 
 def rotation_form(L: HermitianLineBundle, section: ArrayLike) -> np.ndarray:
@@ -78,10 +56,7 @@ def rotation_form(L: HermitianLineBundle, section: ArrayLike) -> np.ndarray:
     >>> rotation_form(HermitianLineBundle.trivial(X), z).round(6).tolist()
     [2.0, -2.283185, 0.0, 2.0, -2.0, 2.283185]
     """
-    z = _section(L, section)
-    E = L.X.simplices(1)
-    xi = np.angle(z[E[:, 1]] * np.conj(L.connection * z[E[:, 0]]))
-    return np.where(xi <= -np.pi, np.pi, xi)
+    return rotation_angles(L.X.simplices(1), checked_section(L.X, section), L.connection)
 
 
 def index_form(L: HermitianLineBundle, section: ArrayLike) -> np.ndarray:
@@ -99,18 +74,7 @@ def index_form(L: HermitianLineBundle, section: ArrayLike) -> np.ndarray:
     >>> index_form(L, np.ones(4)).tolist()
     [0, 0, 0, 1]
     """
-    xi = rotation_form(L, section)
-    val = (coboundary(L.X, 1, xi)[0] + L.curvature) / (2 * np.pi)
-    n = np.round(val)
-    off = np.abs(val - n)
-    tol = 1e-6 * np.maximum(1.0, np.abs(L.curvature) / (2 * np.pi))
-    if np.any(off > tol):
-        t = int(np.argmax(off > tol))
-        raise CurvatureMismatchError(
-            f"the index on triangle {simplex_name(L.X, 2, t)} is {val[t]:.9g}, not an integer: the curvature "
-            "does not match the connection there"
-        )
-    return n.astype(np.int64)
+    return index_values(L.X, rotation_form(L, section), L.curvature)
 
 
 def index_sum(L: HermitianLineBundle, section: ArrayLike, cycle: ArrayLike | None = None) -> int:

@@ -28,10 +28,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.bundles import paths
 from dhlb.bundles.fields import field_ops
 from dhlb.bundles.vector_bundle import VectorBundle
 from dhlb.errors import InvalidConnectionError, NotClosedError, NotExactError
+from dhlb.topology import graph
 
 if TYPE_CHECKING:
     from typing import Any
@@ -71,7 +71,7 @@ class LineBundleClass:
     def __init__(self, X: SimplicialComplex, values: ArrayLike, field: str | tuple[str, int] = "C", atol: float = 1e-9):
         self.X = X
         self.ops = field_ops(field, atol)
-        self.forest = paths.spanning_forest(X)
+        self.forest = graph.spanning_forest(X)
         v = self.ops.asarray(np.asarray(values).reshape(-1), "class values")
         if v.size != self.forest.nontree.size:
             raise InvalidConnectionError(
@@ -86,8 +86,8 @@ class LineBundleClass:
 
     @property
     def cycles(self) -> sp.csr_matrix:
-        """The Z-basis of ker ∂₁ the values refer to (sparse rows, see :func:`paths.fundamental_cycles`)."""
-        return paths.fundamental_cycles(self.X, self.forest)
+        """The Z-basis of ker ∂₁ the values refer to (sparse rows, see :func:`graph.fundamental_cycles`)."""
+        return graph.fundamental_cycles(self.X, self.forest)
 
     def __mul__(self, other: LineBundleClass) -> LineBundleClass:
         """The class of the tensor product."""
@@ -225,7 +225,7 @@ def integrate_exact_form(
     c = line_bundle_class(L)
     ok = L.ops.close(c.values[:, None, None], np.ones((c.values.size, 1, 1)))
     if not np.all(ok):
-        from dhlb.bundles._util import simplex_name
+        from dhlb.topology._names import simplex_name
 
         e = int(L.forest.nontree[int(np.argmin(ok))])
         raise NotExactError(

@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.bundles.vector_bundle import VectorBundle
+from dhlb.bundles.vector_bundle import VectorBundle, _check_pair, _kron
 from dhlb.errors import ConvergenceError, InvalidConnectionError
 
 if TYPE_CHECKING:
@@ -49,15 +49,6 @@ __all__ = [
     "is_isomorphic",
 ]
 
-
-def _vertex_matrices(E: VectorBundle, g, what: str) -> np.ndarray:
-    n0, K = E.X.n_vertices, E.rank
-    arr = np.asarray(g)
-    if arr.ndim == 1 and arr.shape[0] == n0 and K == 1:
-        arr = arr.reshape(n0, 1, 1)
-    if arr.shape != (n0, K, K):
-        raise InvalidConnectionError(f"{what} must have shape (n_0, K, K) = ({n0}, {K}, {K}), got {np.shape(g)}")
-    return E.ops.asarray(arr, what)
 
 
 def gauge(E: VectorBundle, g: ArrayLike) -> VectorBundle:
@@ -78,30 +69,7 @@ def gauge(E: VectorBundle, g: ArrayLike) -> VectorBundle:
     >>> gauge(VectorBundle.trivial(X, 1), np.array([1.0, 2.0, 4.0])).transports.ravel().tolist()
     [2.0, 4.0, 2.0]
     """
-    ops = E.ops
-    G = _vertex_matrices(E, g, "the gauge transformation")
-    Ginv, bad = ops.inv(G)
-    if np.any(bad):
-        v = int(np.argmax(bad))
-        raise InvalidConnectionError(f"the gauge transformation is singular at vertex {int(E.X.vertex_labels[v])}")
-    Ed = E.X.simplices(1)
-    eta = ops.matmul(G[Ed[:, 1]], ops.matmul(E.transports, Ginv[Ed[:, 0]]))
-    metric = E.metric and bool(np.all(ops.unitary_defect(G) <= 10 * E.atol))
-    return VectorBundle(E.X, eta, E.field, metric=metric, atol=E.atol)
-
-
-def _check_pair(E: VectorBundle, F: VectorBundle, same_rank: bool = False) -> None:
-    if not (isinstance(E, VectorBundle) and isinstance(F, VectorBundle)):
-        raise InvalidConnectionError(
-            "expected two VectorBundle objects (for hermitian line bundles use "
-            "HermitianLineBundle.find_isomorphism or .vector_bundle())"
-        )
-    if E.X is not F.X and E.X != F.X:
-        raise InvalidConnectionError("the two bundles live over different complexes")
-    if E.ops.name != F.ops.name:
-        raise InvalidConnectionError(f"the two bundles have different fields: {E.field!r} and {F.field!r}")
-    if same_rank and E.rank != F.rank:
-        raise InvalidConnectionError(f"the two bundles have different ranks: {E.rank} and {F.rank}")
+    return E.gauge(g)
 
 
 def direct_sum(E: VectorBundle, F: VectorBundle) -> VectorBundle:
@@ -115,18 +83,7 @@ def direct_sum(E: VectorBundle, F: VectorBundle) -> VectorBundle:
     >>> S.rank, S.monodromy([0, 1, 2, 0]).diagonal().tolist()
     (3, [2.0, 1.0, 1.0])
     """
-    _check_pair(E, F)
-    n1, a, b = E.X.n_simplices(1), E.rank, F.rank
-    eta = np.zeros((n1, a + b, a + b), E.ops.dtype)
-    eta[:, :a, :a] = E.transports
-    eta[:, a:, a:] = F.transports
-    return VectorBundle(E.X, eta, E.field, metric=E.metric and F.metric, atol=E.atol)
-
-
-def _kron(A: np.ndarray, B: np.ndarray) -> np.ndarray:
-    n, a, _ = A.shape
-    b = B.shape[1]
-    return np.einsum("eij,ekl->eikjl", A, B).reshape(n, a * b, a * b)
+    return E.direct_sum(F)
 
 
 def tensor(E: VectorBundle, F: VectorBundle) -> VectorBundle:
@@ -140,11 +97,7 @@ def tensor(E: VectorBundle, F: VectorBundle) -> VectorBundle:
     >>> tensor(E, E).transports.ravel().tolist(), tensor(E, VectorBundle.trivial(X, 3)).rank
     ([4.0, 1.0, 1.0], 3)
     """
-    _check_pair(E, F)
-    eta = _kron(E.transports, F.transports)
-    if E.ops.exact:
-        eta = eta % E.ops.p
-    return VectorBundle(E.X, eta, E.field, metric=E.metric and F.metric, atol=E.atol)
+    return E.tensor(F)
 
 
 def dual(E: VectorBundle) -> VectorBundle:
@@ -157,7 +110,7 @@ def dual(E: VectorBundle) -> VectorBundle:
     >>> dual(VectorBundle(X, [2.0, 1.0, 1.0])).transports.ravel().tolist()
     [0.5, 1.0, 1.0]
     """
-    return VectorBundle(E.X, np.swapaxes(E.inverse_transports, 1, 2), E.field, metric=E.metric, atol=E.atol)
+    return E.dual()
 
 
 def hom(E: VectorBundle, F: VectorBundle) -> VectorBundle:

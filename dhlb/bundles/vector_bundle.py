@@ -27,10 +27,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhlb.bundles import paths
-from dhlb.bundles._util import simplex_name
 from dhlb.bundles._vector_bundle_checks import checked_transports
 from dhlb.bundles.fields import field_ops
 from dhlb.errors import InvalidConnectionError, NotAPathError
+from dhlb.topology import graph
+from dhlb.topology._names import simplex_name
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -185,7 +186,7 @@ class VectorBundle:
         >>> E.monodromy_representation().ravel().tolist()
         [2.0]
         """
-        forest = paths.spanning_forest(X, base)
+        forest = graph.spanning_forest(X, base)
         ops = field_ops(field, atol)
         M = ops.asarray(np.asarray(matrices), "monodromy matrices")
         m = forest.nontree.size
@@ -201,7 +202,7 @@ class VectorBundle:
 
     def edge_transport(self, i: int, j: int) -> np.ndarray:
         """The matrix of ``η_ij`` for the oriented edge ``i → j`` (compact vertex indices)."""
-        e, fwd = paths.path_edges(self._X, [i, j])
+        e, fwd = graph.path_edges(self._X, [i, j])
         return self._oriented(e, fwd)[0].copy()
 
     def transport(self, path: Sequence[int] | np.ndarray, v: ArrayLike) -> np.ndarray:
@@ -212,7 +213,7 @@ class VectorBundle:
         NotAPathError
             naming the first step that is not an edge.
         """
-        e, fwd = paths.path_edges(self._X, path)
+        e, fwd = graph.path_edges(self._X, path)
         ops = self._ops
         out = ops.asarray(np.asarray(v), "the vector")
         vec = out.ndim == 1
@@ -233,23 +234,23 @@ class VectorBundle:
 
     # ------------------------------------------------------------------ monodromy
     @cached_property
-    def forest(self) -> paths.SpanningForest:
+    def forest(self) -> graph.SpanningForest:
         """The BFS spanning forest used for generators (roots: smallest vertex per component)."""
-        return paths.spanning_forest(self._X)
+        return graph.spanning_forest(self._X)
 
     @cached_property
     def tree_transports(self) -> np.ndarray:
         """``(n_0, K, K)``: transport from the component root to each vertex along the forest."""
         return self._tree_transports(self.forest)
 
-    def _tree_transports(self, T: paths.SpanningForest) -> np.ndarray:
+    def _tree_transports(self, T: graph.SpanningForest) -> np.ndarray:
         ops = self._ops
         K = self.rank
         n0 = self._X.n_vertices
         step = np.broadcast_to(ops.eye(K), (n0, K, K)).copy()
         child = np.nonzero(T.parent >= 0)[0]
         step[child] = self._oriented(T.parent_edge[child], T.parent[child] < child)
-        return paths.tree_accumulate(T, step, ops.matmul, ops.eye(K))
+        return graph.tree_accumulate(T, step, ops.matmul, ops.eye(K))
 
     def loop_generators(self) -> np.ndarray:
         """Edge rows of the non-tree edges; edge ``(u, v)`` is the loop ``root → u → v → root``."""
@@ -261,7 +262,7 @@ class VectorBundle:
         ``base`` (a vertex) re-roots its component's spanning tree there; the generators are
         then the non-tree edges of ``spanning_forest(X, base)``.
         """
-        T = self.forest if base is None else paths.spanning_forest(self._X, base)
+        T = self.forest if base is None else graph.spanning_forest(self._X, base)
         Tt = self.tree_transports if base is None else self._tree_transports(T)
         E = self._X.simplices(1)[T.nontree]
         Tinv, _ = self._ops.inv(Tt[E[:, 1]]) if T.nontree.size else (Tt[:0], None)
@@ -356,30 +357,73 @@ class VectorBundle:
         counts = np.bincount(support, minlength=T.n_components)
         return bool(np.all(counts == self.rank))
 
-    # ------------------------------------------------------------------ operations (see morphisms.py)
+    # ------------------------------------------------------------------ algebra (functions in morphisms.py)
     def gauge(self, g: ArrayLike) -> VectorBundle:
         """The bundle ``η'_ij = g_j η_ij g_i⁻¹`` (``g`` is an isomorphism onto it).
 
         See :func:`dhlb.bundles.morphisms.gauge`.
         """
-        from dhlb.bundles.morphisms import gauge
-
-        return gauge(self, g)
+        ops = self.ops
+        G = _vertex_matrices(self, g, "the gauge transformation")
+        Ginv, bad = ops.inv(G)
+        if np.any(bad):
+            v = int(np.argmax(bad))
+            raise InvalidConnectionError(
+                f"the gauge transformation is singular at vertex {int(self.X.vertex_labels[v])}"
+            )
+        Ed = self.X.simplices(1)
+        eta = ops.matmul(G[Ed[:, 1]], ops.matmul(self.transports, Ginv[Ed[:, 0]]))
+        metric = self.metric and bool(np.all(ops.unitary_defect(G) <= 10 * self.atol))
+        return VectorBundle(self.X, eta, self.field, metric=metric, atol=self.atol)
 
     def direct_sum(self, other: VectorBundle) -> VectorBundle:
         """The direct sum ``E ⊕ F``; see :func:`dhlb.bundles.morphisms.direct_sum`."""
-        from dhlb.bundles.morphisms import direct_sum
-
-        return direct_sum(self, other)
+        _check_pair(self, other)
+        n1, a, b = self.X.n_simplices(1), self.rank, other.rank
+        eta = np.zeros((n1, a + b, a + b), self.ops.dtype)
+        eta[:, :a, :a] = self.transports
+        eta[:, a:, a:] = other.transports
+        return VectorBundle(self.X, eta, self.field, metric=self.metric and other.metric, atol=self.atol)
 
     def tensor(self, other: VectorBundle) -> VectorBundle:
         """The tensor product ``E ⊗ F``; see :func:`dhlb.bundles.morphisms.tensor`."""
-        from dhlb.bundles.morphisms import tensor
-
-        return tensor(self, other)
+        _check_pair(self, other)
+        eta = _kron(self.transports, other.transports)
+        if self.ops.exact:
+            eta = eta % self.ops.p
+        return VectorBundle(self.X, eta, self.field, metric=self.metric and other.metric, atol=self.atol)
 
     def dual(self) -> VectorBundle:
         """The dual bundle ``E*``; see :func:`dhlb.bundles.morphisms.dual`."""
-        from dhlb.bundles.morphisms import dual
+        eta = np.swapaxes(self.inverse_transports, 1, 2)
+        return VectorBundle(self.X, eta, self.field, metric=self.metric, atol=self.atol)
 
-        return dual(self)
+
+def _vertex_matrices(E: VectorBundle, g, what: str) -> np.ndarray:
+    n0, K = E.X.n_vertices, E.rank
+    arr = np.asarray(g)
+    if arr.ndim == 1 and arr.shape[0] == n0 and K == 1:
+        arr = arr.reshape(n0, 1, 1)
+    if arr.shape != (n0, K, K):
+        raise InvalidConnectionError(f"{what} must have shape (n_0, K, K) = ({n0}, {K}, {K}), got {np.shape(g)}")
+    return E.ops.asarray(arr, what)
+
+
+def _check_pair(E: VectorBundle, F: VectorBundle, same_rank: bool = False) -> None:
+    if not (isinstance(E, VectorBundle) and isinstance(F, VectorBundle)):
+        raise InvalidConnectionError(
+            "expected two VectorBundle objects (for hermitian line bundles use "
+            "HermitianLineBundle.find_isomorphism or .vector_bundle())"
+        )
+    if E.X is not F.X and E.X != F.X:
+        raise InvalidConnectionError("the two bundles live over different complexes")
+    if E.ops.name != F.ops.name:
+        raise InvalidConnectionError(f"the two bundles have different fields: {E.field!r} and {F.field!r}")
+    if same_rank and E.rank != F.rank:
+        raise InvalidConnectionError(f"the two bundles have different ranks: {E.rank} and {F.rank}")
+
+
+def _kron(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    n, a, _ = A.shape
+    b = B.shape[1]
+    return np.einsum("eij,ekl->eikjl", A, B).reshape(n, a * b, a * b)

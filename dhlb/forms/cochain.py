@@ -8,7 +8,9 @@ so Stokes' theorem ``⟨dω, c⟩ = ⟨ω, ∂c⟩`` holds by construction.
 
 from __future__ import annotations
 
+import importlib
 import numbers
+import warnings
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -224,10 +226,21 @@ class Cochain:
         return bool(np.all(self._group.distance(dw) <= tol))
 
     def is_exact(self, tol: float | None = None) -> bool:
-        """True if ``ω = dα`` for a (k−1)-form α in the same group (see :func:`dhlb.forms.solve_d`)."""
-        from dhlb.forms.solve import is_exact
+        """True if ``ω = dα`` for a (k−1)-form α in the same group (deprecated).
 
-        return is_exact(self, tol=tol)
+        .. deprecated:: 0.2.0
+            Use ``dhlb.forms.is_exact(ω, tol)``: exactness is a solve (:func:`dhlb.forms.solve_d`),
+            which lives above this module.
+
+        Warns
+        -----
+        DeprecationWarning
+            Always; the answer is that of :func:`dhlb.forms.is_exact`.
+        """
+        warnings.warn("Cochain.is_exact() is deprecated; use dhlb.forms.is_exact(omega, tol)",
+                      DeprecationWarning, stacklevel=2)
+        # resolved at call time: forms.solve imports this module, so a static import would be a circle
+        return importlib.import_module("dhlb.forms.solve").is_exact(self, tol=tol)
 
     # ------------------------------------------------------------------ group structure
     def _check_compatible(self, other) -> None:

@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhlb.errors import InvalidCochainError, NonFiniteError
+from dhlb.topology._names import described_simplex as simplex_name  # (public here: "edge (7, 9)")
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -41,7 +42,6 @@ __all__ = ["Group", "get_group", "wrap_angle", "GROUP_NAMES", "simplex_name", "D
 TWO_PI = 2.0 * np.pi
 #: relative tolerance used when a method is called with ``tol=None``
 DEFAULT_RTOL = 1e-9
-_KIND = {0: "vertex", 1: "edge", 2: "triangle", 3: "tetrahedron"}
 
 
 def wrap_angle(theta: ArrayLike) -> np.ndarray | float:
@@ -58,13 +58,6 @@ def wrap_angle(theta: ArrayLike) -> np.ndarray | float:
     w = np.where(w > np.pi, w - TWO_PI, w)
     return w if w.ndim else float(w)
 
-
-def simplex_name(X, k: int, i: int) -> str:
-    """Human-readable name of the k-simplex with row ``i`` of ``X``, in input vertex labels."""
-    labels = tuple(int(v) for v in X.vertex_labels[X.simplices(k)[i]])
-    if k == 0:
-        return f"vertex {labels[0]}"
-    return f"{_KIND.get(k, f'{k}-simplex')} {labels}"
 
 
 class Group:

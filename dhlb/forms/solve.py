@@ -37,8 +37,9 @@ from scipy.sparse import linalg as spla
 from dhlb.errors import ConvergenceError, InvalidCochainError, NotClosedError, NotExactError
 from dhlb.forms.chain import Chain
 from dhlb.forms.cochain import Cochain
-from dhlb.forms.groups import DEFAULT_RTOL, TWO_PI, get_group, simplex_name, wrap_angle
+from dhlb.forms.groups import DEFAULT_RTOL, TWO_PI, get_group, wrap_angle
 from dhlb.forms.integrate import integrate_closed_1form
+from dhlb.topology._names import described_simplex as simplex_name
 
 if TYPE_CHECKING:
     from dhlb.forms.groups import Group

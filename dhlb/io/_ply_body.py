@@ -1,7 +1,7 @@
 """The body of a PLY file: one element at a time, ASCII or binary (either byte order).
 
-Private helpers of :mod:`dhlb.io.ply`, which parses the header into ``_Element`` declarations
-(name, count, properties) and reads the body with :func:`ascii_element` or
+Private helpers of :mod:`dhlb.io.ply`, which parses the header into the ``_Element`` declarations
+defined here (name, count, properties) and reads the body with :func:`ascii_element` or
 :func:`binary_element`. Both return ``{property: values}`` per element, a list property as
 ``(flat values, list lengths, line numbers or None)``; both have a vectorized fast path for
 elements whose lists all have the same length. Errors are :class:`~dhlb.errors.MeshParseError`
@@ -10,17 +10,33 @@ naming the line (ASCII) or the element instance (binary).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from dhlb.errors import MeshParseError
 from dhlb.io._text import to_array, to_flat_int
 
-if TYPE_CHECKING:
-    from dhlb.io.ply import _Element
-
 __all__ = ["ascii_element", "binary_element"]
+
+
+@dataclass
+class _Prop:
+    """A property of a PLY element: its name and numpy dtype (and the count dtype of a list property)."""
+
+    name: str
+    dtype: str
+    count_dtype: str | None = None  # set for list properties
+
+
+@dataclass
+class _Element:
+    """A PLY element declared in the header: name, instance count, header line and properties."""
+
+    name: str
+    count: int
+    line: int
+    props: list[_Prop] = field(default_factory=list)
 
 
 # ---------------------------------------------------------------------------------- ASCII body

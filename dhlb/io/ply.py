@@ -8,13 +8,12 @@ The header is parsed here; the body readers (ASCII, binary) are in :mod:`dhlb.io
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import MeshParseError, ShapeError
-from dhlb.io._ply_body import ascii_element, binary_element
+from dhlb.io._ply_body import _Element, _Prop, ascii_element, binary_element
 from dhlb.io._text import (
     check_cells,
     check_finite,
@@ -41,21 +40,6 @@ _TYPES = {
 }  # fmt: skip
 _FORMATS = {"ascii": None, "binary_little_endian": "<", "binary_big_endian": ">"}
 _FACE_LISTS = ("vertex_indices", "vertex_index")
-
-
-@dataclass
-class _Prop:
-    name: str
-    dtype: str
-    count_dtype: str | None = None  # set for list properties
-
-
-@dataclass
-class _Element:
-    name: str
-    count: int
-    line: int
-    props: list[_Prop] = field(default_factory=list)
 
 
 def _parse_header(data: bytes, path: str):

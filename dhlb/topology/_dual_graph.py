@@ -1,37 +1,26 @@
 """The dual graph of the top simplices, shared by the manifold checks and the orientation code.
 
 :func:`interior_pairs` (re-exported by :mod:`dhlb.topology.manifold`, where it is documented)
-and the strongly connected components of the dual graph, plus the two helpers both modules use
-for their error messages: the name of a k-simplex and attaching the offending simplex to a
-typed error. Neither :mod:`dhlb.topology.manifold` nor :mod:`dhlb.topology.orientation` is
-imported here, so both can import this module.
+and the strongly connected components of the dual graph (the messages of both modules name
+simplices with :mod:`dhlb.topology._names`). Neither :mod:`dhlb.topology.manifold` nor
+:mod:`dhlb.topology.orientation` is imported here, so both can import this module.
 """
 
 from __future__ import annotations
+
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components as _cc
 
-from dhlb.topology.complex import SimplicialComplex
+if TYPE_CHECKING:
+    from dhlb.topology._protocol import ComplexLike
 
-__all__ = ["interior_pairs", "strong_components", "simplex_name", "raise_at"]
-
-_NAMES = {0: "vertex", 1: "edge", 2: "triangle", 3: "tetrahedron"}
-
-
-def simplex_name(k: int) -> str:
-    """``"vertex"``, ``"edge"``, ``"triangle"``, ``"tetrahedron"``, else ``"k-simplex"``."""
-    return _NAMES.get(k, f"{k}-simplex")
+__all__ = ["interior_pairs", "strong_components"]
 
 
-def raise_at(err: Exception, simplex: tuple, k: int):
-    """Attach the offending simplex (input labels) and its dimension to a typed error and raise it."""
-    err.simplex, err.k = simplex, k
-    raise err
-
-
-def interior_pairs(X: SimplicialComplex):
+def interior_pairs(X: ComplexLike):
     """The dual graph: pairs of top simplices sharing an (n−1)-face that has exactly two cofaces.
 
     Returns
@@ -43,6 +32,7 @@ def interior_pairs(X: SimplicialComplex):
 
     Examples
     --------
+    >>> from dhlb import SimplicialComplex
     >>> X = SimplicialComplex([(0, 1, 2), (1, 2, 3)])
     >>> pairs, pos, faces, counts = interior_pairs(X)
     >>> pairs.tolist(), pos.tolist(), X.simplices(1)[faces].tolist()
@@ -61,7 +51,7 @@ def interior_pairs(X: SimplicialComplex):
     return np.stack([ta, tb], axis=1), np.stack([pa, pb], axis=1), faces, counts
 
 
-def strong_components(X: SimplicialComplex, pairs: np.ndarray) -> tuple[int, np.ndarray]:
+def strong_components(X: ComplexLike, pairs: np.ndarray) -> tuple[int, np.ndarray]:
     """Number and labels (per top simplex) of the connected components of the dual graph ``pairs``."""
     m = X.n_simplices(X.dim)
     g = sp.csr_matrix((np.ones(len(pairs), np.int8), (pairs[:, 0], pairs[:, 1])), shape=(m, m))

@@ -15,8 +15,9 @@ import numpy as np
 import scipy.sparse as sp
 
 from dhlb.errors import InvalidMatrixError, ShapeError
+from dhlb.topology._intmatrix import as_object_matrix, to_int_array
+from dhlb.topology._normal_forms import _snf
 from dhlb.topology._sparse_elim import ChainReduction
-from dhlb.topology.intlinalg import _snf, as_object_matrix, to_int_array
 
 __all__ = ["check_boundaries", "HomologyBases"]
 

@@ -9,20 +9,22 @@ examples; they take plain arrays, or the complex itself, and this module does no
 
 from __future__ import annotations
 
+import numbers
 from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 import scipy.sparse as sp
 
+from dhlb.errors import InvalidSimplexError, SimplexNotFoundError
 from dhlb.topology import _keys
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
 
-    from dhlb.topology.complex import SimplicialComplex
+    from dhlb.topology._protocol import ComplexLike
 
 __all__ = ["VertexAdjacency", "face_tables", "boundary_matrices", "maximal_rows", "vertex_adjacency",
-           "top_entry_positions"]
+           "top_entry_positions", "subfaces", "coboundary_values"]
 
 
 class VertexAdjacency(NamedTuple):
@@ -100,10 +102,8 @@ def vertex_adjacency(N: int, E: np.ndarray) -> VertexAdjacency:
     return out
 
 
-def top_entry_positions(X: SimplicialComplex, adj: VertexAdjacency) -> np.ndarray:
+def top_entry_positions(X: ComplexLike, adj: VertexAdjacency) -> np.ndarray:
     """Positions in ``adj`` of the entries ``(v_b, v_a)`` of each top simplex, shape ``(n_top, k, k)``."""
-    from dhlb.topology.structure import subfaces  # structure imports complex, which imports this module
-
     n = X.dim
     rows = X.simplices(n)
     pos = np.empty((rows.shape[0], n + 1, n + 1), np.int64)
@@ -116,3 +116,66 @@ def top_entry_positions(X: SimplicialComplex, adj: VertexAdjacency) -> np.ndarra
             pos[:, a, b] = adj.upper[edges[:, p]]
     pos.setflags(write=False)
     return pos
+
+def _check_k(X: ComplexLike, k, lowest: int = 0) -> int:
+    if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Integral):
+        raise InvalidSimplexError(f"the dimension k must be an integer, got {k!r}")
+    k = int(k)
+    if k < lowest or k > X.dim:
+        raise SimplexNotFoundError(f"the complex has dimension {X.dim}; it has no {k}-simplices "
+                                   f"(use {lowest} <= k <= {X.dim})")
+    return k
+
+
+def subfaces(X: ComplexLike, j: int, k: int) -> np.ndarray:
+    """Shape ``(n_j, C(j+1, k+1))``: rows of the k-faces of each j-simplex (lexicographic column order).
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> subfaces(SimplicialComplex([(0, 1, 2)]), 2, 1).tolist()
+    [[0, 1, 2]]
+    """
+    j, k = _check_k(X, j), _check_k(X, k)
+    if k > j:
+        raise InvalidSimplexError(f"subfaces(j={j}, k={k}) needs k <= j")
+    rows = X.simplices(j)
+    if k == j:
+        return np.arange(rows.shape[0], dtype=np.int64).reshape(-1, 1)
+    if k == 0:
+        return rows.astype(np.int64)
+    if k == j - 1:
+        return np.asarray(X.faces(j))[:, ::-1]  # face omitting i is the i-th from the end in lex order
+    # recursion over facets: the k-face S of a j-simplex is a k-face of the facet omitting the
+    # largest local vertex not in S (pure index arithmetic, no look-ups)
+    facets = np.asarray(X.faces(j))
+    sub = subfaces(X, j - 1, k)
+    inner = {tuple(c): p for p, c in enumerate(_keys.combination_columns(j, k + 1).tolist())}
+    combos = _keys.combination_columns(j + 1, k + 1).tolist()
+    out = np.empty((rows.shape[0], len(combos)), dtype=np.int64)
+    for c, S in enumerate(combos):
+        omit = max(set(range(j + 1)) - set(S))
+        rel = tuple(v if v < omit else v - 1 for v in S)
+        out[:, c] = sub[facets[:, omit], inner[rel]]
+    return out
+
+
+def coboundary_values(X: ComplexLike, k: int, values) -> tuple[np.ndarray, np.ndarray]:
+    """``d_k`` applied to a k-cochain via ``X.faces(k+1)`` (no sparse matrix is built).
+
+    Returns ``(d values, scale)`` where ``scale = |d| |values|`` bounds the rounding error.
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1, 2)])
+    >>> coboundary_values(X, 1, np.array([1.0, 2.0, 4.0]))[0].tolist()      # ω_12 − ω_02 + ω_01
+    [3.0]
+    """
+    v = np.asarray(values)
+    if X.n_simplices(k + 1) == 0:
+        return np.zeros(0, v.dtype), np.zeros(0)
+    f = X.faces(k + 1)
+    signs = np.where(np.arange(k + 2) % 2 == 0, 1.0, -1.0)
+    g = v[f]
+    return g @ signs, np.abs(g).sum(axis=1)

@@ -24,8 +24,10 @@ import heapq
 import numpy as np
 import scipy.sparse as sp
 
-from dhlb.errors import InvalidMatrixError
-from dhlb.topology._graph_cycles import bfs_forest, graph_kernel, incidence
+from dhlb.errors import InvalidMatrixError, ShapeError
+from dhlb.topology._intmatrix import to_int_array
+from dhlb.topology._normal_forms import dense_kernel_basis, dense_solve_integer
+from dhlb.topology.graph import graph_kernel, incidence, incidence_forest
 
 _I64 = np.iinfo(np.int64)
 
@@ -101,7 +103,7 @@ class ChainReduction:
             return False
         head, tail = inc
         m = A.shape[0]
-        order, _pred, tree_col, _sign, root = bfs_forest(head, tail, m)
+        order, _pred, tree_col, _sign, root = incidence_forest(head, tail, m)
         Ar = A.tocsr()
         ip, ind, dat = Ar.indptr, Ar.indices.tolist(), Ar.data.tolist()
         for v in order.tolist():
@@ -287,8 +289,6 @@ def _int_sparse(entries, shape) -> sp.csc_matrix:
 
 def sparse_kernel_basis(A) -> sp.csc_matrix:
     """Z-basis of ``ker A`` for a sparse integer matrix (see :func:`integer_kernel_basis`)."""
-    from dhlb.topology.intlinalg import dense_kernel_basis
-
     A = sp.csc_matrix(A)
     m, n = A.shape
     if A.dtype.kind in "iu":
@@ -326,12 +326,8 @@ def sparse_kernel_basis(A) -> sp.csc_matrix:
 
 def sparse_solve_integer(A, B: np.ndarray):
     """Integer solution of ``A X = B`` (object array B, shape (m, p)) or None."""
-    from dhlb.topology.intlinalg import dense_solve_integer, to_int_array
-
     m, n = A.shape
     if B.shape[0] != m:
-        from dhlb.errors import ShapeError
-
         raise ShapeError(f"b has {B.shape[0]} rows but A has {m}; they must match.")
     red = ChainReduction([None, A], [m, n])
     red.eliminate(1)

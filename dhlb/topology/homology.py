@@ -43,13 +43,13 @@ import numpy as np
 
 from dhlb.errors import InvalidMatrixError
 from dhlb.topology._homology_bases import HomologyBases
-from dhlb.topology.intlinalg import to_int_array
+from dhlb.topology._intmatrix import to_int_array
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
     from typing import Any
 
-    from dhlb.topology.complex import SimplicialComplex
+    from dhlb.topology._protocol import ComplexLike
 
 __all__ = [
     "HomologyGroup",
@@ -183,7 +183,7 @@ def _boundaries(X):
     return [X.boundary(k) for k in range(X.dim + 1)]
 
 
-def homology(X: SimplicialComplex) -> list:
+def homology(X: ComplexLike) -> list:
     """Integral homology ``H_0(X), ..., H_dim(X)`` of a simplicial complex.
 
     Returns a list of :class:`HomologyGroup` (rank, torsion, integer generator cycles over
@@ -202,7 +202,7 @@ def homology(X: SimplicialComplex) -> list:
     return homology_from_boundaries(_boundaries(X))
 
 
-def betti_numbers(X: SimplicialComplex) -> tuple:
+def betti_numbers(X: ComplexLike) -> tuple:
     """Betti numbers ``(b_0, ..., b_dim)`` (ranks of integral homology).
 
     Examples
@@ -279,7 +279,7 @@ def cohomology_from_boundaries(boundaries: Sequence[Any], coefficients: str | in
     return out
 
 
-def cohomology(X: SimplicialComplex, coefficients: str | int = "Z") -> list:
+def cohomology(X: ComplexLike, coefficients: str | int = "Z") -> list:
     """Cohomology ``H^k(X; G)``, ``k = 0..dim``, with representative cocycles (module docstring).
 
     Parameters

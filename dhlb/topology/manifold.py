@@ -26,15 +26,17 @@ Every 0-dimensional complex is a 0-manifold. Manifolds need not be connected.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb.errors import NonManifoldError
 from dhlb.topology._dual_graph import interior_pairs
-from dhlb.topology._dual_graph import raise_at as _raise
-from dhlb.topology._dual_graph import simplex_name as _name
 from dhlb.topology._dual_graph import strong_components as _strong_components
-from dhlb.topology.complex import SimplicialComplex
+from dhlb.topology._names import kind_name as _name
+from dhlb.topology._names import raise_at as _raise
+from dhlb.topology._names import simplex_labels
+from dhlb.topology.homology import homology
 from dhlb.topology.orientation import (
     fundamental_cycle,
     is_consistently_oriented,
@@ -46,9 +48,11 @@ from dhlb.topology.structure import (
     incidence,
     link_component_counts,
     maximal_mask,
-    simplex_labels,
     subfaces,
 )
+
+if TYPE_CHECKING:
+    from dhlb.topology._protocol import ComplexLike
 
 __all__ = [
     "Offense", "ManifoldReport", "manifold_report", "is_pseudomanifold", "is_manifold",
@@ -109,10 +113,8 @@ def _offenses(X, check, k, rows, reasons, limit):
     return [Offense(check, k, int(r), simplex_labels(X, k, int(r)), reasons(int(r))) for r in rows[:limit]]
 
 
-def _sphere_homology(L: SimplicialComplex, d: int, closed: bool) -> bool:
+def _sphere_homology(L: ComplexLike, d: int, closed: bool) -> bool:
     """True if L has the integer homology of S^d (closed) or of a point."""
-    from dhlb.topology.homology import homology
-
     got = [(g.rank, tuple(g.torsion)) for g in homology(L)]
     return got == [(1, ())] + [(0, ())] * (d - 1) + [(1 if closed else 0, ())]
 
@@ -135,7 +137,7 @@ def _link_offenses(X, k, on_bd, limit):
         rows = []
         for r in range(X.n_simplices(k)):
             star_rows = tops[inc.indices[inc.indptr[r]:inc.indptr[r + 1]]]
-            L = SimplicialComplex(star_rows[~np.isin(star_rows, verts[r])].reshape(len(star_rows), d + 1))
+            L = type(X)(star_rows[~np.isin(star_rows, verts[r])].reshape(len(star_rows), d + 1))
             if not _sphere_homology(L, d, not on_bd[r]):
                 rows.append(r)
         rows = np.array(rows, np.int64)
@@ -152,11 +154,12 @@ def _link_offenses(X, k, on_bd, limit):
     return _offenses(X, "link", k, rows, reason, limit)
 
 
-def manifold_report(X: SimplicialComplex, limit: int = 10) -> ManifoldReport:
+def manifold_report(X: ComplexLike, limit: int = 10) -> ManifoldReport:
     """Check the (pseudo)manifold conditions and list the first offending simplices.
 
     Examples
     --------
+    >>> from dhlb import SimplicialComplex
     >>> X = SimplicialComplex([(0, 1, 2), (0, 3, 4)])   # two triangles sharing a vertex
     >>> rep = manifold_report(X)
     >>> rep.is_manifold, rep.is_pseudomanifold
@@ -194,13 +197,14 @@ def manifold_report(X: SimplicialComplex, limit: int = 10) -> ManifoldReport:
     return ManifoldReport(n, is_pure, is_pseudo, not off, has_boundary, int(n_strong), criterion, tuple(off))
 
 
-def is_pseudomanifold(X: SimplicialComplex) -> bool:
+def is_pseudomanifold(X: ComplexLike) -> bool:
     """Pure, every (n−1)-simplex has one or two cofaces, and strongly connected.
 
     A 0-dimensional pseudomanifold is one point or two (S⁰).
 
     Examples
     --------
+    >>> from dhlb import SimplicialComplex
     >>> is_pseudomanifold(SimplicialComplex([(0, 1, 2), (0, 3, 4)]))
     False
     """
@@ -212,24 +216,26 @@ def is_pseudomanifold(X: SimplicialComplex) -> bool:
     return bool(np.all(counts <= 2)) and _strong_components(X, pairs)[0] == 1
 
 
-def is_manifold(X: SimplicialComplex) -> bool:
+def is_manifold(X: ComplexLike) -> bool:
     """True if X is a manifold, possibly with boundary, in the sense of the module docstring.
 
     Examples
     --------
+    >>> from dhlb import SimplicialComplex
     >>> is_manifold(SimplicialComplex([(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)]))
     True
     """
     return manifold_report(X, limit=1).is_manifold
 
 
-def require_manifold(X: SimplicialComplex) -> ManifoldReport:
+def require_manifold(X: ComplexLike) -> ManifoldReport:
     """Return the report of a manifold, raise :class:`NonManifoldError` naming an offending simplex.
 
     The error has attributes ``simplex`` (input labels), ``k`` and ``report``.
 
     Examples
     --------
+    >>> from dhlb import SimplicialComplex
     >>> require_manifold(SimplicialComplex([(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)])).is_manifold
     True
     >>> try:

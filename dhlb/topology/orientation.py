@@ -18,19 +18,21 @@ from scipy.sparse.csgraph import breadth_first_order
 
 from dhlb.errors import InvalidSimplexError, NonManifoldError, NonOrientableError
 from dhlb.topology._dual_graph import interior_pairs
-from dhlb.topology._dual_graph import raise_at as _raise
-from dhlb.topology._dual_graph import simplex_name as _name
 from dhlb.topology._dual_graph import strong_components as _strong_components
-from dhlb.topology.complex import SimplicialComplex
-from dhlb.topology.structure import maximal_mask, simplex_labels
+from dhlb.topology._names import kind_name as _name
+from dhlb.topology._names import raise_at as _raise
+from dhlb.topology._names import simplex_labels
+from dhlb.topology.structure import maximal_mask
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
+    from dhlb.topology._protocol import ComplexLike
+
 __all__ = ["orientation", "is_orientable", "fundamental_cycle", "is_consistently_oriented"]
 
 
-def _require_orientable_shape(X: SimplicialComplex):
+def _require_orientable_shape(X: ComplexLike):
     n = X.dim
     for j in range(n):
         mask = maximal_mask(X, j)
@@ -47,7 +49,7 @@ def _require_orientable_shape(X: SimplicialComplex):
     return pairs, pos, faces
 
 
-def orientation(X: SimplicialComplex) -> np.ndarray:
+def orientation(X: ComplexLike) -> np.ndarray:
     """A consistent orientation: ±1 per top simplex relative to its canonical (sorted) orientation.
 
     Every (n−1)-face with two cofaces receives opposite induced orientations. The first top
@@ -65,6 +67,7 @@ def orientation(X: SimplicialComplex) -> np.ndarray:
 
     Examples
     --------
+    >>> from dhlb import SimplicialComplex
     >>> X = SimplicialComplex([(0, 1, 2), (0, 2, 3), (0, 3, 1), (1, 2, 3)])   # tetrahedron boundary
     >>> orientation(X).tolist()
     [1, -1, 1, -1]
@@ -104,11 +107,12 @@ def orientation(X: SimplicialComplex) -> np.ndarray:
     return o
 
 
-def is_orientable(X: SimplicialComplex) -> bool:
+def is_orientable(X: ComplexLike) -> bool:
     """True iff X is pure, no (n−1)-face has three or more cofaces, and an orientation exists.
 
     Examples
     --------
+    >>> from dhlb import SimplicialComplex
     >>> is_orientable(SimplicialComplex([(i, (i + 1) % 5, (i + 2) % 5) for i in range(5)]))  # Möbius
     False
     """
@@ -119,7 +123,7 @@ def is_orientable(X: SimplicialComplex) -> bool:
     return True
 
 
-def fundamental_cycle(X: SimplicialComplex) -> np.ndarray:
+def fundamental_cycle(X: ComplexLike) -> np.ndarray:
     """The n-chain Σ o_σ σ of :func:`orientation` (int64, length n_n).
 
     On a closed oriented pseudomanifold it is a cycle; with boundary its boundary is the
@@ -127,6 +131,7 @@ def fundamental_cycle(X: SimplicialComplex) -> np.ndarray:
 
     Examples
     --------
+    >>> from dhlb import SimplicialComplex
     >>> X = SimplicialComplex([(0, 1), (1, 2), (0, 2)])
     >>> c = fundamental_cycle(X)
     >>> c.tolist(), (X.boundary(1) @ c).tolist()
@@ -135,7 +140,7 @@ def fundamental_cycle(X: SimplicialComplex) -> np.ndarray:
     return orientation(X)
 
 
-def is_consistently_oriented(X: SimplicialComplex, F: ArrayLike) -> tuple[bool, tuple | None]:
+def is_consistently_oriented(X: ComplexLike, F: ArrayLike) -> tuple[bool, tuple | None]:
     """Whether the top simplices given in the user's vertex order are consistently oriented.
 
     Parameters
@@ -160,6 +165,7 @@ def is_consistently_oriented(X: SimplicialComplex, F: ArrayLike) -> tuple[bool, 
 
     Examples
     --------
+    >>> from dhlb import SimplicialComplex
     >>> X = SimplicialComplex([(0, 1, 2), (0, 2, 3)])
     >>> is_consistently_oriented(X, [(0, 1, 2), (0, 2, 3)])
     (True, None)

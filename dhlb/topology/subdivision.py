@@ -7,16 +7,17 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhlb.errors import InvalidSimplexError
-from dhlb.topology.complex import SimplicialComplex
 from dhlb.topology.structure import _from_blocks, maximal_mask
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
+    from dhlb.topology._protocol import ComplexLike
+
 __all__ = ["barycentric_subdivision", "relabeled"]
 
 
-def barycentric_subdivision(X: SimplicialComplex) -> tuple[SimplicialComplex, np.ndarray]:
+def barycentric_subdivision(X: ComplexLike) -> tuple[ComplexLike, np.ndarray]:
     """The barycentric subdivision Sd X and the map from its vertices to the simplices of X.
 
     The vertices of Sd X are the simplices of X, numbered by dimension then row: the k-simplex
@@ -31,6 +32,7 @@ def barycentric_subdivision(X: SimplicialComplex) -> tuple[SimplicialComplex, np
 
     Examples
     --------
+    >>> from dhlb import SimplicialComplex
     >>> Sd, vmap = barycentric_subdivision(SimplicialComplex([(0, 1, 2)]))
     >>> Sd.counts, Sd.euler_characteristic
     ((7, 12, 6), 1)
@@ -57,7 +59,7 @@ def barycentric_subdivision(X: SimplicialComplex) -> tuple[SimplicialComplex, np
         blocks.append(np.concatenate(flags))
     vertex_map = np.column_stack([np.repeat(np.arange(counts.size), counts),
                                   np.concatenate([np.arange(c) for c in counts])]).astype(np.int64)
-    return _from_blocks(blocks), vertex_map
+    return _from_blocks(X, blocks), vertex_map
 
 
 def _permutations(n: int) -> np.ndarray:
@@ -66,13 +68,14 @@ def _permutations(n: int) -> np.ndarray:
     return np.array(list(permutations(range(n))), np.int64)
 
 
-def relabeled(X: SimplicialComplex, permutation: ArrayLike) -> SimplicialComplex:
+def relabeled(X: ComplexLike, permutation: ArrayLike) -> ComplexLike:
     """The same complex with compact vertex v renamed ``permutation[v]``.
 
     ``permutation`` holds one distinct non-negative integer label per vertex of X.
 
     Examples
     --------
+    >>> from dhlb import SimplicialComplex
     >>> X = SimplicialComplex([(0, 1, 2), (2, 3)])
     >>> relabeled(X, [3, 2, 1, 0]).simplices(2).tolist()
     [[1, 2, 3]]
@@ -93,4 +96,4 @@ def relabeled(X: SimplicialComplex, permutation: ArrayLike) -> SimplicialComplex
         a, b = np.nonzero(perm == lab)[0][:2]
         raise InvalidSimplexError(f"vertices {a} and {b} both get the new label {int(lab)}; "
                                   f"a relabeling must be injective")
-    return _from_blocks([perm[X.simplices(j)[maximal_mask(X, j)]] for j in range(X.dim + 1)])
+    return _from_blocks(X, [perm[X.simplices(j)[maximal_mask(X, j)]] for j in range(X.dim + 1)])
