@@ -38,7 +38,6 @@ RANK = {
 APPLICATIONS = {"fields", "stripes", "vortex", "conformal"}
 
 KNOWN = {
-    ("conformal", "io"): "ConformalResult.save writes through io: becomes Result.save via the io writer registry",
 }
 
 

@@ -9,7 +9,8 @@ import pytest
 
 from dhlb.errors import InvalidParameterError
 from dhlb.io import read_surface
-from dhlb.stripes import stripe_form, texture_coordinates, write_stripes_obj
+from dhlb.io.stripes import write_stripes_obj
+from dhlb.stripes import stripe_form, texture_coordinates
 from tests.test_stripes_texture import flat_grid, random_texture
 
 

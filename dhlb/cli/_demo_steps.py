@@ -11,6 +11,9 @@ import time
 
 import numpy as np
 
+from dhlb.io.results import FIELD_NPZ_NOTE as NPZ_NOTE
+from dhlb.io.results import write_field_npz
+
 __all__ = ["fields", "aligned", "boundary", "stripes", "vortex", "write_field_npz", "NPZ_NOTE"]
 
 _SPOT_VIEW = {"view": (1.0, 0.6, 0.4), "up": (0.0, 1.0, 0.0), "size": (600, 600)}
@@ -73,40 +76,6 @@ def _field_record(step, res, png, caption, seconds, mesh_name) -> dict:
             "details": {k: v for k, v in res.to_json().items() if k != "singularities"}}
 
 
-NPZ_NOTE = ("u: the section per mesh vertex (compact order). directions, vertex_used: one row per row of the "
-            "input V; rows with vertex_used == False belong to vertices that no face uses and hold NaN. "
-            "face_index: one entry per row of the input F.")
-
-
-def write_field_npz(path, res) -> str:
-    """Write a direction field as ``.npz`` (atomically), with the unreferenced-vertex mask and a note.
-
-    Keys: ``u``, ``directions`` (NaN rows for unreferenced input vertices), ``vertex_used``
-    (bool mask of those rows), ``face_index`` and ``note`` (a text array saying all this, so that
-    the file documents itself).
-
-    Examples
-    --------
-    >>> import os, tempfile, warnings, numpy as np
-    >>> from dhlb.fields import direction_field
-    >>> V = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1], [5, 5, 5]])
-    >>> F = [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]]
-    >>> with warnings.catch_warnings():
-    ...     warnings.simplefilter("ignore")
-    ...     res = direction_field(V, F, n=1)
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     data = dict(np.load(write_field_npz(os.path.join(d, "f.npz"), res)))
-    >>> data["vertex_used"].tolist()[-2:], bool(np.isnan(data["directions"][6]).all()), "NaN" in str(data["note"])
-    ([True, False], True, True)
-    """
-    from dhlb._files import atomic_write
-
-    with atomic_write(path, "wb") as fh:
-        np.savez_compressed(fh, u=res.u, directions=res.input_directions(), vertex_used=res.mesh.input_vertex_used,
-                            face_index=res.input_face_index(), note=np.array(NPZ_NOTE))
-    return os.fspath(path)
-
-
 def _field(out, progress, name, V, F, mesh_name, caption, view, **kw):
     from dhlb.fields import direction_field
     from dhlb.render import render_field_png
@@ -119,7 +88,7 @@ def _field(out, progress, name, V, F, mesh_name, caption, view, **kw):
                                res.singularities, title=caption, **view)
         render_field_png(_back_path(png), m.points, m.faces, res.directions, res.singularities,
                          title=caption + " (back)", **_back(view))
-        write_field_npz(os.path.join(out, f"{name}.npz"), res)
+        write_field_npz(os.path.join(out, f"{name}.npz"), res)  # the layout of dhlb field
         return res, png, time.perf_counter() - t0
 
     res, png, sec = progress.run(caption, work)
@@ -160,8 +129,9 @@ def boundary(out, progress, *, backend=None) -> list[dict]:
 def stripes(out, progress, *, backend=None) -> list[dict]:
     """A stripe pattern on Spot following its smoothest line field."""
     from dhlb.fields import direction_field
+    from dhlb.io.stripes import write_stripes_obj
     from dhlb.render.stripes_png import render_stripes_png
-    from dhlb.stripes import stripe_pattern, write_stripes_obj
+    from dhlb.stripes import stripe_pattern
 
     V, F = _spot()
     caption = "stripe pattern along the smoothest line field (spacing 6 mean edge lengths)"
@@ -186,7 +156,8 @@ def stripes(out, progress, *, backend=None) -> list[dict]:
 
 def vortex(out, progress, *, backend=None) -> list[dict]:
     """Vortex filaments of a vortex ring and of two linked rings in a tetrahedral cube (ħ = 1)."""
-    from dhlb.cli.vortex import demo_velocity, write_polylines_obj
+    from dhlb.cli.vortex import demo_velocity
+    from dhlb.io.polylines import write_polylines_obj
     from dhlb.mesh import box_tet_mesh
     from dhlb.render.filaments_png import render_filaments_png
     from dhlb.vortex import vortex_filaments

@@ -126,14 +126,26 @@ def read_singularities(values):
     return out
 
 
-FIELD_NPZ_NOTE = ("u, directions, frames, vertex_used: one row per row of the input V; rows with vertex_used == False "
-                  "belong to vertices that no face uses and hold NaN. face_index: one entry per row of the input F. "
-                  "vertex_rows: the input rows of the mesh's vertices. singular_*: faces (input rows), indices "
-                  "(of the n-th power field) and points of the singularities.")
-
-
 def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
-    """Write OUT.ply, OUT.npz (and OUT.png) for the field ``res`` of the input ``(V, F)``; return the paths.
+    """Write OUT.ply, OUT.npz (:func:`dhlb.io.results.write_field_files`) and OUT.png for the field ``res``.
+
+    Parameters
+    ----------
+    out : str
+        The base path (without extension).
+    res : DirectionField
+        The field.
+    V : (n, 3) float array
+        The input vertices.
+    F : (m, 3) int array
+        The input faces.
+    png : bool
+        Also draw ``OUT.png``.
+
+    Returns
+    -------
+    dict
+        Kind → path (``ply``, ``npz``, ``json`` — the JSON is written by :func:`run` — and ``png``).
 
     Examples
     --------
@@ -146,28 +158,14 @@ def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
     ...     sorted(os.path.basename(p) for p in paths.values() if os.path.exists(p))
     ['t.npz', 't.ply']
     """
-    mesh = res.mesh
-    D = res.input_directions()  # (len(V), n, 3), NaN rows for dropped vertices
-    used = np.zeros(len(V), bool)
-    used[mesh.vertex_labels] = True
-    props = {f"d{k}{c}": np.where(used, D[:, k, i], 0.0) for k in range(res.n) for i, c in enumerate("xyz")}
-    paths = {"ply": out + ".ply", "npz": out + ".npz", "json": out + ".json"}
-    from dhlb.io import write_ply
+    from dhlb.io.results import write_field_files
 
-    write_ply(paths["ply"], V, F, binary=True, vertex_properties=props)
-    sing = res.singularities
-    from dhlb._files import atomic_write
-
-    with atomic_write(paths["npz"], "wb") as fh:  # NaN rows for unreferenced vertices: said by vertex_used and note
-        np.savez_compressed(
-            fh, u=mesh.to_input(res.u, fill=np.nan + 0j), directions=D, frames=mesh.to_input(res.frames),
-            face_index=res.input_face_index(), singular_faces=sing.input_faces, singular_index=sing.index,
-            singular_points=sing.points, vertex_rows=mesh.vertex_labels, vertex_used=used,
-            note=np.array(FIELD_NPZ_NOTE))
+    paths = write_field_files(out, res, V, F)
     if png:
         from dhlb.render import render_field_png
 
-        paths["png"] = render_field_png(out + ".png", mesh.points, mesh.faces, res.directions, sing,
+        mesh = res.mesh
+        paths["png"] = render_field_png(out + ".png", mesh.points, mesh.faces, res.directions, res.singularities,
                                         title=f"n = {res.n}, s = {res.s:g}, index sum {res.index_sum}")
     return paths
 
@@ -213,7 +211,9 @@ def run(args) -> int:
     summary["timings"] = dict(summary["timings"], io=t1 - t0, output=t3 - t2, end_to_end=t3 - t0)
     summary["files"] = paths
     summary["input"] = args.mesh
-    with open(paths["json"], "w", encoding="utf-8") as fh:
+    from dhlb._files import atomic_write
+
+    with atomic_write(paths["json"], "w", encoding="utf-8") as fh:
         json.dump(summary, fh, indent=2)
     if args.json:
         args.output = None  # the summary goes to stdout; -o named the output files

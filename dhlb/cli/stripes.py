@@ -155,23 +155,21 @@ def _check_density(args, V, F, n):
 
 
 def _write_isolines(path, iso_list) -> int:
-    lines = ["# dhlb stripe isolines: one 'l' polyline per isoline"]
-    offset, count = 0, 0
-    for iso in iso_list:
-        lines += [f"v {p[0]:.17g} {p[1]:.17g} {p[2]:.17g}" for p in iso.points]
-        for poly in iso.polylines:
-            lines.append("l " + " ".join(str(int(i) + 1 + offset) for i in poly))
-            count += 1
-        offset += len(iso.points)
-    from dhlb._files import atomic_write
+    from dhlb.io.polylines import write_lines_obj
 
-    with atomic_write(path) as fh:
-        fh.write("\n".join(lines) + "\n")
-    return count
+    points, polylines, offset = [], [], 0
+    for iso in iso_list:
+        points.append(np.asarray(iso.points, dtype=float).reshape(-1, 3))
+        polylines += [np.asarray(poly) + offset for poly in iso.polylines]
+        offset += len(iso.points)
+    write_lines_obj(path, np.concatenate(points) if points else np.zeros((0, 3)), polylines,
+                    comment="dhlb stripe isolines: one 'l' polyline per isoline")
+    return len(polylines)
 
 
 def _outputs(res, paths, args) -> dict:
-    from dhlb.stripes import isolines, write_stripes_obj
+    from dhlb.io.stripes import write_stripes_obj
+    from dhlb.stripes import isolines
 
     written = {}
     iso = None

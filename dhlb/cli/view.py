@@ -17,6 +17,7 @@ import os
 import numpy as np
 
 from dhlb.cli._common import UsageError, add_command
+from dhlb.io.polylines import read_polylines_obj, read_uv_obj
 
 __all__ = ["NAME", "SUMMARY", "register", "run", "scene_from_outputs", "read_uv_obj", "read_polylines_obj"]
 
@@ -52,76 +53,6 @@ def register(subparsers) -> None:
     p.add_argument("--view", default="1,-1.6,1", metavar="X,Y,Z", help="camera direction (default 1,-1.6,1)")
     p.add_argument("--no-isolines", action="store_true", help="stripes: do not draw the isolines")
     p.set_defaults(func=run)
-
-
-def read_uv_obj(path: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    r"""``(V, F, U)`` of an OBJ with one texture coordinate per face corner (``U`` (m, 3): the ``u`` of ``vt``).
-
-    Examples
-    --------
-    >>> import os, tempfile
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     p = os.path.join(d, "s.obj")
-    ...     _ = open(p, "w").write("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 0.5 0\nvt 0.25 0\nf 1/1 2/2 3/3\n")
-    ...     V, F, U = read_uv_obj(p)
-    >>> F.tolist(), U.tolist()
-    ([[0, 1, 2]], [[0.0, 0.5, 0.25]])
-    """
-    from dhlb.errors import MeshParseError
-
-    V, vt, F, T = [], [], [], []
-    with open(path, encoding="utf-8") as fh:
-        for lineno, line in enumerate(fh, 1):
-            parts = line.split()
-            if not parts:
-                continue
-            try:
-                if parts[0] == "v":
-                    V.append([float(x) for x in parts[1:4]])
-                elif parts[0] == "vt":
-                    vt.append(float(parts[1]))
-                elif parts[0] == "f":
-                    corners = [c.split("/") for c in parts[1:]]
-                    if len(corners) != 3 or any(len(c) < 2 or not c[1] for c in corners):
-                        raise ValueError("expected a triangle 'f a/ta b/tb c/tc'")
-                    F.append([int(c[0]) - 1 for c in corners])
-                    T.append([int(c[1]) - 1 for c in corners])
-            except (ValueError, IndexError) as exc:
-                raise MeshParseError(f"cannot read {parts[0]!r} record ({exc})", path, lineno) from None
-    V, F, T, vt = np.array(V, float).reshape(-1, 3), np.array(F, np.int64).reshape(-1, 3), \
-        np.array(T, np.int64).reshape(-1, 3), np.array(vt, float)
-    if F.size and (F.min() < 0 or F.max() >= len(V) or T.min() < 0 or T.max() >= len(vt)):
-        raise MeshParseError("a face refers to a missing vertex or texture coordinate", path)
-    return V, F, vt[T] if T.size else np.zeros((0, 3))
-
-
-def read_polylines_obj(path: str) -> list[np.ndarray]:
-    r"""The polylines (``l`` records) of an OBJ as a list of ``(m, 3)`` arrays.
-
-    Examples
-    --------
-    >>> import os, tempfile
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     p = os.path.join(d, "l.obj")
-    ...     _ = open(p, "w").write("v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3 1\n")
-    ...     [c.shape for c in read_polylines_obj(p)]
-    [(4, 3)]
-    """
-    from dhlb.errors import MeshParseError
-
-    V, L = [], []
-    with open(path, encoding="utf-8") as fh:
-        for lineno, line in enumerate(fh, 1):
-            parts = line.split()
-            try:
-                if parts and parts[0] == "v":
-                    V.append([float(x) for x in parts[1:4]])
-                elif parts and parts[0] == "l":
-                    L.append([int(i) - 1 for i in parts[1:]])
-            except ValueError as exc:
-                raise MeshParseError(f"cannot read {parts[0]!r} record ({exc})", path, lineno) from None
-    X = np.array(V, float).reshape(-1, 3)
-    return [X[np.array(idx)] for idx in L if idx and min(idx) >= 0 and max(idx) < len(X)]
 
 
 def _box_outline(lo=-1.0, hi=1.0):

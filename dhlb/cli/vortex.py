@@ -1,7 +1,7 @@
 """``dhlb vortex``: vortex filaments of a velocity field on a tetrahedral mesh (:func:`dhlb.vortex.vortex_filaments`).
 
-Also home of the polyline writers (:func:`write_polylines_obj`, :func:`write_polylines_ply`) and
-of the demo fields of the command (:func:`demo_velocity`).
+Also home of the demo fields of the command (:func:`demo_velocity`); the filaments are written by
+:mod:`dhlb.io.polylines`.
 """
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ from dhlb.cli._common import (
     resolve_input,
 )
 from dhlb.errors import DhlbWarning, InvalidParameterError, ResourceLimitError
+from dhlb.io.polylines import write_polylines_obj, write_polylines_ply
 
 __all__ = ["NAME", "SUMMARY", "demo_velocity", "format_report", "register", "run", "write_polylines_obj",
            "write_polylines_ply"]
@@ -121,68 +122,6 @@ def demo_velocity(name: str, points, *, circulation: float = 2 * np.pi, core_rad
     return FilamentField(curves, circulation=circulation, core_radius=a), curves
 
 
-def _polylines(filaments):
-    return [(np.asarray(f.points, dtype=float), bool(f.closed)) for f in filaments]
-
-
-def write_polylines_obj(path, filaments) -> str:
-    """Write filaments as OBJ polylines.
-
-    ``v x y z`` lines, then one ``l i j k …`` per filament (closed ones repeat their first vertex
-    at the end).
-
-    Examples
-    --------
-    >>> import os, tempfile
-    >>> from dhlb.vortex import Filament
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     p = write_polylines_obj(os.path.join(d, "f.obj"), [Filament(np.eye(3), True, None)])
-    ...     print(open(p).read().splitlines()[-1])
-    l 1 2 3 1
-    """
-    curves = _polylines(filaments)
-    lines, base = ["# dhlb vortex filaments: one 'l' polyline per filament"], 1
-    for P, _ in curves:
-        lines += [f"v {x:.17g} {y:.17g} {z:.17g}" for x, y, z in P]
-    for P, closed in curves:
-        idx = list(range(base, base + P.shape[0])) + ([base] if closed and P.shape[0] else [])
-        lines.append("l " + " ".join(map(str, idx)))
-        base += P.shape[0]
-    out = os.fspath(path)
-    with atomic_write(out, "w", encoding="utf-8") as fh:
-        fh.write("\n".join(lines) + "\n")
-    return out
-
-
-def write_polylines_ply(path, filaments) -> str:
-    """Write filaments as an ASCII PLY with ``vertex`` (x, y, z, filament) and ``edge`` (vertex1, vertex2).
-
-    Examples
-    --------
-    >>> import os, tempfile
-    >>> from dhlb.vortex import Filament
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     p = write_polylines_ply(os.path.join(d, "f.ply"), [Filament(np.eye(3), False, None)])
-    ...     print(open(p).read().splitlines()[-2:])
-    ['0 1', '1 2']
-    """
-    verts, edges, base = [], [], 0
-    for k, (P, closed) in enumerate(_polylines(filaments)):
-        m = P.shape[0]
-        verts += [f"{x:.17g} {y:.17g} {z:.17g} {k}" for x, y, z in P]
-        nxt = list(range(1, m)) + ([0] if closed and m > 2 else [])
-        edges += [f"{base + i} {base + j}" for i, j in zip(range(m), nxt)]
-        base += m
-    header = ["ply", "format ascii 1.0", "comment dhlb vortex filaments (edges in filament order)",
-              f"element vertex {len(verts)}", "property double x", "property double y", "property double z",
-              "property int filament", f"element edge {len(edges)}", "property int vertex1", "property int vertex2",
-              "end_header"]
-    out = os.fspath(path)
-    with atomic_write(out, "w", encoding="utf-8") as fh:
-        fh.write("\n".join(header + verts + edges) + "\n")
-    return out
-
-
 # ---------------------------------------------------------------------------- the command
 def _mesh(args):
     """``(V, T, name)``: the box as a TetMesh (``T`` None), or the arrays of TETMESH (validated later)."""
@@ -249,7 +188,7 @@ def _outputs(args, result, meta, velocity=None) -> list[str]:
     else:
         written = [(write_polylines_ply if ext.lower() == ".ply" else write_polylines_obj)(out, result.filaments)]
     with atomic_write(stem + ".json", "w", encoding="utf-8") as fh:
-        json.dump({**meta, **result.to_dict()}, fh, indent=1)
+        json.dump({**meta, **result.to_json()}, fh, indent=1)
     written.append(stem + ".json")
     if not args.no_png:
         try:
@@ -310,7 +249,7 @@ def run(args) -> int:
                               progress=not (args.quiet or args.json))
     meta = {"mesh": mesh_name, "velocity": vname, "hbar": float(args.hbar)}
     meta["written"] = _outputs(args, result, meta, velocity)
-    data = result.to_dict()
+    data = result.to_json()
     text = json.dumps({**data, **meta}, indent=1) if args.json else format_report(meta, data)
     print(text)
     return 0

@@ -5,16 +5,12 @@
 
 from __future__ import annotations
 
-import json
-import os
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import (
-    InvalidParameterError,
-)
+from dhlb._result import Result
 from dhlb.mesh.tet import TetMesh
 
 if TYPE_CHECKING:
@@ -25,7 +21,7 @@ __all__ = ["ConformalResult"]
 
 
 @dataclass(frozen=True, eq=False)
-class ConformalResult:
+class ConformalResult(Result):
     """What :func:`conformal_deformation` computed.
 
     Attributes
@@ -82,6 +78,18 @@ class ConformalResult:
                 f"distortion mean {s['distortion_mean']:.4g} max {s['distortion_max']:.4g}, "
                 f"{self.timings['total']:.3g} s)")
 
+    def summary_rows(self) -> list[tuple[str, object]]:
+        """The headline numbers, as ``(label, value)`` pairs (the ``dhlb`` report and notebooks).
+
+        Returns
+        -------
+        list of (str, object)
+        """
+        s = self.statistics
+        return [("vertices, tetrahedra", f"{s['n_vertices']}, {s['n_tets']}"), ("λ₁", f"{self.eigenvalue:.6g}"),
+                ("distortion mean, max", f"{s['distortion_mean']:.4g}, {s['distortion_max']:.4g}"),
+                ("inverted tets", s["inverted_tets"]), ("time", f"{self.timings.get('total', float('nan')):.3g} s")]
+
     def to_json(self) -> dict:
         """A JSON-ready dict of the result.
 
@@ -108,58 +116,3 @@ class ConformalResult:
             "statistics": self.statistics,
             "timings": dict(self.timings),
         }
-
-    def save(self, path: str | os.PathLike[str]) -> list[str]:
-        """Write the result: ``.json`` (:meth:`to_json`), ``.mesh``/``.msh``/``.vtk`` (tets), ``.vtu`` or ``.npz``.
-
-        ``.vtu`` (needs meshio, ``dhlb[meshio]``) holds the deformed tets with ``phi``, ``u`` and
-        ``input_points`` per vertex and ``distortion``, ``scale_error`` per tet, for ParaView.
-
-        Parameters
-        ----------
-        path : str or path-like
-            The extension chooses the format.
-
-        Returns
-        -------
-        list of str
-            The paths written.
-
-        Examples
-        --------
-        >>> import os, tempfile
-        >>> from dhlb.io import read_volume
-        >>> from dhlb.conformal import conformal_deformation
-        >>> from dhlb.mesh import box_tet_mesh
-        >>> res = conformal_deformation(box_tet_mesh(1), None, 0.0)
-        >>> with tempfile.TemporaryDirectory() as d:
-        ...     paths = res.save(os.path.join(d, "f.vtk"))
-        ...     print(read_volume(paths[0])[1].shape)
-        (6, 4)
-        """
-        from dhlb._files import atomic_write
-
-        out = os.fspath(path)
-        ext = os.path.splitext(out)[1].lower()
-        if ext == ".json":
-            with atomic_write(out, "w") as fh:
-                json.dump(self.to_json(), fh)
-        elif ext == ".npz":
-            with atomic_write(out, "wb") as fh:
-                np.savez(fh, points=self.points, tets=self.mesh.tets, phi=self.phi, u=self.u,
-                         distortion=self.distortion, scale_error=self.scale_error, eigenvalue=self.eigenvalue)
-        elif ext in (".mesh", ".msh", ".vtk"):
-            from dhlb.io import write_volume
-
-            write_volume(out, self.points, self.mesh.tets)
-        elif ext == ".vtu":  # ParaView: the deformed tets with φ, u and the input points; distortion per tet
-            from dhlb.io.meshio_bridge import write_vtu_volume
-
-            write_vtu_volume(out, self.points, self.mesh.tets,
-                             point_data={"phi": self.phi, "u": self.u, "input_points": self.mesh.points},
-                             cell_data={"distortion": self.distortion, "scale_error": self.scale_error},
-                             field_data={"eigenvalue": [float(self.eigenvalue)]})
-        else:
-            raise InvalidParameterError(f"cannot save a conformal deformation as {ext or 'a file without extension'!r}"
-                                        f" ({out}); use .json, .npz, .mesh, .msh, .vtk or .vtu (ParaView, meshio)")
-        return [out]

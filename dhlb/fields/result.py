@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from dhlb._display import Presentable
+from dhlb._result import Result
 from dhlb.fields.directions import FieldIndices, Singularities
 from dhlb.fields.guidance import Guidance
 from dhlb.mesh.surface import SurfaceMesh
@@ -16,7 +16,7 @@ __all__ = ["DirectionField", "PrescribedField"]
 
 
 @dataclass(frozen=True, eq=False)
-class DirectionField(Presentable):
+class DirectionField(Result):
     """An n-direction field on a triangle mesh (compact vertex order of ``mesh``).
 
     Attributes
@@ -121,13 +121,13 @@ class DirectionField(Presentable):
             "solver": self.solver, "timings": self.timings,
         }
 
-    def _render_png(self, path, size):
-        from dhlb.render import render_field_png
+    def summary_rows(self) -> list[tuple[str, object]]:
+        """The headline numbers, as ``(label, value)`` pairs (the ``dhlb`` report and notebooks).
 
-        return render_field_png(path, self.mesh.points, self.mesh.faces, self.directions, self.singularities,
-                                size=size, max_glyphs=4000)
-
-    def _summary_rows(self):
+        Returns
+        -------
+        list of (str, object)
+        """
         sing = self.singularities
         return [("n, s", f"{self.n}, {self.s:g}"), ("vertices, faces", f"{self.mesh.n_vertices}, {self.mesh.n_faces}"),
                 ("Euler characteristic", self.euler_characteristic),

@@ -6,7 +6,7 @@ bundle (a real rank-2 :class:`~dhlb.bundles.VectorBundle` with rotation/reflecti
 the finite-element engine (:mod:`dhlb.fem`) turns that bundle into ``A ψ = λ M ψ``.
 :func:`texture_coordinates` turns a section ψ into per-corner coordinates α with the frequency
 adjustment, zero indices, the nonlinear interpolant lArg and the subdivision of branch triangles
-(§4.3); :func:`isolines` extracts the curves ``α ≡ c``; :mod:`.output` writes OBJ + JSON.
+(§4.3); :func:`isolines` extracts the curves ``α ≡ c``; :mod:`dhlb.io.stripes` writes OBJ + JSON.
 :func:`stripe_pattern` runs the whole pipeline (energy of :mod:`.energy`, smallest eigenpair, texture).
 
 Examples
@@ -24,10 +24,18 @@ Examples
 from dhlb.stripes.energy import stripe_matrices
 from dhlb.stripes.isolines import Isolines, isolines
 from dhlb.stripes.oneform import DoubleCover, StripeForm, stripe_form
-from dhlb.stripes.output import stripes_sidecar, write_stripes_obj
 from dhlb.stripes.pattern import StripePattern, stripe_pattern
 from dhlb.stripes.texture import StripeTexture, Subdivision, larg, texture_coordinates
 
 __all__ = ["DoubleCover", "StripeForm", "stripe_form", "StripeTexture", "Subdivision", "larg", "texture_coordinates",
-           "Isolines", "isolines", "stripes_sidecar", "write_stripes_obj", "stripe_matrices", "StripePattern",
+           "Isolines", "isolines", "stripe_matrices", "StripePattern",
            "stripe_pattern"]
+
+
+def __getattr__(name):
+    # deprecated: the writers moved to the io layer (dhlb.io.stripes)
+    if name in ("stripes_sidecar", "write_stripes_obj"):
+        from dhlb.stripes import output
+
+        return getattr(output, name)
+    raise AttributeError(f"module 'dhlb.stripes' has no attribute {name!r}")

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb._display import Presentable
+from dhlb._result import Result
 from dhlb.mesh.surface import SurfaceMesh
 from dhlb.stripes.oneform import StripeForm
 from dhlb.stripes.section import (
@@ -26,7 +26,7 @@ __all__ = ["StripePattern"]
 
 
 @dataclass
-class StripePattern(Presentable):
+class StripePattern(Result):
     """Result of :func:`stripe_pattern`.
 
     Attributes
@@ -141,12 +141,13 @@ class StripePattern(Presentable):
             out["orthogonal"] = self.orthogonal.to_json()
         return out
 
-    def _render_png(self, path, size):
-        from dhlb.render import render_stripes_png
+    def summary_rows(self) -> list[tuple[str, object]]:
+        """The headline numbers, as ``(label, value)`` pairs (the ``dhlb`` report and notebooks).
 
-        return render_stripes_png(path, self.texture, size=size, mark_singularities=True, max_triangles=150_000)
-
-    def _summary_rows(self):
+        Returns
+        -------
+        list of (str, object)
+        """
         f = self.form.frequency
         return [("n", self.n), ("vertices, faces", f"{self.mesh.n_vertices}, {self.mesh.n_faces}"),
                 ("frequency", f"{float(f.min()):.4g} – {float(f.max()):.4g}"),

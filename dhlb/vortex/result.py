@@ -11,7 +11,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb._display import Presentable
+from dhlb._deprecation import warn_moved
+from dhlb._result import Result
 from dhlb.mesh.tet import TetMesh
 
 if TYPE_CHECKING:
@@ -22,7 +23,7 @@ __all__ = ["VortexResult"]
 
 
 @dataclass(frozen=True, eq=False)
-class VortexResult(Presentable):
+class VortexResult(Result):
     """What :func:`vortex_filaments` found.
 
     Attributes
@@ -86,24 +87,36 @@ class VortexResult(Presentable):
                 f"{s['n_tets']} tets, ħ = {s['hbar']:.4g}, λ = {self.eigenvalue:.6g}, "
                 f"{self.timings['total']:.3g} s)")
 
-    def _render_png(self, path, size):
-        from dhlb.render.filaments_png import render_filaments_png
+    def summary_rows(self) -> list[tuple[str, object]]:
+        """The headline numbers, as ``(label, value)`` pairs (the ``dhlb`` report and notebooks).
 
-        return render_filaments_png(path, self.filaments, self.mesh.points, self.mesh.boundary_faces,
-                                    title=f"{len(self.filaments)} filament(s)")
-
-    def _summary_rows(self):
+        Returns
+        -------
+        list of (str, object)
+        """
         s = self.statistics
         return [("filaments", f"{s['n_filaments']} ({s['n_closed']} closed, {s['n_open']} open)"),
                 ("vertices, tetrahedra", f"{s['n_vertices']}, {s['n_tets']}"), ("eigenvalue", f"{self.eigenvalue:.6g}"),
                 ("time", f"{self.timings.get('total', float('nan')):.3g} s")]
 
-    def to_dict(self) -> dict:
-        """A JSON-ready dict.
+    def to_json(self, **kwargs: Any) -> dict:
+        """A JSON-ready summary.
 
-        Keys ``filaments`` (``[{"points": [[x, y, z], …], "closed": bool}]``), ``linking_numbers``,
-        ``linking_index``, ``timings``, ``eigenvalue``, ``statistics``.
+        Parameters
+        ----------
+        **kwargs
+            Deprecated: ``to_json(indent=...)`` returned a string in dhlb 0.1; with keyword arguments it
+            still returns ``json.dumps(self.to_json(), **kwargs)`` and warns.
+
+        Returns
+        -------
+        dict
+            Keys ``filaments`` (``[{"points": [[x, y, z], …], "closed": bool}]``), ``linking_numbers``,
+            ``linking_index``, ``timings``, ``eigenvalue``, ``statistics``.
         """
+        if kwargs:
+            warn_moved("VortexResult.to_json(**kwargs) returning a str", "json.dumps(result.to_json(), **kwargs)")
+            return json.dumps(self.to_json(), **kwargs)
         return {
             "filaments": [{"points": f.points.tolist(), "closed": bool(f.closed)} for f in self.filaments],
             "linking_numbers": self.linking_numbers.tolist(),
@@ -113,6 +126,13 @@ class VortexResult(Presentable):
             "statistics": self.statistics,
         }
 
-    def to_json(self, **kwargs: Any) -> str:
-        """:meth:`to_dict` as a JSON string (``kwargs`` go to :func:`json.dumps`)."""
-        return json.dumps(self.to_dict(), **kwargs)
+    def to_dict(self) -> dict:
+        """Deprecated alias of :meth:`to_json` (every result's ``to_json`` returns a dict).
+
+        Returns
+        -------
+        dict
+            :meth:`to_json`.
+        """
+        warn_moved("VortexResult.to_dict()", "VortexResult.to_json()")
+        return self.to_json()

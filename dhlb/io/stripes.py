@@ -1,0 +1,197 @@
+"""Writing stripe patterns: OBJ with per-corner texture coordinates and a JSON sidecar.
+
+**OBJ** (``write_stripes_obj``): the mesh vertices (compact order, ``v``), one texture coordinate
+per face corner ``vt u 0`` with ``u = α'/2π`` (:attr:`StripeTexture.corner_alpha`, the linear
+part), and the faces ``f a/ta b/tb c/tc`` in the order and orientation of ``mesh.faces``. Any
+renderer that draws ``g(2π u)`` for an even 2π-periodic g (e.g. ``cos``) shows the pattern
+correctly on every face except zero and branch faces, which the sidecar describes:
+
+* ``zeros``: face rows (0-based OBJ faces), index n and the zero's position (the barycenter).
+  Add ``lArg_n(t)/2π`` (Eq. 4.2; :func:`dhlb.stripes.larg`) to the interpolated u at barycentric
+  point t of the face.
+* ``branch``: face rows, ``u_m = β_m/2π`` and ``u_l = β_l/2π``. Draw the face as the three cones
+  ``(m, i, j)``, ``(m, j, k)``, ``(m, k, i)`` from its barycenter m with u values
+  ``(u_m, u_i, u_j)``, ``(u_m, u_j, u_k)``, ``(u_m, u_k, u_l)``.
+
+With ``expand=r`` (r >= 1) the OBJ itself contains the subdivision of
+:meth:`StripeTexture.subdivision`: branch faces become their three cones (exact) and zero faces
+an ``r × r`` grid per cone (the zero's vertex gets one texture coordinate per adjacent
+sub-triangle), so a plain linear-UV renderer is enough; ``obj_face_of`` in the sidecar maps each
+OBJ face to its face of the mesh.
+
+Examples
+--------
+>>> import json, os, tempfile, numpy as np
+>>> from dhlb.mesh import validate_surface
+>>> from dhlb.io.stripes import write_stripes_obj
+>>> from dhlb.stripes import stripe_form, texture_coordinates
+>>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+>>> form = stripe_form(validate_surface(V, [[0, 1, 2], [1, 3, 2]]), np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+>>> tex = texture_coordinates(form, np.exp(0.5j * np.pi * np.array(V)[:, 0]))
+>>> with tempfile.TemporaryDirectory() as d:
+...     obj, side = write_stripes_obj(os.path.join(d, "s.obj"), tex)
+...     lines = open(obj).read().splitlines()
+...     meta = json.load(open(side))
+>>> [l for l in lines if l.startswith("vt")][:2], lines[-1], meta["n"], meta["branch"]["faces"]
+(['vt 0 0', 'vt 0.25 0'], 'f 2/4 4/5 3/6', 1, [])
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import os
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from dhlb.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from dhlb.stripes.texture import StripeTexture
+
+__all__ = ["stripes_sidecar", "write_stripes_obj"]
+
+TWO_PI = 2.0 * np.pi
+
+_INTERPOLATION = (
+    "u = alpha/(2 pi) per face corner, linear part. Regular faces: u(t) = sum_c t_c u_c. Zero faces: "
+    "u(t) = sum_c t_c u_c + lArg_n(t)/(2 pi), lArg_n(t) = 2 pi n/3 (c + (t_{c+1} - t_{c+2})/(1 - 3 t_{c+2})) where "
+    "t_{c+2} is the smallest barycentric coordinate (Eq. 4.2). Branch faces: linear on the cones (m,i,j), (m,j,k), "
+    "(m,k,i) with u values (u_m,u_i,u_j), (u_m,u_j,u_k), (u_m,u_k,u_l). Draw g(2 pi u) with g even and "
+    "2pi-periodic (e.g. cos) for line fields (n = 2); any 2pi-periodic g for n = 1.")
+
+
+def stripes_sidecar(
+    texture: StripeTexture, *, obj_name: str | None = None, obj_face_of: ArrayLike | None = None
+) -> dict:
+    """The JSON-serializable description of zero and branch faces (see the module docstring).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.mesh import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
+    >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+    >>> tex = texture_coordinates(form, np.exp(0.5j * np.pi * np.array(V)[:, 0]))   # ψ = exp(i ν x), ν = 2π/4
+    >>> from dhlb.io.stripes import stripes_sidecar
+    >>> side = stripes_sidecar(tex, obj_name="square.obj")
+    >>> side["format"], side["n"], side["n_faces"], side["zeros"]["faces"], side["branch"]["faces"]
+    ('dhlb-stripes', 1, 2, [], [])
+    """
+    mesh = texture.mesh
+    zf, bf = texture.zero_faces, texture.branch_faces
+    out = {
+        "format": "dhlb-stripes",
+        "version": 1,
+        "obj": obj_name,
+        "n": int(texture.form.n),
+        "n_vertices": int(mesh.n_vertices),
+        "n_faces": int(mesh.n_faces),
+        "vertex_labels": mesh.vertex_labels.tolist(),
+        "face_rows": mesh.face_rows.tolist(),
+        "interpolation": _INTERPOLATION,
+        "zeros": {"faces": zf.tolist(), "index": texture.zero_index[zf].tolist(),
+                  "points": texture.zero_points.tolist()},
+        "branch": {"faces": bf.tolist(), "u_m": (texture.branch_alpha[:, 0] / TWO_PI).tolist(),
+                   "u_l": (texture.branch_alpha[:, 1] / TWO_PI).tolist(), "points": texture.branch_points.tolist()},
+    }
+    if obj_face_of is not None:
+        out["obj_face_of"] = np.asarray(obj_face_of).tolist()
+    return out
+
+
+def _write_text(path: str, text: str) -> None:
+    from dhlb._files import atomic_write
+
+    with atomic_write(path) as fh:
+        fh.write(text)
+
+
+def _expanded(texture, refine: int):
+    """Vertices, per-corner (vertex, u) of the subdivision; original corners reuse mesh vertices."""
+    mesh = texture.mesh
+    sub = texture.subdivision(refine)
+    T = len(sub.face)
+    bary = sub.bary.reshape(-1, 3)
+    face = np.repeat(sub.face, 3)
+    corner = np.isclose(bary.max(axis=1), 1.0, rtol=0, atol=1e-14)
+    vid = np.empty(3 * T, np.int64)
+    vid[corner] = mesh.faces[face[corner], np.argmax(bary[corner], axis=1)]
+    key = np.column_stack([face[~corner], np.round(bary[~corner] * 2**40).astype(np.int64)])
+    _uk, first, inv = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    vid[~corner] = mesh.n_vertices + inv.ravel()
+    extra = np.einsum("pc,pcd->pd", bary[~corner][first], mesh.points[mesh.faces[face[~corner][first]]])
+    return np.vstack([mesh.points, extra]), vid.reshape(T, 3), sub.alpha / TWO_PI, sub.face
+
+
+def write_stripes_obj(
+    path: str | os.PathLike[str], texture: StripeTexture, *, sidecar: bool = True, expand: int = 0
+) -> tuple[str, str | None]:
+    """Write the pattern as an OBJ with per-corner UVs (and ``<path minus .obj>.json`` as the sidecar).
+
+    Parameters
+    ----------
+    path : str or path-like
+    texture : StripeTexture
+    sidecar : bool
+        Also write the JSON description of zero and branch faces.
+    expand : int
+        0: the mesh faces as they are; r >= 1: the subdivision (branch cones, r × r grids in zero faces).
+
+    Returns
+    -------
+    (obj_path, json_path or None)
+
+    Raises
+    ------
+    OutputError
+        A file cannot be written (missing folder, no permission, disk full): one line naming the path.
+        Each file is written to a temporary file in its folder and renamed when complete, so an
+        interrupted run never leaves a half-written file at the target.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.mesh import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+    >>> mesh = validate_surface(V, [[0, 1, 2], [1, 3, 2]])
+    >>> form = stripe_form(mesh, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)
+    >>> tex = texture_coordinates(form, np.exp(0.5j * np.pi * np.array(V)[:, 0]))   # ψ = exp(i ν x), ν = 2π/4
+    >>> import os, pathlib, tempfile
+    >>> from dhlb.io.stripes import write_stripes_obj
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     obj, side = write_stripes_obj(os.path.join(d, "square.obj"), tex)
+    ...     lines = pathlib.Path(obj).read_text().splitlines()
+    >>> os.path.basename(side), sum(s.startswith("vt ") for s in lines), lines[-1]
+    ('square.json', 6, 'f 2/4 4/5 3/6')
+    """
+    if isinstance(expand, bool) or not isinstance(expand, (int, np.integer)) or expand < 0:
+        raise InvalidParameterError(f"expand must be an integer >= 0, got {expand!r}")
+    mesh = texture.mesh
+    if expand:
+        P, tri, u, face_of = _expanded(texture, int(expand))
+    else:
+        P, tri, u, face_of = mesh.points, mesh.faces, texture.corner_alpha / TWO_PI, None
+    m = len(tri)
+    buf = io.StringIO()
+    buf.write(f"# dhlb stripe pattern (n = {texture.form.n}): u = alpha / 2pi per face corner; {m} faces\n")
+    np.savetxt(buf, P, fmt="v %.17g %.17g %.17g")
+    np.savetxt(buf, u.reshape(-1, 1), fmt="vt %.17g 0")
+    idx = np.stack([tri + 1, np.arange(1, 3 * m + 1).reshape(m, 3)], axis=-1).reshape(m, 6)
+    np.savetxt(buf, idx, fmt="f %d/%d %d/%d %d/%d")
+    out = os.fspath(path)
+    _write_text(out, buf.getvalue())
+    side = None
+    if sidecar:
+        base = out[:-4] if out.lower().endswith(".obj") else out
+        side = base + ".json"
+        data = stripes_sidecar(texture, obj_name=os.path.basename(out), obj_face_of=face_of)
+        data["expanded"] = int(expand)
+        _write_text(side, json.dumps(data))
+    return out, side
