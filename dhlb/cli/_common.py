@@ -16,7 +16,8 @@ import warnings
 from dhlb.errors import DhlbError, MeshParseError
 
 __all__ = ["UsageError", "add_command", "common_options", "run_command", "write_output", "resolve_input",
-           "finite_float", "int_in_range", "nonempty_text", "check_outputs", "input_paths", "usage_from"]
+           "finite_float", "int_in_range", "nonempty_text", "check_outputs", "input_paths", "usage_from",
+           "report_table"]
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
 
@@ -246,6 +247,40 @@ def check_outputs(outputs, args=None, inputs=()) -> None:
 def usage_from(exc: Exception) -> UsageError:
     """A :class:`UsageError` with the message of ``exc`` (for parameter checks run by a command)."""
     return UsageError(str(exc))
+
+
+def report_table(rows, *, timings: dict | None = None, written=None, width: int = 14) -> str:
+    """The human-readable report of a command: one ``label  value`` line per row, aligned.
+
+    Parameters
+    ----------
+    rows : list of (str, object)
+        The report's rows (often a result's ``summary_rows()`` and the command's own).
+    timings : dict, optional
+        Phase → seconds, appended as a ``timings`` row.
+    written : list of str, optional
+        Output paths, appended as a ``wrote`` row.
+    width : int
+        Width of the label column.
+
+    Returns
+    -------
+    str
+        The lines, joined by newlines (no trailing newline).
+
+    Examples
+    --------
+    >>> print(report_table([("mesh", "ball.mesh")], timings={"total": 0.5}, written=["out.json"]))
+    mesh           ball.mesh
+    timings        total 0.5 s
+    wrote          out.json
+    """
+    rows = list(rows)
+    if timings:
+        rows.append(("timings", ", ".join(f"{k} {v:.3g} s" for k, v in timings.items())))
+    if written:
+        rows.append(("wrote", ", ".join(written)))
+    return "\n".join(f"{key:<{width}} {value}" for key, value in rows)
 
 
 def write_output(args, text: str) -> None:

@@ -12,7 +12,7 @@ import warnings
 
 import numpy as np
 
-from dhlb.cli._common import UsageError, add_command, check_outputs, resolve_input
+from dhlb.cli._common import UsageError, add_command, check_outputs, report_table, resolve_input
 from dhlb.errors import DhlbWarning
 
 __all__ = ["NAME", "SUMMARY", "boundary_distortion", "format_report", "parse_charge", "register",
@@ -265,11 +265,8 @@ def format_report(meta: dict, data: dict) -> str:
         ("scale error", f"rms {s['scale_error_rms']:.3g}"),
         ("inverted", f"{s['inverted_tets']} tetrahedra"),
         ("solver", s["solver"]["backend"]),
-        ("timings", ", ".join(f"{k} {v:.3g} s" for k, v in t.items())),
     ]
-    if meta.get("written"):
-        rows.append(("wrote", ", ".join(meta["written"])))
-    return "\n".join(f"{key:<14} {value}" for key, value in rows)
+    return report_table(rows, timings=t, written=meta.get("written"))
 
 
 def run(args) -> int:

@@ -6,7 +6,7 @@ import json
 
 import numpy as np
 
-from dhlb.cli._common import UsageError, add_command, resolve_input, write_output
+from dhlb.cli._common import UsageError, add_command, report_table, resolve_input, write_output
 from dhlb.errors import DhlbError, EmptyComplexError
 
 __all__ = ["NAME", "SUMMARY", "register", "run", "describe", "format_report"]
@@ -210,4 +210,4 @@ def format_report(info: dict) -> str:
         rows.append(("homology", ", ".join(f"H{k} = {_group(h)}" for k, h in enumerate(info["homology"]))))
     if info["unreferenced_vertices"]:
         rows.append(("unreferenced", f"{info['unreferenced_vertices']} vertices of the file are in no cell (ignored)"))
-    return "\n".join(f"{key:<21} {value}" for key, value in rows)
+    return report_table(rows, width=21)

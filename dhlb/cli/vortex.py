@@ -20,6 +20,7 @@ from dhlb.cli._common import (
     finite_float,
     int_in_range,
     nonempty_text,
+    report_table,
     resolve_input,
 )
 from dhlb.errors import DhlbWarning, InvalidParameterError, ResourceLimitError
@@ -204,7 +205,7 @@ def _outputs(args, result, meta, velocity=None) -> list[str]:
 
 
 def format_report(meta: dict, data: dict) -> str:
-    """Human-readable summary of a run (``meta``: mesh/velocity/hbar; ``data``: :meth:`VortexResult.to_dict`)."""
+    """Human-readable summary of a run (``meta``: mesh/velocity/hbar; ``data``: :meth:`VortexResult.to_json`)."""
     s, t = data["statistics"], data["timings"]
     lens = [len(f["points"]) for f in data["filaments"]]
     Lk = data["linking_numbers"]
@@ -221,11 +222,8 @@ def format_report(meta: dict, data: dict) -> str:
         ("crossed faces", f"{s['n_crossed_faces']}; tets by crossed faces {s['tets_by_crossed_faces']}"),
         ("solver", (f"{s['solver']['backend']}, {s['solver']['iterations']} iterations, "
                     f"backward error {s['solver']['residual']:.2g}")),
-        ("timings", ", ".join(f"{k} {v:.3g} s" for k, v in t.items())),
     ]
-    if meta.get("written"):
-        rows.append(("wrote", ", ".join(meta["written"])))
-    return "\n".join(f"{key:<14} {value}" for key, value in rows)
+    return report_table(rows, timings=t, written=meta.get("written"))
 
 
 def run(args) -> int:

@@ -8,6 +8,8 @@ surfaces and ``(V, T)`` for tetrahedral meshes (libigl, gpytoolbox):
 * tetrahedral meshes: :func:`check_tet_mesh` → :class:`TetMesh` (validated, positively oriented),
   generators :func:`box_tet_mesh`, :func:`ball_tet_mesh`, and :mod:`dhlb.mesh.tetgen` (any closed
   surface through fTetWild, optional);
+* what every application calls first: :func:`as_surface`, :func:`as_tangent_bundle`, :func:`as_tet_mesh`
+  (arrays or a mesh object → a validated mesh);
 * arrays: :func:`mesh_complex` (the complex of ``(V, cells)`` with the input orientation),
   :func:`compact_mesh` (drop unreferenced vertices), :func:`signed_volumes`.
 
@@ -21,6 +23,7 @@ Examples
 """
 
 from dhlb.mesh.arrays import MeshComplex, mesh_complex
+from dhlb.mesh.coerce import as_surface, as_tangent_bundle, as_tet_mesh
 from dhlb.mesh.compact import compact_mesh
 from dhlb.mesh.surface import SurfaceMesh, validate_surface
 from dhlb.mesh.tangent import TangentBundle, tangent_bundle
@@ -30,4 +33,5 @@ __all__ = [
     "SurfaceMesh", "validate_surface", "TangentBundle", "tangent_bundle",
     "TetMesh", "check_tet_mesh", "box_tet_mesh", "ball_tet_mesh", "signed_volumes",
     "MeshComplex", "mesh_complex", "compact_mesh",
+    "as_surface", "as_tangent_bundle", "as_tet_mesh",
 ]
