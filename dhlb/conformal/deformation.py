@@ -192,6 +192,31 @@ def edge_gradients(mesh: TetMesh, u: Any, values: np.ndarray | None = None) -> n
 
     Only the component of ``g`` orthogonal to the edge enters the transport ``exp(−½ g × e)``.
 
+    Parameters
+    ----------
+    mesh : TetMesh
+        The validated mesh (:func:`~dhlb.mesh.check_tet_mesh`).
+    u : ConformalFactor or callable or None
+        The log conformal factor: a :class:`~dhlb.conformal.ConformalFactor`, or a callable mapping
+        ``(m, 3)`` points to ``(m,)`` values; ignored when ``values`` is given.
+    values : (N,) float array, optional
+        Values of ``u`` at the vertices of ``mesh`` (compact order); not checked here, a
+        non-finite value shows as a non-finite gradient.
+
+    Returns
+    -------
+    (n_1, 3) float array
+        ``grad u`` on every edge of ``mesh.complex.simplices(1)``.
+
+    Raises
+    ------
+    ShapeError
+        The callable ``u`` does not map ``(m, 3)`` points to ``(m,)`` values, or the gradient of a
+        :class:`~dhlb.conformal.ConformalFactor` is not ``(n_1, 3)``.
+    NonFiniteError
+        ``grad u`` is not finite on some edge (the edge and its midpoint are named; e.g. a
+        singularity of ``u`` inside the mesh).
+
     Examples
     --------
     >>> import numpy as np
@@ -251,6 +276,18 @@ def quaternion_bundle(mesh: TetMesh, edge_gradient: np.ndarray) -> VectorBundle:
     ``J q = q i``, so in the coordinates of :func:`~dhlb.conformal.quaternion.to_c2` each
     transport is the SU(2) matrix of :func:`~dhlb.conformal.quaternion.su2_matrix`.
 
+    Parameters
+    ----------
+    mesh : TetMesh
+        The mesh; the bundle lives on ``mesh.complex``.
+    edge_gradient : (n_1, 3) float array
+        ``g_ij``, the gradient of ``u`` on each canonical edge (:func:`edge_gradients`).
+
+    Returns
+    -------
+    VectorBundle
+        Complex rank 2, metric (SU(2) transports), over ``mesh.complex``.
+
     Examples
     --------
     >>> import numpy as np
@@ -271,6 +308,25 @@ def quaternion_bundle(mesh: TetMesh, edge_gradient: np.ndarray) -> VectorBundle:
 
 def tet_distortion(P: ArrayLike, T: ArrayLike, F: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Singular values of the affine map of every tet ``P[T] → F[T]``: ``(σ (m, 3) descending, det (m,), J (m, 3, 3))``.
+
+    Parameters
+    ----------
+    P : (n, 3) float array
+        Vertex positions before the map.
+    T : (m, 4) int array
+        Tetrahedra as rows of ``P`` (not checked; a flat tetrahedron of ``P`` makes numpy raise
+        ``LinAlgError``).
+    F : (n, 3) float array
+        Vertex positions after the map.
+
+    Returns
+    -------
+    sigma : (m, 3) float array
+        The singular values of each deformation gradient, descending.
+    det : (m,) float array
+        Its determinant (negative for an inverted tetrahedron).
+    J : (m, 3, 3) float array
+        The deformation gradient ``J`` with ``F[T[:, k]] − F[T[:, 0]] = J (P[T[:, k]] − P[T[:, 0]])``.
 
     Examples
     --------

@@ -48,12 +48,14 @@ class ConformalFactor:
 
     Parameters
     ----------
-    value : callable ``(m, 3) → (m,)``
-    gradient : callable ``(m, 3) → (m, 3)``
-    singularities : (s, 3) array, optional
+    value : callable
+        ``u`` itself, mapping ``(m, 3)`` points to ``(m,)`` values.
+    gradient : callable
+        ``grad u``, mapping ``(m, 3)`` points to ``(m, 3)`` vectors.
+    singularities : (s, 3) float array, optional
         Points where ``u`` is singular; :func:`~dhlb.conformal.conformal_deformation` refuses a
         mesh that contains one of them.
-    name : str
+    name : str, optional
         A short description (used in reports).
     labels : list of str, optional
         One name per singular point (e.g. ``"charge #0 (q = 1)"``).
@@ -124,7 +126,9 @@ def point_charge_factor(charges: ArrayLike) -> ConformalFactor:
 
     Parameters
     ----------
-    charges : (k, 4) array of rows ``(x, y, z, q)``
+    charges : (k, 4) float array
+        One row ``(x, y, z, q)`` per charge: its position ``a_k`` and charge ``q_k`` (one row may be
+        given as 4 numbers).
 
     Returns
     -------
@@ -164,6 +168,23 @@ def mobius_factor(center: ArrayLike, radius: float = 1.0) -> ConformalFactor:
 
     ``grad u = −2 (x − a)/|x − a|²``; the orientation-preserving Möbius map with this factor is
     ``x ↦ S(a + R² (x − a)/|x − a|²)`` for any reflection ``S``.
+
+    Parameters
+    ----------
+    center : 3 floats
+        The center ``a`` of the sphere (the singular point of ``u``).
+    radius : float > 0, optional
+        The radius ``R`` of the sphere (``u = 0`` on it).
+
+    Returns
+    -------
+    ConformalFactor
+        With ``grad u = −2 (x − a)/|x − a|²`` and the center as its singular point.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``center`` is not 3 finite numbers, or ``radius`` is not a finite number > 0.
 
     Examples
     --------

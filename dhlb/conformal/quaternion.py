@@ -44,6 +44,27 @@ __all__ = ["as_quaternions", "imag", "left_matrix", "qconj", "qexp", "qlog", "qm
 def as_quaternions(q: ArrayLike, name: str = "q") -> np.ndarray:
     """``q`` as a float64 array of shape ``(..., 4)``; raises on a wrong last axis or NaN/inf.
 
+    The other functions of this module do not check their input; call this one first on user data.
+
+    Parameters
+    ----------
+    q : (..., 4) float array
+        Quaternions ``(w, x, y, z)``.
+    name : str, optional
+        How the error message calls ``q``.
+
+    Returns
+    -------
+    (..., 4) float array
+        ``q`` as float64.
+
+    Raises
+    ------
+    ShapeError
+        ``q`` is a scalar or its last axis does not have length 4.
+    NonFiniteError
+        ``q`` contains NaN or inf.
+
     Examples
     --------
     >>> as_quaternions([1, 0, 0, 0]).dtype
@@ -64,6 +85,18 @@ def as_quaternions(q: ArrayLike, name: str = "q") -> np.ndarray:
 def qmul(p: ArrayLike, q: ArrayLike) -> np.ndarray:
     """Hamilton product ``p q`` (broadcasting over leading axes).
 
+    Parameters
+    ----------
+    p : (..., 4) float array
+        The left factors.
+    q : (..., 4) float array
+        The right factors.
+
+    Returns
+    -------
+    (..., 4) float array
+        The products, over the broadcast leading axes.
+
     Examples
     --------
     >>> qmul([0, 0, 1, 0], [0, 1, 0, 0]).tolist()               # j i = −k
@@ -81,6 +114,16 @@ def qmul(p: ArrayLike, q: ArrayLike) -> np.ndarray:
 def qconj(q: ArrayLike) -> np.ndarray:
     """Conjugate ``q̄ = w − x i − y j − z k``.
 
+    Parameters
+    ----------
+    q : (..., 4) float array
+        Quaternions.
+
+    Returns
+    -------
+    (..., 4) float array
+        Their conjugates.
+
     Examples
     --------
     >>> qconj([1.0, 2.0, 3.0, 4.0]).tolist()
@@ -93,6 +136,16 @@ def qconj(q: ArrayLike) -> np.ndarray:
 def qnorm(q: ArrayLike) -> np.ndarray:
     """``|q| = sqrt(q q̄)``.
 
+    Parameters
+    ----------
+    q : (..., 4) float array
+        Quaternions.
+
+    Returns
+    -------
+    (...) float array
+        Their norms (a float array of shape ``()`` for one quaternion).
+
     Examples
     --------
     >>> float(qnorm([1.0, 2.0, 2.0, 4.0]))
@@ -103,6 +156,21 @@ def qnorm(q: ArrayLike) -> np.ndarray:
 
 def qnormalize(q: ArrayLike) -> np.ndarray:
     """``q / |q|`` (a zero quaternion raises :class:`~dhlb.errors.NonFiniteError`).
+
+    Parameters
+    ----------
+    q : (..., 4) float array
+        Nonzero quaternions.
+
+    Returns
+    -------
+    (..., 4) float array
+        The unit quaternions ``q / |q|``.
+
+    Raises
+    ------
+    NonFiniteError
+        Some ``q`` is zero.
 
     Examples
     --------
@@ -118,6 +186,21 @@ def qnormalize(q: ArrayLike) -> np.ndarray:
 
 def imag(v: ArrayLike) -> np.ndarray:
     """The imaginary quaternion ``0 + v`` of vectors ``v`` of shape ``(..., 3)``.
+
+    Parameters
+    ----------
+    v : (..., 3) float array
+        Vectors of R³.
+
+    Returns
+    -------
+    (..., 4) float array
+        ``(0, v_x, v_y, v_z)``.
+
+    Raises
+    ------
+    ShapeError
+        ``v`` is a scalar or its last axis does not have length 3.
 
     Examples
     --------
@@ -142,6 +225,16 @@ def qexp(q: ArrayLike) -> np.ndarray:
 
     For imaginary ``v`` the result is a unit quaternion; ``t ↦ exp(t v) p`` solves ``ψ' = v ψ``.
 
+    Parameters
+    ----------
+    q : (..., 4) float array
+        Quaternions.
+
+    Returns
+    -------
+    (..., 4) float array
+        Their exponentials.
+
     Examples
     --------
     >>> import numpy as np
@@ -160,6 +253,22 @@ def qexp(q: ArrayLike) -> np.ndarray:
 
 def qlog(q: ArrayLike) -> np.ndarray:
     """Principal logarithm of a nonzero quaternion: ``log|q| + θ v/|v|`` with ``θ ∈ [0, π]``.
+
+    Parameters
+    ----------
+    q : (..., 4) float array
+        Nonzero quaternions.
+
+    Returns
+    -------
+    (..., 4) float array
+        Their principal logarithms, ``qexp(qlog(q)) = q`` — except for a negative real ``q``
+        (``v = 0``, ``θ = π``, no direction), whose logarithm is returned as ``log|q|``.
+
+    Raises
+    ------
+    NonFiniteError
+        Some ``q`` is zero.
 
     Examples
     --------
@@ -184,6 +293,16 @@ def to_c2(q: ArrayLike) -> np.ndarray:
     Right multiplication by ``i`` becomes multiplication of ``(z₁, z₂)`` by ``i``, and
     ``|q|² = |z₁|² + |z₂|²``.
 
+    Parameters
+    ----------
+    q : (..., 4) float array
+        Quaternions.
+
+    Returns
+    -------
+    (..., 2) complex array
+        ``(z₁, z₂)``.
+
     Examples
     --------
     >>> to_c2([1.0, 2.0, 3.0, 4.0]).tolist()
@@ -195,6 +314,21 @@ def to_c2(q: ArrayLike) -> np.ndarray:
 
 def from_c2(z: ArrayLike) -> np.ndarray:
     """Inverse of :func:`to_c2`.
+
+    Parameters
+    ----------
+    z : (..., 2) complex array
+        Pairs ``(z₁, z₂)``.
+
+    Returns
+    -------
+    (..., 4) float array
+        The quaternions ``z₁ + j z₂``.
+
+    Raises
+    ------
+    ShapeError
+        ``z`` is a scalar or its last axis does not have length 2.
 
     Examples
     --------
@@ -212,6 +346,16 @@ def su2_matrix(p: ArrayLike) -> np.ndarray:
 
     ``p = α + j β`` (``α = w + x i``, ``β = y − z i``); for unit ``p`` the matrix is in SU(2).
 
+    Parameters
+    ----------
+    p : (..., 4) float array
+        Quaternions.
+
+    Returns
+    -------
+    (..., 2, 2) complex array
+        The matrix of left multiplication by each ``p``.
+
     Examples
     --------
     >>> su2_matrix([0.0, 0.0, 1.0, 0.0]).real.tolist()     # p = j: α = 0, β = 1
@@ -224,6 +368,16 @@ def su2_matrix(p: ArrayLike) -> np.ndarray:
 
 def left_matrix(p: ArrayLike) -> np.ndarray:
     """Real 4×4 matrix of ``q ↦ p q`` (orthogonal for unit ``p``).
+
+    Parameters
+    ----------
+    p : (..., 4) float array
+        Quaternions.
+
+    Returns
+    -------
+    (..., 4, 4) float array
+        The matrix of left multiplication by each ``p``.
 
     Examples
     --------
@@ -240,6 +394,16 @@ def left_matrix(p: ArrayLike) -> np.ndarray:
 def right_matrix(p: ArrayLike) -> np.ndarray:
     """Real 4×4 matrix of ``q ↦ q p``.
 
+    Parameters
+    ----------
+    p : (..., 4) float array
+        Quaternions.
+
+    Returns
+    -------
+    (..., 4, 4) float array
+        The matrix of right multiplication by each ``p``.
+
     Examples
     --------
     >>> import numpy as np
@@ -255,6 +419,18 @@ def right_matrix(p: ArrayLike) -> np.ndarray:
 def so4_matrix(p: ArrayLike, r: ArrayLike) -> np.ndarray:
     """Real 4×4 matrix of ``q ↦ p q r̄``; for unit ``p, r`` it lies in SO(4) (and every rotation of R⁴ is one).
 
+    Parameters
+    ----------
+    p : (..., 4) float array
+        The left factors.
+    r : (..., 4) float array
+        The right factors (conjugated).
+
+    Returns
+    -------
+    (..., 4, 4) float array
+        The matrices, over the broadcast leading axes.
+
     Examples
     --------
     >>> import numpy as np
@@ -267,6 +443,16 @@ def so4_matrix(p: ArrayLike, r: ArrayLike) -> np.ndarray:
 
 def sandwich_matrix(q: ArrayLike) -> np.ndarray:
     """3×3 matrix of ``X ↦ q̄ X q / |q|²`` on imaginary quaternions (a rotation, SO(3)).
+
+    Parameters
+    ----------
+    q : (..., 4) float array
+        Nonzero quaternions (a zero one gives NaN entries).
+
+    Returns
+    -------
+    (..., 3, 3) float array
+        The rotation matrices, acting on ``(x, y, z)`` column vectors.
 
     Examples
     --------

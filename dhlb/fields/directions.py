@@ -43,13 +43,20 @@ __all__ = ["Singularities", "FieldIndices", "section_values", "direction_vectors
 class Singularities:
     """Faces with nonzero index.
 
-    Attributes
+    Made by :func:`field_indices`; every parameter is kept as the attribute of the same name.
+
+    Parameters
     ----------
-    faces : (k,) int64, rows of ``mesh.faces`` (``mesh.face_rows[faces]`` are the input rows of F)
-    input_faces : (k,) int64, rows of the input F
-    index : (k,) int64, index in the mesh orientation (+1: red, −1: blue)
-    barycentric : (k, 3) float64, position in the face, w.r.t. ``mesh.faces[faces]``
-    points : (k, 3) float64, position in space
+    faces : (k,) int array
+        Rows of ``mesh.faces`` (``mesh.face_rows[faces]`` are the input rows of F).
+    input_faces : (k,) int array
+        Rows of the input F.
+    index : (k,) int array
+        Index in the mesh orientation (+1: red, −1: blue).
+    barycentric : (k, 3) float array
+        Position in the face, w.r.t. ``mesh.faces[faces]``.
+    points : (k, 3) float array
+        Position in space.
 
     Examples
     --------
@@ -75,7 +82,24 @@ class FieldIndices:
     """Indices of a section: per face (mesh orientation), their sum and the Poincaré–Hopf terms.
 
     ``poincare_hopf = (total_curvature + boundary_rotation) / 2π`` equals ``total`` (up to rounding);
-    on a closed mesh ``boundary_rotation = 0`` and ``total = n χ``.
+    on a closed mesh ``boundary_rotation = 0`` and ``total = n χ``. Made by :func:`field_indices`;
+    every parameter is kept as the attribute of the same name.
+
+    Parameters
+    ----------
+    face_index : (m,) int array
+        The index of each face of ``mesh.faces``, in the mesh orientation.
+    total : int
+        ``face_index.sum()``.
+    total_curvature : float
+        ``Σ_f n σ_f`` (:attr:`TangentBundle.total_curvature`).
+    boundary_rotation : float
+        ``R``, the rotation of the field relative to parallel transport along the positively
+        oriented boundary (0 on a closed mesh).
+    poincare_hopf : float
+        ``(total_curvature + boundary_rotation) / 2π``.
+    singularities : Singularities
+        The faces with nonzero index.
 
     Examples
     --------
@@ -100,6 +124,26 @@ class FieldIndices:
 def section_values(tb: TangentBundle, u: ArrayLike) -> np.ndarray:
     """Validate a section: one finite complex value per compact vertex (or per row of the input V).
 
+    Parameters
+    ----------
+    tb : TangentBundle
+        The bundle the section lives in.
+    u : (N,) or (n,) complex array
+        One value per compact vertex of ``tb.mesh``, or per row of the input V (rows no face uses
+        are dropped).
+
+    Returns
+    -------
+    (N,) complex array
+        The section in compact vertex order, as ``complex128``.
+
+    Raises
+    ------
+    ShapeError
+        ``u`` is not one-dimensional, or its length is neither ``N`` nor the number of input rows.
+    NonFiniteError
+        A value is NaN or infinite (the vertex is named by its input row).
+
     Examples
     --------
     >>> from dhlb.mesh import tangent_bundle
@@ -123,6 +167,23 @@ def direction_vectors(tb: TangentBundle, u: ArrayLike) -> np.ndarray:
 
     Direction k at vertex i has rescaled angle ``(arg u_i + 2πk)/n`` and is mapped into the tangent
     plane by :meth:`TangentBundle.angles_to_vectors`.
+
+    Parameters
+    ----------
+    tb : TangentBundle
+        The n-th tangent power bundle the section lives in.
+    u : (N,) complex array
+        The section, as accepted by :func:`section_values`.
+
+    Returns
+    -------
+    (N, n, 3) float array
+        Unit tangent vectors, direction ``k`` of vertex ``i`` at ``[i, k]``; zero rows where ``u_i = 0``.
+
+    Raises
+    ------
+    ShapeError, NonFiniteError
+        As :func:`section_values`.
 
     Examples
     --------
@@ -176,8 +237,23 @@ def _zeros_in_faces(tb: TangentBundle, z, faces) -> np.ndarray:
 def field_indices(tb: TangentBundle, u: ArrayLike) -> FieldIndices:
     """Per-face indices, their sum, the Poincaré–Hopf terms and the singular faces of a section.
 
+    Parameters
+    ----------
+    tb : TangentBundle
+        The n-th tangent power bundle the section lives in.
+    u : (N,) complex array
+        The section, as accepted by :func:`section_values`.
+
+    Returns
+    -------
+    FieldIndices
+        The per-face indices (mesh orientation), their sum, the Poincaré–Hopf terms and the
+        :class:`Singularities`.
+
     Raises
     ------
+    ShapeError, NonFiniteError
+        As :func:`section_values`.
     SectionZeroError
         ``u`` vanishes at a vertex (the index is defined for nowhere-vanishing sections).
 

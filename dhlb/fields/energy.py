@@ -85,6 +85,16 @@ def boundary_form(tb: TangentBundle) -> sp.csr_matrix:
     One term ``Im(z̄_j r̄_jk z_k)`` per boundary edge traversed ``j → k`` by its face (``r_jk`` the
     transport of the half-edge: ``r_jk = conj(r_kj)`` for ``j > k``). Zero on a closed mesh.
 
+    Parameters
+    ----------
+    tb : TangentBundle
+        The n-th tangent power bundle of the mesh.
+
+    Returns
+    -------
+    B : (N, N) scipy.sparse.csr_matrix
+        Complex Hermitian, compact vertex order; nonzero only between the ends of boundary edges.
+
     Examples
     --------
     >>> import numpy as np
@@ -134,16 +144,35 @@ def energy_matrices(
 
     Parameters
     ----------
-    V, F : mesh arrays, or a :class:`SurfaceMesh` / :class:`TangentBundle` as ``V`` (``F=None``)
-    n : int >= 1, the symmetry order (default: that of a TangentBundle ``V``, else 1)
-    s : float in [−1, 1]; −1 anti-holomorphic, 0 Dirichlet, +1 holomorphic energy
-    lumped : bool, return the lumped (diagonal) mass matrix
-    reorient, components : passed to :func:`validate_surface`
+    V : (n, 3) float array, SurfaceMesh or TangentBundle
+        Vertex positions, or a validated mesh or tangent bundle (then ``F`` must be None).
+    F : (m, 3) int array, optional
+        Triangles as rows of ``V``; required when ``V`` is an array.
+    n : int >= 1, optional
+        The symmetry order (default: that of a TangentBundle ``V``, else 1).
+    s : float in [−1, 1], optional
+        −1 anti-holomorphic, 0 Dirichlet, +1 holomorphic energy.
+    lumped : bool, optional
+        Return the lumped (diagonal) mass matrix.
+    reorient : bool, optional
+        Passed to :func:`~dhlb.mesh.validate_surface` (mesh arrays only).
+    components : {"all", "largest"}, optional
+        Passed to :func:`~dhlb.mesh.validate_surface` (mesh arrays only).
 
     Returns
     -------
-    A : scipy.sparse.csr_matrix, complex Hermitian positive semidefinite, compact vertex order
-    M : scipy.sparse.csr_matrix, complex Hermitian positive definite
+    A : (N, N) scipy.sparse.csr_matrix
+        Complex Hermitian positive semidefinite, compact vertex order.
+    M : (N, N) scipy.sparse.csr_matrix
+        Complex Hermitian positive definite.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``s`` is not a real number in [−1, 1]; ``n`` is not an integer >= 1; both a
+        TangentBundle and ``F`` are given, or mesh arrays without ``F``.
+    DhlbError
+        The errors of :func:`~dhlb.mesh.validate_surface` on bad mesh arrays.
 
     Examples
     --------

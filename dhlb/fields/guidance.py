@@ -42,7 +42,20 @@ class Guidance:
     """A guidance field.
 
     ``values`` (N,) complex in the power representation, ``kind``, and ``empty`` (True if it
-    vanishes everywhere; ``reason`` says why).
+    vanishes everywhere; ``reason`` says why). Made by the functions of this module; every
+    parameter is kept as the attribute of the same name.
+
+    Parameters
+    ----------
+    values : (N,) complex array
+        One value per compact vertex in the power representation of the vertex frames (read-only).
+    kind : str
+        Where it comes from: ``"curvature-max"``, ``"curvature-min"``, ``"boundary"``,
+        ``"boundary-normal"`` or ``"user"``.
+    empty : bool
+        True if ``values`` vanishes everywhere.
+    reason : str, optional
+        Why the field is empty (``""`` when it is not).
 
     Examples
     --------
@@ -72,6 +85,16 @@ def dihedral_angles(tb: TangentBundle) -> np.ndarray:
     β_e is the angle from the normal of one face to the normal of the other, positive where the
     surface bends away from its normals (convex edges of an outward-oriented closed surface).
 
+    Parameters
+    ----------
+    tb : TangentBundle
+        The tangent bundle of the mesh (any n).
+
+    Returns
+    -------
+    beta : (n_1,) float array
+        The signed dihedral angle in ``(−π, π]`` of each edge of ``tb.mesh.complex.simplices(1)``.
+
     Examples
     --------
     >>> import numpy as np
@@ -100,7 +123,8 @@ def hopf_differential(tb: TangentBundle, *, mass: ArrayLike | None = None) -> tu
 
     Parameters
     ----------
-    tb : TangentBundle (any n; the frames are the same for every n)
+    tb : TangentBundle
+        The tangent bundle of the mesh (any n; the frames are the same for every n).
     mass : (N, N) sparse Hermitian matrix, optional
         Mass matrix of the 2nd tangent power (``dhlb.fem.mass_matrix``); default: the lumped
         (barycentric area) mass, i.e. ``q_i = q̃_i / A_i``.
@@ -111,6 +135,11 @@ def hopf_differential(tb: TangentBundle, *, mass: ArrayLike | None = None) -> tu
         Per-vertex Hopf differential, ``|q| ≈ |κ₁ − κ₂| / 2``, along the maximal curvature.
     q_dual : (N,) complex
         The pairings ``q̃_i = ⟨⟨q, Ψ_i⟩⟩`` (right-hand side ``M q`` of the aligned problem, Eq. 6.6).
+
+    Raises
+    ------
+    ShapeError
+        ``mass`` is not ``(N, N)``.
 
     Examples
     --------
@@ -152,6 +181,31 @@ def curvature_guidance(
     A mesh whose dihedral angles are all below ``flat_tol`` is flat: the result is all zeros
     with ``empty=True``.
 
+    Parameters
+    ----------
+    tb : TangentBundle
+        The n-th tangent power bundle of the mesh, ``n`` even.
+    direction : {"max", "min"}, optional
+        Align with the direction of maximal or of minimal principal curvature.
+    mass : (N, N) sparse Hermitian matrix, optional
+        Passed to :func:`hopf_differential` (default: the lumped mass).
+    magnitude : {"power", "linear"}, optional
+        ``"power"``: the modulus is ``|q|^{n/2}``; ``"linear"``: it is ``|q|``.
+    flat_tol : float, optional
+        Dihedral angles (radians) up to this size count as flat.
+
+    Returns
+    -------
+    Guidance
+        Of kind ``"curvature-max"`` or ``"curvature-min"``.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``direction`` or ``magnitude`` is not one of the values above, or ``n`` is odd.
+    ShapeError
+        ``mass`` is not ``(N, N)``.
+
     Examples
     --------
     >>> from dhlb.mesh import tangent_bundle
@@ -191,6 +245,18 @@ def boundary_guidance(tb: TangentBundle, *, normal: bool = False) -> Guidance:
     diagonally and force spurious singularities). With ``normal=True`` every direction is turned
     by ``+π/2`` (the inward normal): the value is multiplied by ``e^{inπ/2}``.
 
+    Parameters
+    ----------
+    tb : TangentBundle
+        The n-th tangent power bundle of the mesh.
+    normal : bool, optional
+        Align with the inward normal of the boundary instead of its tangent.
+
+    Returns
+    -------
+    Guidance
+        Of kind ``"boundary"`` or ``"boundary-normal"``; empty on a closed mesh.
+
     Examples
     --------
     >>> import numpy as np
@@ -219,6 +285,26 @@ def user_guidance(tb: TangentBundle, values: ArrayLike) -> Guidance:
     * real ``(k, 3)``: 3D vectors, projected onto the vertex tangent planes; value
       ``|w_t| e^{i n θ}`` with ``w_t`` the tangential part and θ its rescaled angle;
     * complex ``(k,)``: values already in the power representation of the vertex frames.
+
+    Parameters
+    ----------
+    tb : TangentBundle
+        The n-th tangent power bundle of the mesh.
+    values : (k, 3) float array or (k,) complex array
+        3D vectors or power-representation values, ``k`` the number of compact vertices or of
+        rows of the input V.
+
+    Returns
+    -------
+    Guidance
+        Of kind ``"user"``; empty if every value is zero (or every vector normal to the surface).
+
+    Raises
+    ------
+    ShapeError
+        ``values`` is neither real ``(k, 3)`` nor complex ``(k,)``, or ``k`` matches neither vertex count.
+    NonFiniteError
+        A value is NaN or infinite.
 
     Examples
     --------

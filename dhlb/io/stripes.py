@@ -69,6 +69,22 @@ def stripes_sidecar(
 ) -> dict:
     """The JSON-serializable description of zero and branch faces (see the module docstring).
 
+    Parameters
+    ----------
+    texture : StripeTexture
+        The texture coordinates of the pattern.
+    obj_name : str, optional
+        The name of the OBJ file it describes (stored as ``"obj"``).
+    obj_face_of : (k,) int array, optional
+        For an expanded OBJ: the face of the mesh of each OBJ face (stored as ``"obj_face_of"``).
+
+    Returns
+    -------
+    dict
+        ``format``, ``version``, ``obj``, ``n``, ``n_vertices``, ``n_faces``, ``vertex_labels``,
+        ``face_rows``, ``interpolation`` (how to draw the pattern), ``zeros`` (faces, index, points)
+        and ``branch`` (faces, ``u_m``, ``u_l``, points); lists and numbers only.
+
     Examples
     --------
     >>> import numpy as np
@@ -137,18 +153,25 @@ def write_stripes_obj(
     Parameters
     ----------
     path : str or path-like
+        The OBJ file; its folder must exist.
     texture : StripeTexture
-    sidecar : bool
+        The texture coordinates of the pattern.
+    sidecar : bool, optional
         Also write the JSON description of zero and branch faces.
-    expand : int
+    expand : int, optional
         0: the mesh faces as they are; r >= 1: the subdivision (branch cones, r × r grids in zero faces).
 
     Returns
     -------
-    (obj_path, json_path or None)
+    obj_path : str
+        The OBJ file written.
+    json_path : str or None
+        The sidecar written (``path`` with ``.obj`` replaced by ``.json``), None without ``sidecar``.
 
     Raises
     ------
+    InvalidParameterError
+        ``expand`` is not an integer >= 0.
     OutputError
         A file cannot be written (missing folder, no permission, disk full): one line naming the path.
         Each file is written to a temporary file in its folder and renamed when complete, so an

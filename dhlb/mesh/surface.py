@@ -53,20 +53,23 @@ __all__ = ["SurfaceMesh", "validate_surface"]
 class SurfaceMesh:
     """An oriented triangle 2-manifold mesh (see :func:`validate_surface`); compact numbering.
 
-    Attributes
+    Made by :func:`validate_surface`, which checks the arrays; the constructor checks nothing and
+    makes the arrays read-only. Every parameter is kept as the attribute of the same name.
+
+    Parameters
     ----------
-    points : (N, 3) float64
+    points : (N, 3) float array
         Coordinates of the compact vertices.
-    faces : (m, 3) int64
+    faces : (m, 3) int array
         Oriented faces in compact vertex numbers (flipped rows reversed: ``(a, c, b)``).
     complex : SimplicialComplex
         Built from the input labels: ``complex.vertex_labels[v]`` is the input row of vertex v.
-    face_rows : (m,) int64
+    face_rows : (m,) int array
         Input row in F of each face.
-    flipped : (m,) bool
+    flipped : (m,) bool array
         Faces whose orientation was reversed by ``reorient=True``.
-    n_input_vertices : int
-        Number of rows of the input V (per-vertex input arrays may have this length).
+    n_input_vertices : int, optional
+        Number of rows of the input V (per-vertex input arrays may have this length); default ``N``.
 
     Examples
     --------
@@ -283,19 +286,30 @@ def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, comp
 
     Parameters
     ----------
-    V : (n, 3) float array (or (n, 2) for a planar mesh, padded with z = 0)
+    V : (n, 3) float array
+        Vertex positions (or ``(n, 2)`` for a planar mesh, padded with z = 0).
     F : (m, 3) int array
         Triangles as rows of V; the vertex order of each row is its orientation.
-    reorient : bool
+    reorient : bool, optional
         If the surface is orientable but the faces are not consistently oriented, flip faces
         (keeping the majority orientation of each component) instead of raising.
-    components : {"all", "largest"}
+    components : {"all", "largest"}, optional
         Keep all connected components, or only the one with most faces (warning).
+
+    Returns
+    -------
+    SurfaceMesh
+        The compacted, consistently oriented mesh; ``mesh.face_rows`` and ``mesh.vertex_labels``
+        map its faces and vertices back to the rows of ``F`` and ``V``.
 
     Raises
     ------
+    InvalidParameterError
+        ``components`` is neither ``"all"`` nor ``"largest"``.
     InvalidSimplexError, EmptyComplexError, ShapeError
         Bad shapes, indices outside V, duplicate faces.
+    RaggedInputError, InvalidTypeError
+        ``V`` or ``F`` has rows of different lengths, or holds complex or non-numeric values.
     NonFiniteError
         A used vertex has a NaN or infinite coordinate.
     DegenerateSimplexError

@@ -70,8 +70,16 @@ class TangentBundle:
     Parameters
     ----------
     mesh : SurfaceMesh
-    n : int >= 1
+        A validated surface (:func:`~dhlb.mesh.validate_surface`).
+    n : int >= 1, optional
         The power: 1 vector fields, 2 line fields, 4 cross fields, ...
+
+    Raises
+    ------
+    TypeError
+        ``mesh`` is not a :class:`SurfaceMesh`.
+    InvalidParameterError
+        ``n`` is not an integer >= 1 (booleans are refused).
 
     Notes
     -----
@@ -336,16 +344,30 @@ def tangent_bundle(
 
     Parameters
     ----------
-    V : (k, 3) float array, or a :class:`SurfaceMesh` (then F must be None)
-    F : (m, 3) int array
-    n : int >= 1
-    reorient, components :
-        Passed to :func:`dhlb.mesh.validate_surface`.
+    V : (n, 3) float array or SurfaceMesh
+        Vertex positions, or an already validated mesh (then ``F`` must be None).
+    F : (m, 3) int array, optional
+        Triangles as rows of ``V``; required when ``V`` is an array.
+    n : int >= 1, optional
+        The power: 1 vector fields, 2 line fields, 4 cross fields, ...
+    reorient : bool, optional
+        Passed to :func:`dhlb.mesh.validate_surface` (ignored for a :class:`SurfaceMesh`).
+    components : {"all", "largest"}, optional
+        Passed to :func:`dhlb.mesh.validate_surface` (ignored for a :class:`SurfaceMesh`).
 
     Returns
     -------
     TangentBundle
         ``.bundle`` (HermitianLineBundle), ``.geometry`` (EuclideanComplex), frames, rescaled angles.
+
+    Raises
+    ------
+    InvalidParameterError
+        Both a :class:`SurfaceMesh` and ``F`` are given, or an array ``V`` without ``F``; or ``n``
+        is not an integer >= 1.
+    DhlbError
+        The errors of :func:`~dhlb.mesh.validate_surface` on a bad mesh (``ShapeError``,
+        ``InvalidSimplexError``, ``NonManifoldError``, ``NonOrientableError``, ...).
 
     Examples
     --------

@@ -55,19 +55,22 @@ DEFAULT_RTOL = 1e-10
 class TetMesh(NamedTuple):
     """A validated, positively oriented tetrahedral mesh.
 
-    Attributes
+    Made by :func:`check_tet_mesh` (the constructor checks nothing); every parameter is kept as the
+    attribute of the same name.
+
+    Parameters
     ----------
-    points : (N, 3) float64
+    points : (N, 3) float array
         Coordinates of the compact vertices ``0 .. N-1`` of :attr:`complex` (the input row of
         vertex ``v`` is ``complex.vertex_labels[v]``).
-    tets : (m, 4) int64
+    tets : (m, 4) int array
         The input tetrahedra in compact vertex indices and input row order, each with positive
         signed volume (inverted input rows have their last two vertices swapped).
     complex : SimplicialComplex
         The 3-complex of the mesh.
-    index : (m,) int64
+    index : (m,) int array
         Row of each tetrahedron in ``complex.simplices(3)``.
-    flipped : (m,) bool
+    flipped : (m,) bool array
         Which input tetrahedra were negatively oriented.
 
     Examples
@@ -97,6 +100,19 @@ class TetMesh(NamedTuple):
 
 def signed_volumes(points: ArrayLike, tets: ArrayLike) -> np.ndarray:
     """``det(p_1 − p_0, p_2 − p_0, p_3 − p_0) / 6`` for every row ``(p_0, p_1, p_2, p_3)`` of ``tets``.
+
+    Parameters
+    ----------
+    points : (n, 3) float array
+        Vertex positions.
+    tets : (m, 4) int array
+        Tetrahedra as rows of ``points`` (not checked: an index out of range raises numpy's ``IndexError``).
+
+    Returns
+    -------
+    (m,) float array
+        The signed volume of each tetrahedron, positive when ``p_1 − p_0, p_2 − p_0, p_3 − p_0`` is a
+        right-handed basis.
 
     Examples
     --------
@@ -145,9 +161,12 @@ def check_tet_mesh(V: ArrayLike, T: ArrayLike, *, orientation: str = "fix", rtol
     Returns
     -------
     TetMesh
+        The mesh in compact vertex numbers, every tetrahedron positively oriented.
 
     Raises
     ------
+    InvalidParameterError
+        ``orientation`` is not ``"fix"`` or ``"require"``, or ``rtol`` is not a finite number >= 0.
     ShapeError, NonFiniteError, InvalidSimplexError
         ``V`` not of shape (n, 3) or not finite; ``T`` not of shape (m, 4), repeating a vertex in a
         row or pointing past ``V`` (the row is named).
@@ -385,12 +404,15 @@ def box_tet_mesh(
     Returns
     -------
     TetMesh
+        The box mesh, ``6 m³`` positively oriented tetrahedra (``6 m_0 m_1 m_2`` for three ints).
 
     Raises
     ------
     InvalidParameterError, ResourceLimitError
         ``m`` is not a positive integer, or its estimated memory (:func:`check_box_memory`)
-        exceeds what is available — refused before any work.
+        exceeds what is available — refused before any work; or ``lower < upper`` fails on an axis.
+    ShapeError, NonFiniteError
+        ``lower`` or ``upper`` is neither a number nor 3 numbers, or is not finite.
 
     Examples
     --------
@@ -431,14 +453,24 @@ def ball_tet_mesh(n: int = 4, radius: float = 1.0, center: ArrayLike = (0.0, 0.0
 
     Parameters
     ----------
-    n : int >= 1
+    n : int >= 1, optional
         Cells per axis of the core cube; there are ``6 n³ + 36 n² ceil(n/2)`` tetrahedra.
-    radius : float > 0
-    center : 3 floats
+    radius : float > 0, optional
+        Radius ``R`` of the ball.
+    center : 3 floats, optional
+        Center of the ball.
 
     Returns
     -------
     TetMesh
+        The ball mesh; its boundary vertices lie on the sphere.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``radius`` is not a finite number > 0, or ``n`` is not an integer >= 1.
+    ShapeError, NonFiniteError
+        ``center`` is not 3 numbers (or one), or is not finite.
 
     Examples
     --------

@@ -39,13 +39,21 @@ class DoubleCover:
     real symmetric ``Re(Pᴴ H P)`` (:meth:`restrict`), e.g. a Dirichlet and a mass matrix of
     ``bundle`` over the geometry ``points`` give the real 2N × 2N eigenproblem of §4.1–§4.2.
 
-    Attributes
+    Made by :attr:`dhlb.stripes.StripeForm.double_cover`; every parameter is kept as the attribute
+    of the same name.
+
+    Parameters
     ----------
-    complex : SimplicialComplex on the vertices ``0 .. 2N−1`` (regular faces lifted twice, all edges)
-    bundle : HermitianLineBundle, connection ``e^{iω̃}`` and curvature ``dω̃``
+    complex : SimplicialComplex
+        On the vertices ``0 .. 2N−1`` (regular faces lifted twice, all edges).
+    bundle : HermitianLineBundle
+        Connection ``e^{iω̃}`` and curvature ``dω̃``.
     n_base_vertices : int
-    face_lifts : (m, 3) int64
-    points : (2N, 3) float, the position of each cover vertex (that of the vertex below it)
+        ``N``, the number of vertices of the base mesh.
+    face_lifts : (m, 3) int array
+        The sheet-1 lift of each face of ``mesh.faces`` (see above).
+    points : (2N, 3) float array
+        The position of each cover vertex (that of the vertex below it).
 
     Examples
     --------

@@ -111,19 +111,37 @@ def stripe_matrices(
     Parameters
     ----------
     form : StripeForm
-    energy : {"cotan", "fem"}
+        The stripe form (:func:`~dhlb.stripes.stripe_form`).
+    energy : {"cotan", "fem"}, optional
+        The discretization (see the module docstring).
     lumped : bool, optional
         Lumped (diagonal) mass; default True for "cotan" (Alg. 8), False for "fem".
-    branch_weight : float >= 0
+    branch_weight : float >= 0, optional
         Factor of the branch triangles' contribution to the cotan weights (0: removed, as in the seed).
     complex_form : bool, optional
         Solve the complex N × N problem (needs every ``s_ij = +1``); default: whenever possible.
 
     Returns
     -------
-    A, M : csr_matrix
-        Complex N × N (``is_complex``) or real 2N × 2N with unknowns ``(Re ψ_i, Im ψ_i)`` interleaved.
+    A : scipy.sparse.csr_matrix
+        The energy: complex N × N (``is_complex``) or real 2N × 2N with unknowns ``(Re ψ_i, Im ψ_i)``
+        interleaved.
+    M : scipy.sparse.csr_matrix
+        The mass matrix, of the same shape and kind.
     is_complex : bool
+        Whether the problem is in the complex form.
+
+    Raises
+    ------
+    InvalidParameterError
+        An unknown ``energy``; ``branch_weight`` not a finite number >= 0; ``complex_form=True``
+        for a field that is not consistently oriented; or (``"fem"``, real form) a vertex that lies
+        only in branch triangles.
+
+    Warns
+    -----
+    DhlbWarning
+        (``"cotan"``) Vertices that lie only in branch triangles: those triangles keep their weight.
 
     Examples
     --------

@@ -57,13 +57,25 @@ _SIDES = np.array([[0, 1], [1, 2], [2, 0]])
 class Isolines:
     """Polylines of ``α ≡ level`` (``≡ ±level`` for n = 2).
 
-    Attributes
+    Made by :func:`isolines`; every parameter is kept as the attribute of the same name.
+
+    Parameters
     ----------
     level : float
-    points : (P, 3) float, positions;  faces : (P,) int64 and bary : (P, 3): a face containing each point
-    segments : (S, 2) int64 rows of ``points``
-    polylines : tuple of int64 arrays (rows of ``points``, in order; a closed one repeats its first point)
-    closed : (L,) bool
+        The level ``c`` actually used, reduced to ``[−π, π)``; for n = 2 its absolute value in
+        ``[0, π]`` (snapped to 0 or π when within 1e-6 of them).
+    points : (P, 3) float array
+        Positions of the isoline points.
+    faces : (P,) int array
+        A face of ``mesh.faces`` containing each point.
+    bary : (P, 3) float array
+        The barycentric coordinates of each point in that face.
+    segments : (S, 2) int array
+        Segments as rows of ``points``.
+    polylines : tuple of int arrays
+        Rows of ``points``, in order; a closed one repeats its first point.
+    closed : (L,) bool array
+        Which polylines are closed.
 
     Examples
     --------
@@ -271,11 +283,12 @@ def isolines(texture: StripeTexture, level: float = 0.0, *, refine: int = 8, tol
     Parameters
     ----------
     texture : StripeTexture
-    level : float
+        The texture coordinates (:func:`~dhlb.stripes.texture_coordinates`).
+    level : float, optional
         The value c; for line fields (n = 2) the curves ``α ≡ ±c`` (where ``cos α = cos c``); there a
         level within 1e-6 of 0 or π is snapped to it (``±c`` would be two curves closer than ``tol``).
-    refine : int
-        Grid size in each cone of a zero face (other faces are exact).
+    refine : int, optional
+        Grid size in each cone of a zero face (other faces are exact), between 1 and 64.
     tol : float, optional
         Distance below which crossing points are merged (default ``1e-10 ×`` mean edge length). Isolines
         closer than this (e.g. the two sides of a hairpin at a level within ~tol of a fold) are merged.
@@ -285,12 +298,17 @@ def isolines(texture: StripeTexture, level: float = 0.0, *, refine: int = 8, tol
         :class:`~dhlb.errors.ResourceLimitError` names the frequency (or ``refine``), the estimate and
         the allowed range.
 
+    Returns
+    -------
+    Isolines
+        The points, segments and polylines of the level set.
+
     Raises
     ------
     ResourceLimitError
         The stripes are so dense (or ``refine`` so large) that the isolines would exceed ``max_bytes``.
     InvalidParameterError, NonFiniteError
-        Bad ``refine``, ``tol`` or ``level``.
+        Bad ``refine``, ``tol``, ``max_bytes`` or ``level``.
 
     Examples
     --------

@@ -83,6 +83,24 @@ class StripeForm:
     :attr:`omega`, :attr:`edge_sign`; per face of ``mesh.faces`` (mesh orientation):
     :attr:`is_branch`, :attr:`corner_sheet`, :meth:`lift_halfedges`.
 
+    The constructor checks nothing (:func:`stripe_form` does) and makes the arrays read-only; every
+    parameter is kept as the attribute of the same name, and ``mesh`` is ``tangent.mesh``.
+
+    Parameters
+    ----------
+    tangent : TangentBundle
+        The tangent bundle of the mesh with power 1 (its frames and transport angles are used).
+    directions : (N, 3) float array
+        The unit tangent direction ``X_i`` at each compact vertex.
+    angles : (N,) float array
+        The rescaled angle ``φ_i`` of ``X_i`` in the frames of ``tangent``.
+    frequency : (N,) float array
+        Stripes per unit length at each vertex (``ν = 2π · frequency``).
+    n : {1, 2}
+        1: oriented directions (vector field); 2: lines.
+    method : {"intrinsic", "extrinsic"}
+        How :attr:`omega` is computed (see the module docstring).
+
     Examples
     --------
     >>> import numpy as np
@@ -266,8 +284,15 @@ def stripe_form(
     warn_aliasing : bool
         Warn if ``|ω̂| > π`` on some edge (stripes narrower than two edges).
 
+    Returns
+    -------
+    StripeForm
+        The directions, frequencies, 1-form, signs and bundles, on the power-1 tangent bundle of the mesh.
+
     Raises
     ------
+    TypeError
+        ``surface`` is neither a :class:`~dhlb.mesh.SurfaceMesh` nor a :class:`~dhlb.mesh.TangentBundle`.
     ShapeError, NonFiniteError
         Wrong shapes; NaN/inf directions or frequencies (naming the vertex).
     SectionZeroError

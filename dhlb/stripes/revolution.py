@@ -34,15 +34,30 @@ __all__ = ["SteppedTube", "stepped_tube"]
 class SteppedTube:
     """A stepped tube mesh with its directions and the data to check a stripe pattern on it.
 
-    Attributes
+    Made by :func:`stepped_tube`; every parameter is kept as the attribute of the same name.
+
+    Parameters
     ----------
-    points : (k, 3) float;  faces : (m, 3) int64, outward oriented
-    directions : (k, 3) unit vectors along the parallels (increasing angle θ)
-    frequency : float, stripes per unit length
-    radii : (L,) float;  levels : (L, 2) z-intervals of constant radius;  transitions : (L−1, 2)
-    rings : (R, a) int64, the vertex rows of every ring (bottom to top), in increasing θ
-    ring_heights : (R,) float
-    stripes_per_level : (L,) float, ``2π r f``
+    points : (k, 3) float array
+        Vertex positions.
+    faces : (m, 3) int array
+        Triangles, outward oriented.
+    directions : (k, 3) float array
+        Unit vectors along the parallels (increasing angle θ).
+    frequency : float
+        Stripes per unit length.
+    radii : (L,) float array
+        Radius of each level, bottom to top.
+    levels : (L, 2) float array
+        The z-intervals of constant radius.
+    transitions : (L−1, 2) float array
+        The z-intervals of the transitions between levels.
+    rings : (R, a) int array
+        The vertex rows of every ring (bottom to top), in increasing θ.
+    ring_heights : (R,) float array
+        The height z of every ring.
+    stripes_per_level : (L,) float array
+        ``2π r f``, the number of stripes around each level.
 
     Examples
     --------
@@ -128,16 +143,27 @@ def stepped_tube(
         Stripes around the first level; the frequency is ``stripes / (2π radii[0])``.
     around : int >= 8
         Vertices per ring.
-    level_length, transition_length : float > 0
+    level_length : float > 0
+        Length along z of each level.
+    transition_length : float > 0
+        Length along z of each transition.
     rows : int, optional
-        Number of ring intervals along z (default: square-ish cells at the mean radius).
+        Number of ring intervals along z, 2 .. 100000 (default: square-ish cells at the mean radius).
     jitter : float in [0, 0.45]
         Random angular displacement of every vertex, as a fraction of the angular step.
     seed : int
+        Seed of the random generator of the jitter.
 
     Returns
     -------
     SteppedTube
+        The mesh, its directions and the data to check a stripe pattern on it.
+
+    Raises
+    ------
+    InvalidParameterError
+        A parameter outside the ranges above (also ``stripes`` above 10000, ``around`` above
+        100000), or more than 2e7 vertices.
 
     Examples
     --------

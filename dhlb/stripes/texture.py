@@ -73,6 +73,18 @@ def larg(n: int | ArrayLike, bary: ArrayLike) -> np.ndarray:
     the corners, 2πn back at the first), constant on rays from the barycenter m, and a continuous
     map to the circle away from m. At m it is NaN (0 where n = 0).
 
+    Parameters
+    ----------
+    n : int or (k,) int array
+        The zero index (one for all points, or one per point).
+    bary : (k, 3) float array
+        Barycentric points (not checked; a single point may be given as 3 numbers).
+
+    Returns
+    -------
+    (k,) float array
+        ``lArg_n`` at each point.
+
     Examples
     --------
     >>> import numpy as np
@@ -95,7 +107,17 @@ class Subdivision:
 
     Regular faces without zero: the face itself (exact). Branch faces: the three cones (exact).
     Zero faces: each cone on a ``refine × refine`` grid in (distance from m, ray) coordinates, with
-    the barycenter blown up (the nodes at m carry the limit values along their rays).
+    the barycenter blown up (the nodes at m carry the limit values along their rays). Made by
+    :meth:`StripeTexture.subdivision`; every parameter is kept as the attribute of the same name.
+
+    Parameters
+    ----------
+    face : (T,) int array
+        The face of ``mesh.faces`` each sub-triangle lies in.
+    bary : (T, 3, 3) float array
+        Barycentric coordinates of the corners of each sub-triangle in its face.
+    alpha : (T, 3) float array
+        α at the corners (one continuous branch per sub-triangle).
 
     Examples
     --------
@@ -119,15 +141,31 @@ class Subdivision:
 class StripeTexture:
     """Per-corner texture coordinates, zero indices and branch data of a section ψ (see the module doc).
 
-    Attributes
+    Made by :func:`texture_coordinates`, which checks ψ (the constructor does not).
+
+    Parameters
     ----------
     form : StripeForm
-    psi : (N,) complex128
-    spinning : (n_1,) σ̂ per canonical edge
-    corner_alpha : (m, 3) α' per corner of ``mesh.faces`` (the linear part; lArg is added on zero faces)
-    zero_index : (m,) int64 n_ijk (0 on branch faces)
-    is_branch : (m,) bool
-    branch_faces : (b,) int64;  branch_alpha : (b, 2) (β_m, β_l)
+        The stripe form; kept as ``form`` (and ``mesh = form.mesh``).
+    psi : (N,) complex array
+        The section, finite and nowhere zero, in compact vertex order; kept as ``psi``.
+
+    Attributes
+    ----------
+    spinning : (n_1,) float array
+        σ̂ per canonical edge.
+    corner_alpha : (m, 3) float array
+        α' per corner of ``mesh.faces`` (the linear part; lArg is added on zero faces).
+    zero_index : (m,) int array
+        n_ijk (0 on branch faces).
+    is_branch : (m,) bool array
+        The branch faces of ``form``.
+    branch_faces : (b,) int array
+        Rows of ``mesh.faces`` of the branch faces.
+    branch_alpha : (b, 2) float array
+        ``(β_m, β_l)`` of each branch face.
+    winding_defect : float
+        The largest distance of a regular face's winding ``(α_l − α_i)/2π`` from an integer (rounding).
 
     Examples
     --------
@@ -286,10 +324,16 @@ def texture_coordinates(form: StripeForm, psi: ArrayLike) -> StripeTexture:
     Parameters
     ----------
     form : StripeForm
-    psi : (N,) complex
+        The stripe form (:func:`~dhlb.stripes.stripe_form`).
+    psi : (N,) complex array
         One value per compact vertex (or per row of the input V): for ``n = 2`` the stored value of
         the conjugate-symmetric function (``ψ̃ = ψ`` on the sheet of X_i, ``ψ̄`` on the other);
         e.g. an eigenvector ``x`` of the real 2N×2N problem as ``x[0::2] + 1j * x[1::2]``.
+
+    Returns
+    -------
+    StripeTexture
+        The per-corner texture coordinates, zero indices and branch data; ``evaluate`` gives α anywhere.
 
     Raises
     ------

@@ -70,14 +70,20 @@ def face_zeros(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Zero of the linear interpolant of the section on triangles, in a local gauge of each triangle.
 
+    The inputs are not checked (:func:`~dhlb.vortex.extract_filaments` checks them before it calls
+    this function).
+
     Parameters
     ----------
     bundle : HermitianLineBundle
-    section : (N,) complex, nowhere zero
-    points : (N, 3) float
-    faces : (c,) int, optional
+        The bundle over the complex ``X = bundle.X``.
+    section : (N,) complex array
+        One value per vertex of ``X`` (in the frames of the bundle), nowhere zero.
+    points : (N, 3) float array
+        Vertex positions (compact vertex order of ``X``).
+    faces : (c,) int array, optional
         Rows of ``X.simplices(2)`` (default: all triangles).
-    placement : {"balanced", "vertex"}
+    placement : {"balanced", "vertex"}, optional
         The local gauge of a triangle ``(i < j < k)``:
 
         * ``"vertex"``: transport to vertex ``i``, ``w = (z_i, conj(r_ij) z_j, conj(r_ik) z_k)``;
@@ -91,13 +97,19 @@ def face_zeros(
 
     Returns
     -------
-    positions : (c, 3) float64
-    barycentric : (c, 3) float64
+    positions : (c, 3) float array
+        The zero of each triangle in space.
+    barycentric : (c, 3) float array
         Barycentric coordinates (in the sorted vertex order of each triangle), clamped to the triangle.
-    clamped : (c,) bool
+    clamped : (c,) bool array
         The unclamped zero lay outside the triangle (by more than 1e-9).
-    degenerate : (c,) bool
+    degenerate : (c,) bool array
         The values ``w`` are collinear in C; the centroid is returned.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``placement`` is neither ``"balanced"`` nor ``"vertex"``.
 
     Examples
     --------

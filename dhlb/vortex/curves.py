@@ -53,6 +53,29 @@ def vortex_ring(
     starting in the direction ``normal × e`` where ``e`` is the coordinate axis least parallel to
     ``normal`` (for ``normal = z``: at ``(R, 0, 0)``, through ``(0, R, 0)``).
 
+    Parameters
+    ----------
+    radius : float > 0, optional
+        Radius ``R`` of the circle.
+    center : 3 floats, optional
+        Center of the circle.
+    normal : 3 floats, optional
+        Normal of its plane (any non-zero length); the ring is right-handed about it.
+    n : int >= 3, optional
+        Number of points.
+
+    Returns
+    -------
+    (n, 3) float array
+        The closed polyline (the first point is not repeated).
+
+    Raises
+    ------
+    InvalidParameterError
+        ``radius`` is not a finite number > 0, ``normal`` is zero, or ``n`` is not an integer >= 3.
+    ShapeError, NonFiniteError
+        ``center`` or ``normal`` is not 3 finite numbers.
+
     Examples
     --------
     >>> vortex_ring(2.0, n=4).round(12).tolist()
@@ -83,6 +106,23 @@ def hopf_link(radius: float = 1.0, n: int = 128) -> list[np.ndarray]:
     lies in the plane ``y = 0`` around ``(radius, 0, 0)`` (right-handed about +y) and passes
     through the first one's center in direction +z; each passes through the other's center.
 
+    Parameters
+    ----------
+    radius : float > 0, optional
+        Radius of both rings.
+    n : int >= 3, optional
+        Number of points per ring.
+
+    Returns
+    -------
+    list of two (n, 3) float arrays
+        The two closed polylines.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``radius`` is not a finite number > 0, or ``n`` is not an integer >= 3.
+
     Examples
     --------
     >>> from dhlb.vortex.linking import linking_number
@@ -105,6 +145,30 @@ def torus_knot(p: int = 2, q: int = 3, major: float = 1.0, minor: float = 0.4, n
     with the core circle ``vortex_ring(R)`` is ``−q`` and with a loop running up the z-axis and
     closing far outside the torus it is ``+p``.
 
+    Parameters
+    ----------
+    p : int >= 1, optional
+        Turns around the z-axis.
+    q : int >= 1, optional
+        Turns around the core circle.
+    major : float > 0, optional
+        Radius ``R`` of the core circle.
+    minor : float > 0, optional
+        Radius ``r < R`` of the tube.
+    n : int >= 3, optional
+        Number of points.
+
+    Returns
+    -------
+    (n, 3) float array
+        The closed polyline (the first point is not repeated).
+
+    Raises
+    ------
+    InvalidParameterError
+        ``p``, ``q`` or ``n`` is not an integer of the range above, ``major`` or ``minor`` is not a
+        finite number > 0, or ``minor >= major``.
+
     Examples
     --------
     >>> from dhlb.vortex.curves import vortex_ring
@@ -124,6 +188,25 @@ def torus_knot(p: int = 2, q: int = 3, major: float = 1.0, minor: float = 0.4, n
 
 def trefoil(major: float = 1.0, minor: float = 0.4, n: int = 256) -> np.ndarray:
     """The trefoil knot as the ``(2, 3)`` torus knot (see :func:`torus_knot`).
+
+    Parameters
+    ----------
+    major : float > 0, optional
+        Radius ``R`` of the core circle.
+    minor : float > 0, optional
+        Radius ``r < R`` of the tube.
+    n : int >= 3, optional
+        Number of points.
+
+    Returns
+    -------
+    (n, 3) float array
+        ``torus_knot(2, 3, major, minor, n)``.
+
+    Raises
+    ------
+    InvalidParameterError
+        As :func:`torus_knot`.
 
     Examples
     --------

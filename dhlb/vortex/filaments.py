@@ -84,13 +84,15 @@ __all__ = ["Filament", "FilamentSet", "extract_filaments", "face_zeros"]
 class Filament:
     """One filament: a closed loop or a chain from boundary to boundary.
 
-    Attributes
+    Made by :func:`extract_filaments`; every parameter is kept as the attribute of the same name.
+
+    Parameters
     ----------
-    points : (m, 3) float64
+    points : (m, 3) float array
         Points in order along the filament's direction (closed loops do not repeat the first point).
     closed : bool
         True for a loop (the last point connects to the first).
-    faces : (m,) int64
+    faces : (m,) int array
         Row in ``X.simplices(2)`` of the triangle each point lies on.
 
     Examples
@@ -125,19 +127,22 @@ class Filament:
 class FilamentSet:
     """The filaments of a section and what was found along the way (a sequence of :class:`Filament`).
 
-    Attributes
+    Made by :func:`extract_filaments`; every parameter is kept as the attribute of the same name.
+
+    Parameters
     ----------
     filaments : tuple of Filament
-    index : (n_2,) int64
+        The filaments.
+    index : (n_2,) int array
         The index form of the section (one integer per triangle).
-    ambiguous_tets : (a,) int64
+    ambiguous_tets : (a,) int array, optional
         Rows in ``X.simplices(3)`` of tetrahedra crossed by more than one filament (or with a face
         of ``|index| >= 2``): the pairing of entries and exits there is a guess (refine the mesh).
-    tie_edges : (e,) int64
+    tie_edges : (e,) int array, optional
         Rows in ``X.simplices(1)`` of edges with ``η_ij(ψ_i) = −ψ_j`` exactly (rotation form ``π``).
-    clamped_faces : (c,) int64
+    clamped_faces : (c,) int array, optional
         Crossed triangles whose interpolated zero fell outside the triangle and was clamped.
-    degenerate_faces : (d,) int64
+    degenerate_faces : (d,) int array, optional
         Crossed triangles whose transported values are collinear in C (point put at the centroid).
 
     Examples
@@ -249,19 +254,22 @@ def extract_filaments(
     ----------
     bundle : HermitianLineBundle
         Over a 3-complex in which every triangle lies in at most two tetrahedra.
-    section : (N,) complex
+    section : (N,) complex array
         One value per vertex (in the frames of the bundle), nowhere zero.
-    points : (N, 3) float
+    points : (N, 3) float array
         Vertex positions (compact vertex order of ``bundle.X``).
-    placement : {"balanced", "vertex"}
+    placement : {"balanced", "vertex"}, optional
         Local gauge in which the point on a crossed triangle is interpolated (:func:`face_zeros`).
 
     Returns
     -------
     FilamentSet
+        The filaments, the index form and the reported tetrahedra, edges and faces.
 
     Raises
     ------
+    InvalidParameterError
+        ``bundle`` is not a hermitian line bundle, or ``placement`` is not one of the values above.
     SectionZeroError
         ψ vanishes at a vertex (named, with its position).
     ShapeError, NonFiniteError

@@ -87,16 +87,30 @@ def segment_velocity(
 
     Parameters
     ----------
-    x : (m, 3) float
-    q1, q2 : (s, 3) segment start and end points
-    circulation : float or (s,) floats
-    core_radius : float >= 0
-    chunk : int
+    x : (m, 3) float array
+        The points where the velocity is evaluated.
+    q1 : (s, 3) float array
+        Start points of the segments.
+    q2 : (s, 3) float array
+        End points of the segments.
+    circulation : float or (s,) float array, optional
+        ``Γ`` of each segment (one number for all).
+    core_radius : float >= 0, optional
+        Regularization ``a`` (0: the singular field, 0 on a segment's line).
+    chunk : int, optional
         Number of point-segment pairs evaluated at once.
 
     Returns
     -------
-    (m, 3) float64
+    (m, 3) float array
+        The sum of the velocities of all segments at each point.
+
+    Raises
+    ------
+    ShapeError
+        ``x``, ``q1`` or ``q2`` is not an ``(·, 3)`` array, or ``q1`` and ``q2`` differ in shape.
+    InvalidParameterError
+        ``core_radius`` is not a real number in ``[0, 1e154)``.
 
     Examples
     --------
@@ -148,6 +162,15 @@ class FilamentField:
     closed : bool or one bool per curve
         Whether the last point connects back to the first.
 
+    Raises
+    ------
+    ShapeError
+        No curves, or a curve that is not an ``(n, 3)`` array of ``n >= 2`` points.
+    NonFiniteError
+        A circulation or a curve point is NaN or infinite.
+    InvalidParameterError
+        ``core_radius`` is not a real number in ``[0, 1e154)``.
+
     Examples
     --------
     >>> import numpy as np
@@ -187,7 +210,7 @@ class FilamentField:
         self._q1, self._q2, self._g = np.concatenate(q1), np.concatenate(q2), np.concatenate(g)
 
     def __call__(self, x: ArrayLike) -> np.ndarray:
-        """The velocity at the points ``x`` (shape ``(..., 3)``)."""
+        """The velocity at the points ``x`` (shape ``(m, 3)``)."""
         return segment_velocity(x, self._q1, self._q2, self._g, self.core_radius)
 
     def __repr__(self) -> str:
@@ -196,6 +219,21 @@ class FilamentField:
 
 def uniform_flow(u: ArrayLike) -> Callable[[ArrayLike], np.ndarray]:
     """The constant field ``v(x) = u``.
+
+    Parameters
+    ----------
+    u : 3 floats
+        The velocity.
+
+    Returns
+    -------
+    callable
+        ``v(x)`` mapping ``(m, 3)`` points to an ``(m, 3)`` array of copies of ``u``.
+
+    Raises
+    ------
+    ShapeError
+        ``u`` is not one finite 3-vector.
 
     Examples
     --------
@@ -216,6 +254,23 @@ def superpose(
     *fields: Callable[[ArrayLike], np.ndarray], weights: ArrayLike | None = None
 ) -> Callable[[ArrayLike], np.ndarray]:
     """The field ``x ↦ Σ_k weights[k] · fields[k](x)``.
+
+    Parameters
+    ----------
+    *fields : callable
+        Velocity fields ``v(x)`` mapping ``(m, 3)`` points to ``(m, 3)`` vectors.
+    weights : (k,) float array, optional
+        One finite weight per field (default: all 1).
+
+    Returns
+    -------
+    callable
+        The weighted sum ``v(x)``, mapping ``(m, 3)`` points to ``(m, 3)`` vectors.
+
+    Raises
+    ------
+    ShapeError
+        No field, a field that is not callable, or ``weights`` not one finite number per field.
 
     Examples
     --------

@@ -74,6 +74,23 @@ def gauss_linking_integral(a: ArrayLike, b: ArrayLike) -> float:
 
     Exact (up to rounding) for disjoint polylines, where it is an integer; see the module docstring.
 
+    Parameters
+    ----------
+    a : (n, 3) float array
+        The first closed polyline (first point not repeated; a repeated last point is dropped).
+    b : (k, 3) float array
+        The second closed polyline.
+
+    Returns
+    -------
+    float
+        The integral, not rounded (:func:`linking_number` rounds it and checks that it is an integer).
+
+    Raises
+    ------
+    ShapeError, NonFiniteError
+        Not ``(n, 3)`` arrays with ``n >= 3`` finite points.
+
     Examples
     --------
     >>> from dhlb.vortex.curves import hopf_link
@@ -94,6 +111,27 @@ def gauss_linking_integral(a: ArrayLike, b: ArrayLike) -> float:
 
 def polyline_distance(x: ArrayLike, curve: ArrayLike, *, closed: bool = True) -> np.ndarray:
     """Euclidean distance from each point of ``x`` (m, 3) to the polyline ``curve`` (exact).
+
+    Parameters
+    ----------
+    x : (m, 3) float array
+        The points.
+    curve : (n, 3) float array
+        The polyline, ``n >= 3`` finite points if closed, ``n >= 2`` if open.
+    closed : bool, optional
+        Whether the last point of ``curve`` is joined to the first.
+
+    Returns
+    -------
+    (m,) float array
+        The distance of each point to the nearest point of the polyline.
+
+    Raises
+    ------
+    ShapeError
+        ``x`` is not ``(m, 3)``, or ``curve`` is not ``(n, 3)`` with enough points.
+    NonFiniteError
+        ``curve`` has a NaN or infinite point.
 
     Examples
     --------
@@ -134,6 +172,20 @@ def linking_number(a: ArrayLike, b: ArrayLike, *, atol: float = 1e-6) -> int:
 
     Reversing either curve changes the sign; ``Lk(a, b) = Lk(b, a)``.
 
+    Parameters
+    ----------
+    a : (n, 3) float array
+        The first closed polyline.
+    b : (k, 3) float array
+        The second closed polyline.
+    atol : float, optional
+        How far the Gauss integral may be from the nearest integer.
+
+    Returns
+    -------
+    int
+        The Gauss integral rounded to the nearest integer.
+
     Raises
     ------
     CurveIntersectionError
@@ -153,6 +205,25 @@ def linking_number(a: ArrayLike, b: ArrayLike, *, atol: float = 1e-6) -> int:
 
 def linking_matrix(curves: Sequence[ArrayLike], *, atol: float = 1e-6) -> np.ndarray:
     """Symmetric integer matrix of pairwise linking numbers (zero diagonal).
+
+    Parameters
+    ----------
+    curves : sequence of (n_i, 3) float arrays
+        Closed polylines (first point not repeated).
+    atol : float, optional
+        As for :func:`linking_number`.
+
+    Returns
+    -------
+    (k, k) int array
+        ``L[i, j]`` is the linking number of curves ``i`` and ``j``.
+
+    Raises
+    ------
+    CurveIntersectionError
+        Two curves intersect or nearly touch (as for :func:`linking_number`).
+    ShapeError, NonFiniteError
+        A curve is not an ``(n, 3)`` array with ``n >= 3`` finite points.
 
     Examples
     --------
@@ -190,11 +261,26 @@ def hausdorff_distance(
 
     Parameters
     ----------
-    a, b : (n, 3) arrays
-    closed : pair of bools
+    a : (n, 3) float array
+        The first polyline.
+    b : (k, 3) float array
+        The second polyline.
+    closed : pair of bools, optional
         Whether ``a`` resp. ``b`` is closed (last point joined to the first).
     spacing : float > 0, optional
         Default: a quarter of the median segment length of both curves.
+
+    Returns
+    -------
+    float
+        The lower bound ``h`` of the Hausdorff distance, ``h <= d_H(a, b) <= h + spacing / 2``.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``spacing`` is not a finite number > 0.
+    ShapeError, NonFiniteError
+        A curve is not an ``(n, 3)`` array of finite points (``n >= 3`` if closed, ``n >= 2`` if open).
 
     Examples
     --------

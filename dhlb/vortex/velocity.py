@@ -55,6 +55,23 @@ MAX_ORDER = 64
 def gauss_legendre(order: int) -> tuple[np.ndarray, np.ndarray]:
     """Nodes ``s_q ∈ (0, 1)`` and weights ``w_q`` (summing to 1) of Gauss–Legendre quadrature on [0, 1].
 
+    Parameters
+    ----------
+    order : int
+        The number of nodes, ``1 <= order <= MAX_ORDER``; exact for polynomials of degree ``2·order − 1``.
+
+    Returns
+    -------
+    s : (order,) float array
+        The nodes, increasing.
+    w : (order,) float array
+        The weights.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``order`` is not an integer in ``1 .. MAX_ORDER`` (booleans are refused).
+
     Examples
     --------
     >>> s, w = gauss_legendre(2)
@@ -126,12 +143,16 @@ def edge_circulation(
 
     Returns
     -------
-    (n_e,) float64
+    (n_e,) float array
+        The circulation of each edge, from its first to its second vertex.
 
     Raises
     ------
+    InvalidParameterError
+        ``order`` is not an integer in ``1 .. MAX_ORDER`` (callable ``velocity`` only).
     ShapeError
-        Wrong shapes of ``points``, ``edges``, the per-vertex array or the callable's output.
+        Wrong shapes of ``points``, ``edges``, the per-vertex array or the callable's output, or an
+        edge index outside ``points``.
     NonFiniteError
         NaN/inf in positions or per-vertex vectors (the vertex is named), or returned by the
         callable (the edge and the sample point are named).
@@ -204,7 +225,7 @@ def velocity_bundle(
         As for :func:`edge_circulation`.
     hbar : float > 0
         The scale ``ħ``: the curvature is the flux of ``curl v / ħ``.
-    order : int
+    order : int, optional
         Quadrature order for a callable velocity.
 
     Returns
@@ -216,7 +237,7 @@ def velocity_bundle(
     Raises
     ------
     InvalidParameterError
-        ``hbar`` not a finite positive number.
+        ``hbar`` not a finite positive number, or a bad ``order`` (as for :func:`edge_circulation`).
     ShapeError, NonFiniteError
         As for :func:`edge_circulation` (also: ``points`` not one row per vertex of ``X``).
 
