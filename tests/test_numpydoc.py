@@ -34,6 +34,9 @@ PACKAGES = [
     "dhlb.io",
     "dhlb.examples",
     "dhlb.strategies",
+    "dhlb.topology",
+    "dhlb.forms",
+    "dhlb.bundles",
 ]
 
 # names not (yet) under the gate, with the reason
