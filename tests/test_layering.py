@@ -1,11 +1,13 @@
 """The layering of the package, written once and enforced: imports point down only, applications are independent.
 
 Each top-level package of ``dhlb`` has a rank; a module may import (at any place in the file, also
-inside functions) only packages of a lower rank, or its own — except that the presentation methods
-of results (``show``, ``_repr_png_``, ``_repr_html_``, ``_render_png``) may call the ``render`` layer at run time.
-Applications share a rank and must not import each other.  ``KNOWN`` lists the imports that still
-break the rule, each with the reason; the re-layering removes them and the test then requires their
-removal (a listed import that is gone fails too, so the list cannot go stale).
+inside functions) only packages of a lower rank, or its own. Applications share a rank and must not
+import each other. Results reach the io and render layers above them through the entry-point group
+``dhlb.plugins`` (:mod:`dhlb._result`), and deprecated import paths resolve by name
+(:mod:`dhlb._deprecation`): neither is an import edge. ``KNOWN`` lists imports that break the rule, each
+with its reason; it is empty, and a listed import that is gone fails too, so the list cannot go stale.
+The same rule is written as import-linter contracts in ``pyproject.toml`` (run by :func:`test_import_linter_contracts`
+and in CI).
 """
 
 from __future__ import annotations
@@ -41,24 +43,11 @@ KNOWN = {
 }
 
 
-PRESENTATION = {"show", "_repr_png_", "_repr_html_", "_render_png"}
-"""Methods by which a result presents itself (notebooks, the viewer): they may defer to ``render`` at call time."""
-
-
-def _nodes(tree):
-    """Every node except the bodies of presentation methods."""
-    stack = [tree]
-    while stack:
-        node = stack.pop()
-        yield node
-        stack.extend(child for child in ast.iter_child_nodes(node)
-                     if not (isinstance(child, ast.FunctionDef) and child.name in PRESENTATION))
-
 
 def imports_of(path: pathlib.Path) -> set[str]:
-    """Top-level ``dhlb`` packages imported anywhere in the file (absolute imports), presentation methods aside."""
+    """Top-level ``dhlb`` packages imported anywhere in the file (absolute imports)."""
     out = set()
-    for node in _nodes(ast.parse(path.read_text(encoding="utf-8"))):
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
         names = ([node.module] if isinstance(node, ast.ImportFrom) and node.module and node.level == 0
                  else [a.name for a in node.names] if isinstance(node, ast.Import) else [])
         for name in names:
@@ -115,3 +104,17 @@ def test_an_upward_import_is_caught(tmp_path, src, code):
     path = tmp_path / "mod.py"
     path.write_text(code, encoding="utf-8")
     assert violations({(src, dst) for dst in imports_of(path)})
+
+
+def test_import_linter_contracts():
+    """The import-linter contracts of pyproject.toml (layers, independent applications, no circles) are kept."""
+    pytest.importorskip("importlinter")
+    import subprocess
+    import sys
+
+    root = ROOT.parent
+    proc = subprocess.run([sys.executable, "-c", "from importlinter.cli import lint_imports_command; "
+                           "lint_imports_command()", "--no-cache"], cwd=root, capture_output=True, text=True,
+                          timeout=300)
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-2000:]
+    assert "Contracts: 3 kept, 0 broken." in proc.stdout

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 from dhlb import SimplicialComplex, examples
 from dhlb.errors import EmptyComplexError, InvalidParameterError, InvalidSimplexError, InvalidTypeError
-from dhlb.topology import networkx_bridge
+from dhlb.topology import cliques
 from dhlb.topology.networkx_bridge import NETWORKX_EXTRA, dual_graph, flag_complex, skeleton_graph
 from tests.strategies import closed_surfaces, complexes
 
@@ -150,8 +150,8 @@ def test_a_hub_costs_no_candidates(monkeypatch):
         tried.append(a.size)
         return a, b
 
-    group_pairs = networkx_bridge._group_pairs
-    monkeypatch.setattr(networkx_bridge, "_group_pairs", counting)
+    group_pairs = cliques.group_pairs
+    monkeypatch.setattr(cliques, "group_pairs", counting)
     G = nx.star_graph(2_000)
     G.add_edges_from([(1, 2), (2, 3)])   # two triangles through the centre: 0-1-2, 0-2-3
     X, _ = flag_complex(G)
@@ -200,11 +200,47 @@ def test_missing_networkx_names_the_extra(monkeypatch):
     X = examples.torus()
     monkeypatch.setitem(sys.modules, "networkx", None)   # `import networkx` now raises ImportError
     for call in (lambda: flag_complex(None), lambda: skeleton_graph(X), lambda: dual_graph(X),
-                 lambda: X.to_networkx(), lambda: X.to_networkx("dual"),
-                 lambda: SimplicialComplex.from_graph(None)):
+                 lambda: X.to_networkx(), lambda: X.to_networkx("dual")):
         with pytest.raises(ImportError, match=r'pip install "dhlb\[graph\]"') as info:
             call()
         assert str(info.value) == NETWORKX_EXTRA
+
+
+class PlainGraph:
+    """A graph without networkx: nodes and an edges() method (a triangle a-b-c with a tail c-d)."""
+
+    def __init__(self):
+        self.nodes = ["a", "b", "c", "d"]
+
+    def edges(self):
+        return iter([("a", "b"), ("b", "c"), ("c", "a"), ("c", "d")])
+
+
+def test_from_graph_reads_any_graph_like_object_without_networkx(monkeypatch):
+    monkeypatch.setitem(sys.modules, "networkx", None)
+    X = SimplicialComplex.from_graph(PlainGraph())
+    assert X.counts == (4, 4, 1)
+    assert X.simplices(2).tolist() == [[0, 1, 2]]
+    with pytest.raises(InvalidTypeError, match="networkx graph"):
+        SimplicialComplex.from_graph(None)
+    G = PlainGraph()
+    G.nodes = ["a", "b", "c"]                      # the tail ends at "d", not a node
+    with pytest.raises(InvalidSimplexError, match=r"'d'.*not a node"):
+        SimplicialComplex.from_graph(G)
+
+
+def test_maximal_cliques_checks_its_arrays():
+    assert [b.tolist() for b in cliques.maximal_cliques(3, np.zeros((0, 2), int))] == [[[0], [1], [2]]]
+    with pytest.raises(InvalidSimplexError, match=r"outside 0 \.\. 2"):
+        cliques.maximal_cliques(3, [[0, 3]])
+    with pytest.raises(InvalidSimplexError, match="self-loop"):
+        cliques.maximal_cliques(3, [[0, 1], [2, 2]])
+    with pytest.raises(InvalidTypeError, match="edges"):
+        cliques.maximal_cliques(3, [[0.0, 1.0]])
+    with pytest.raises(InvalidTypeError, match="edges"):
+        cliques.maximal_cliques(3, [0, 1, 2])
+    with pytest.raises(InvalidParameterError, match="n must"):
+        cliques.maximal_cliques(-1, [])
 
 
 def test_importing_dhlb_topology_does_not_import_networkx():

@@ -42,10 +42,24 @@ __all__ = ["rotation_form", "index_form", "index_sum"]
 def rotation_form(L: HermitianLineBundle, section: ArrayLike) -> np.ndarray:
     """``ξ_ij = arg(z_j / (r_ij z_i)) ∈ (−π, π]`` per canonical edge (float64, length n_1).
 
+    Parameters
+    ----------
+    L : HermitianLineBundle
+        The bundle; ``r_ij`` are its unit transports (``L.connection``).
+    section : (n_0,) complex array_like
+        The coefficients ``z_i`` of the section in the frames of ``L``, nowhere zero.
+
+    Returns
+    -------
+    (n_1,) float64 array
+        ``ξ`` per row of ``X.simplices(1)``, in (−π, π] (``+π`` at a tie).
+
     Raises
     ------
     SectionZeroError
-        if the section vanishes at some vertex (named).
+        if the section vanishes at some vertex (named), or does not have one value per vertex.
+    NonFiniteError
+        if a value of the section is NaN or infinite.
 
     Examples
     --------
@@ -65,6 +79,27 @@ def index_form(L: HermitianLineBundle, section: ArrayLike) -> np.ndarray:
     The values are integers by Theorem 11; they are checked to tolerance (a failure would
     mean that the bundle's curvature and connection disagree).
 
+    Parameters
+    ----------
+    L : HermitianLineBundle
+        The bundle, with its curvature Ω.
+    section : (n_0,) complex array_like
+        The coefficients ``z_i`` of the section in the frames of ``L``, nowhere zero.
+
+    Returns
+    -------
+    (n_2,) int64 array
+        The index of the section in every triangle.
+
+    Raises
+    ------
+    SectionZeroError
+        if the section vanishes at some vertex (named), or does not have one value per vertex.
+    NonFiniteError
+        if a value of the section is NaN or infinite.
+    CurvatureMismatchError
+        if a value is not an integer (the curvature does not match the connection there).
+
     Examples
     --------
     >>> from dhlb import SimplicialComplex
@@ -82,6 +117,33 @@ def index_sum(L: HermitianLineBundle, section: ArrayLike, cycle: ArrayLike | Non
 
     ``C`` defaults to the fundamental cycle ``X.orientation()`` of a closed oriented surface.
     Poincaré–Hopf: this equals ``(1/2π) ∫_C Ω`` (the degree, for the fundamental cycle).
+
+    Parameters
+    ----------
+    L : HermitianLineBundle
+        The bundle.
+    section : (n_0,) complex array_like
+        The coefficients ``z_i`` of the section in the frames of ``L``, nowhere zero.
+    cycle : (n_2,) int array_like or Chain, optional
+        An integer 2-cycle ``C`` (``∂C = 0``). Default: ``L.fundamental_cycle()``.
+
+    Returns
+    -------
+    int
+        ``Σ_t C_t ind_t``.
+
+    Raises
+    ------
+    SectionZeroError
+        if the section vanishes at some vertex, or does not have one value per vertex.
+    CurvatureMismatchError
+        if the curvature does not match the connection on some triangle.
+    NotClosedError
+        ``cycle`` is not an integer vector of length n_2, or not a cycle.
+    NonManifoldError
+        ``cycle`` is omitted and X is not a closed surface.
+    NonOrientableError
+        ``cycle`` is omitted and X is not orientable.
 
     Examples
     --------

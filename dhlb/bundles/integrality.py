@@ -41,6 +41,16 @@ def integer_cycle_basis(X: ComplexLike) -> sp.csc_matrix:
     the list of H₂ generators (free and torsion); together with the tetrahedron boundaries
     they generate ker ∂₂.
 
+    Parameters
+    ----------
+    X : SimplicialComplex
+        A complex of dimension >= 2.
+
+    Returns
+    -------
+    (n_2, ℓ) scipy.sparse int64 csc matrix
+        One integer 2-cycle over ``X.simplices(2)`` per column (``ℓ = 0`` when there is none).
+
     Examples
     --------
     >>> from dhlb.examples import projective_plane, torus
@@ -71,16 +81,32 @@ def _raise_defect(X, cycle, period, defect, what):
 def check_integrality(X: ComplexLike, Omega: ArrayLike, atol: float = 1e-8) -> np.ndarray:
     """Check ``∫_C Ω ∈ 2πZ`` for an integer basis of 2-cycles; return the periods ``∫_C Ω / 2π``.
 
+    With 3-simplices, the boundary of every tetrahedron is tested first (``dΩ ∈ 2πZ``).
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+        A complex of dimension >= 2.
+    Omega : (n_2,) float array_like
+        The curvature 2-form, one real value per row of ``X.simplices(2)``.
+    atol : float, default 1e-8
+        Tolerance of ``∫_C Ω ∈ 2πZ``, scaled by ``max(1, ∫_C |Ω|)``.
+
     Returns
     -------
-    ndarray of int64, one per cycle of :func:`integer_cycle_basis` (for a closed connected
-    orientable surface: ``[deg]``, for the fundamental cycle with ``o = +1`` on triangle 0).
+    (ℓ,) int64 array
+        One period per cycle of :func:`integer_cycle_basis` (for a closed connected
+        orientable surface: ``[deg]``, for the fundamental cycle with ``o = +1`` on triangle 0).
 
     Raises
     ------
     IntegralityError
         for the first violating cycle, with ``.cycle`` (int64 2-chain, length n_2) and
         ``.defect`` (``∫_C Ω − 2πn``, the distance to the nearest multiple of 2π).
+    InvalidConnectionError
+        ``Omega`` is not real or does not have length ``n_2``.
+    NonFiniteError
+        ``Omega`` contains NaN or infinity.
 
     Examples
     --------

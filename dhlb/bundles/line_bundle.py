@@ -56,8 +56,21 @@ class LineBundleClass:
     Parameters
     ----------
     X : SimplicialComplex
-    values : (m,) array, one F* value per non-tree edge of ``spanning_forest(X)``
-    field : ``"R"``, ``"C"`` or ``("GF", p)``
+        The complex.
+    values : (m,) array_like
+        One nonzero F value per non-tree edge of ``spanning_forest(X)`` (``m = forest.nontree.size``).
+    field : ``"R"``, ``"C"`` or ``("GF", p)``, default "C"
+        The field F.
+    atol : float, default 1e-9
+        Tolerance of the floating-point comparisons.
+
+    Raises
+    ------
+    InvalidConnectionError
+        ``values`` does not have one entry per fundamental cycle, has a zero, or is not numeric
+        (over GF(p): not integer); ``field`` is unknown.
+    NonFiniteError
+        ``values`` contains NaN or infinity (R, C).
 
     Examples
     --------
@@ -162,6 +175,21 @@ class LineBundleClass:
 def line_bundle_class(L: VectorBundle) -> LineBundleClass:
     """The class of a rank-1 bundle in Hom(ker ∂₁, F*) (Theorem 6: abelianized monodromy).
 
+    Parameters
+    ----------
+    L : VectorBundle
+        A line bundle (rank 1).
+
+    Returns
+    -------
+    LineBundleClass
+        Its monodromy around the fundamental cycles of ``spanning_forest(L.X)``, in the field of ``L``.
+
+    Raises
+    ------
+    InvalidConnectionError
+        ``L`` does not have rank 1.
+
     Examples
     --------
     >>> from dhlb import SimplicialComplex
@@ -176,6 +204,21 @@ def line_bundle_class(L: VectorBundle) -> LineBundleClass:
 
 def connection_form(L: VectorBundle) -> np.ndarray:
     """A connection form of a line bundle (Definition 6): ``ω_ij = η_ij`` in the given frames.
+
+    Parameters
+    ----------
+    L : VectorBundle
+        A line bundle (rank 1).
+
+    Returns
+    -------
+    (n_1,) array
+        ``ω[e] = η_ij`` for the canonical edge ``e = (i < j)``, in the field's dtype (a copy).
+
+    Raises
+    ------
+    InvalidConnectionError
+        ``L`` does not have rank 1.
 
     Examples
     --------
@@ -194,6 +237,30 @@ def form_class(
 ) -> LineBundleClass:
     """The class of an F*-valued 1-form ``ω`` (per canonical edge) in Hom(ker ∂₁, F*).
 
+    Parameters
+    ----------
+    X : SimplicialComplex
+        The complex.
+    omega : (n_1,) array_like
+        One nonzero value per edge of ``X.simplices(1)``.
+    field : ``"R"``, ``"C"`` or ``("GF", p)``, default "C"
+        The field F.
+    atol : float, default 1e-9
+        Tolerance of the floating-point checks.
+
+    Returns
+    -------
+    LineBundleClass
+        The products of ``ω`` around the fundamental cycles.
+
+    Raises
+    ------
+    InvalidConnectionError
+        ``omega`` has the wrong length, a zero (a singular transport) or non-numeric entries;
+        ``field`` is unknown.
+    NonFiniteError
+        ``omega`` contains NaN or infinity.
+
     Examples
     --------
     >>> from dhlb import SimplicialComplex
@@ -209,10 +276,30 @@ def integrate_exact_form(
 ) -> np.ndarray:
     """``g`` with ``ω_ij = g_j / g_i`` (``g = 1`` at the roots) for an exact F*-valued 1-form.
 
+    Parameters
+    ----------
+    X : SimplicialComplex
+        The complex.
+    omega : (n_1,) array_like
+        One nonzero value per edge of ``X.simplices(1)``.
+    field : ``"R"``, ``"C"`` or ``("GF", p)``, default "C"
+        The field F.
+    atol : float, default 1e-9
+        Tolerance of the test that every cycle product is 1.
+
+    Returns
+    -------
+    (n_0,) array
+        ``g`` per vertex, 1 at the root of each component, in the field's dtype.
+
     Raises
     ------
     NotExactError
         naming a fundamental cycle (by its non-tree edge) on which ``ω`` is not 1.
+    InvalidConnectionError
+        ``omega`` has the wrong length, a zero or non-numeric entries; ``field`` is unknown.
+    NonFiniteError
+        ``omega`` contains NaN or infinity.
 
     Examples
     --------

@@ -57,10 +57,25 @@ def gauge(E: VectorBundle, g: ArrayLike) -> VectorBundle:
     ``g`` has shape (n_0, K, K) (or (n_0,) for rank 1).  The result keeps ``metric=True``
     only if every ``g_i`` is orthogonal / unitary.
 
+    Parameters
+    ----------
+    E : VectorBundle
+        A bundle of rank K over ``X``.
+    g : (n_0, K, K) array_like, or (n_0,) for K = 1
+        One invertible matrix per vertex, in the field of ``E``.
+
+    Returns
+    -------
+    VectorBundle
+        The bundle E' over the same complex and field, transports ``g_j η_ij g_i⁻¹``.
+
     Raises
     ------
     InvalidConnectionError
-        if some ``g_i`` is singular (names the vertex).
+        if some ``g_i`` is singular (names the vertex), or ``g`` has the wrong shape or
+        non-numeric (or, for a real bundle, complex) entries.
+    NonFiniteError
+        ``g`` contains NaN or infinity.
 
     Examples
     --------
@@ -74,6 +89,24 @@ def gauge(E: VectorBundle, g: ArrayLike) -> VectorBundle:
 
 def direct_sum(E: VectorBundle, F: VectorBundle) -> VectorBundle:
     """``E ⊕ F`` with the block-diagonal connection ``η ⊕ θ``.
+
+    Parameters
+    ----------
+    E : VectorBundle
+        A bundle of rank ``K_E`` over ``X``.
+    F : VectorBundle
+        A bundle of rank ``K_F`` over the same complex and field.
+
+    Returns
+    -------
+    VectorBundle
+        The bundle of rank ``K_E + K_F``; ``metric`` when both are metric.
+
+    Raises
+    ------
+    InvalidConnectionError
+        ``E`` and ``F`` are not both :class:`VectorBundle` objects, or live over different
+        complexes or fields.
 
     Examples
     --------
@@ -89,6 +122,24 @@ def direct_sum(E: VectorBundle, F: VectorBundle) -> VectorBundle:
 def tensor(E: VectorBundle, F: VectorBundle) -> VectorBundle:
     """``E ⊗ F`` with ``(η ⊗ θ)_ij = η_ij ⊗ θ_ij`` (Kronecker product, row-major).
 
+    Parameters
+    ----------
+    E : VectorBundle
+        A bundle of rank ``K_E`` over ``X``.
+    F : VectorBundle
+        A bundle of rank ``K_F`` over the same complex and field.
+
+    Returns
+    -------
+    VectorBundle
+        The bundle of rank ``K_E K_F``; ``metric`` when both are metric.
+
+    Raises
+    ------
+    InvalidConnectionError
+        ``E`` and ``F`` are not both :class:`VectorBundle` objects, or live over different
+        complexes or fields.
+
     Examples
     --------
     >>> from dhlb import SimplicialComplex
@@ -103,6 +154,16 @@ def tensor(E: VectorBundle, F: VectorBundle) -> VectorBundle:
 def dual(E: VectorBundle) -> VectorBundle:
     """``E*`` with the contragredient connection ``(η_ij⁻¹)ᵀ`` (complex-linear dual).
 
+    Parameters
+    ----------
+    E : VectorBundle
+        A bundle of rank K.
+
+    Returns
+    -------
+    VectorBundle
+        The dual bundle, of rank K over the same complex and field.
+
     Examples
     --------
     >>> from dhlb import SimplicialComplex
@@ -115,6 +176,24 @@ def dual(E: VectorBundle) -> VectorBundle:
 
 def hom(E: VectorBundle, F: VectorBundle) -> VectorBundle:
     """``Hom(E, F) = F ⊗ E*``; its parallel sections, reshaped to (K_F, K_E), are the morphisms.
+
+    Parameters
+    ----------
+    E : VectorBundle
+        The source, of rank ``K_E``.
+    F : VectorBundle
+        The target, of rank ``K_F``, over the same complex and field.
+
+    Returns
+    -------
+    VectorBundle
+        The bundle of rank ``K_F K_E``; fibres are the (K_F, K_E) matrices flattened row-major.
+
+    Raises
+    ------
+    InvalidConnectionError
+        ``E`` and ``F`` are not both :class:`VectorBundle` objects, or live over different
+        complexes or fields.
 
     Examples
     --------
@@ -129,6 +208,29 @@ def hom(E: VectorBundle, F: VectorBundle) -> VectorBundle:
 
 def is_morphism(E: VectorBundle, F: VectorBundle, f: ArrayLike) -> bool:
     """True if ``f`` (shape (n_0, K_F, K_E)) makes every edge diagram commute: ``f_j η_ij = θ_ij f_i``.
+
+    Parameters
+    ----------
+    E : VectorBundle
+        The source, transports ``η``, rank ``K_E``.
+    F : VectorBundle
+        The target, transports ``θ``, rank ``K_F``, over the same complex and field.
+    f : (n_0, K_F, K_E) array_like
+        One linear map per vertex.
+
+    Returns
+    -------
+    bool
+        Whether ``f_j η_ij = θ_ij f_i`` on every edge (within the tolerance of the field; exactly
+        over GF(p)). ``f`` need not be invertible.
+
+    Raises
+    ------
+    InvalidConnectionError
+        The bundles are not both :class:`VectorBundle` objects or differ in complex or field;
+        ``f`` has the wrong shape or non-numeric entries.
+    NonFiniteError
+        ``f`` contains NaN or infinity.
 
     Examples
     --------
@@ -192,10 +294,31 @@ def find_isomorphism(
     a Schwartz–Zippel bound otherwise) and propagate along the spanning tree
     (``f_v = T^F_v f T^E_v⁻¹``).  The result is verified on every edge.
 
+    Parameters
+    ----------
+    E : VectorBundle
+        The source, rank K.
+    F : VectorBundle
+        The target, rank K, over the same complex and field.
+    rng : numpy.random.Generator or int, optional
+        Randomness of the search for an invertible intertwiner (default: a generator seeded 0,
+        so the result is reproducible).
+    max_enumeration : int, default 2**16
+        Over GF(p): enumerate the intertwiner space when it has at most this many elements.
+
+    Returns
+    -------
+    (n_0, K, K) array or None
+        An isomorphism ``f`` in the field's dtype, or ``None`` when E and F are not isomorphic.
+
     Raises
     ------
     InvalidConnectionError
         if the bundles have different complexes, fields or ranks.
+    ConvergenceError
+        Floating point: the monodromy or tree transport matrices are too ill-conditioned
+        (condition number > 1e8) to trust a negative answer. GF(p) with ``p <= K``: the random
+        search failed and the intertwiner space is too large to enumerate.
 
     Examples
     --------
@@ -260,6 +383,27 @@ def _no_isomorphism(ops, ME, MF, E: VectorBundle, F: VectorBundle):
 
 def is_isomorphic(E: VectorBundle, F: VectorBundle, **kwargs: Any) -> bool:
     """True if :func:`find_isomorphism` finds an isomorphism.
+
+    Parameters
+    ----------
+    E : VectorBundle
+        The source, rank K.
+    F : VectorBundle
+        The target, over the same complex and field.
+    **kwargs
+        ``rng``, ``max_enumeration`` of :func:`find_isomorphism`.
+
+    Returns
+    -------
+    bool
+        Whether E ≅ F.
+
+    Raises
+    ------
+    InvalidConnectionError
+        The bundles differ in complex, field or rank.
+    ConvergenceError
+        As in :func:`find_isomorphism`: the answer cannot be decided reliably.
 
     Examples
     --------

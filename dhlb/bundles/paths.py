@@ -64,14 +64,20 @@ __all__ = [
 class LoopGroupPresentation:
     """Presentation of π₁ of each component: free generators and relator words.
 
-    Attributes
+    Every parameter is kept as the attribute of the same name.
+
+    Parameters
     ----------
-    base : (c,) int64, base vertex per component
-    generators : (m,) int64, edge row of generator ``g`` (the non-tree edge ``(u, v)``, ``u < v``;
-        loop ``base → u → v → base``)
-    generator_component : (m,) int64, component of each generator
-    relators : list of lists of ``(g, ±1)``: the word of the loop ``a → b → c → a`` around
-        each triangle ``a < b < c`` (order of ``X.simplices(2)``), tree edges omitted
+    base : (c,) int64 array
+        Base vertex per component.
+    generators : (m,) int64 array
+        Edge row of generator ``g`` (the non-tree edge ``(u, v)``, ``u < v``; loop
+        ``base → u → v → base``).
+    generator_component : (m,) int64 array
+        Component of each generator.
+    relators : list of lists of ``(g, ±1)``
+        The word of the loop ``a → b → c → a`` around each triangle ``a < b < c`` (order of
+        ``X.simplices(2)``), tree edges omitted.
 
     Examples
     --------
@@ -95,6 +101,19 @@ class LoopGroupPresentation:
 
 def loop_group_presentation(X: SimplicialComplex, forest: SpanningForest) -> LoopGroupPresentation:
     """Generators (non-tree edges) and relators (triangles) of π₁(X) at the forest roots.
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+        Any complex.
+    forest : SpanningForest
+        A spanning forest of the whole 1-skeleton of ``X`` (:func:`spanning_forest` without
+        ``edges``); its roots are the base points.
+
+    Returns
+    -------
+    LoopGroupPresentation
+        One generator per non-tree edge, one relator per triangle (none when ``X.dim < 2``).
 
     Examples
     --------

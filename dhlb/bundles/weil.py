@@ -60,10 +60,20 @@ def line_bundle_with_curvature(
     Parameters
     ----------
     X : SimplicialComplex
-    Omega : (n_2,) real, closed and integral
+        A complex of dimension >= 2.
+    Omega : (n_2,) float array_like
+        Real, closed and integral; one value per row of ``X.simplices(2)``.
     holonomy : None or ``(free_angles, torsion)``
         Which bundle in the H¹(X; S¹)-torsor (see :class:`BundlesWithCurvature`); ``None``
-        returns the base bundle of the construction.
+        returns the base bundle of the construction. A dict with keys ``"free"`` and
+        ``"torsion"`` is accepted too.
+    atol : float, default 1e-8
+        Tolerance of the closedness and integrality tests.
+
+    Returns
+    -------
+    HermitianLineBundle
+        A bundle whose ``curvature`` is ``Omega`` (the same values, not recomputed).
 
     Raises
     ------
@@ -71,6 +81,11 @@ def line_bundle_with_curvature(
         ``dΩ ≠ 0`` on a tetrahedron (named).
     IntegralityError
         Ω is not integral; ``.cycle`` is a violating integer 2-cycle, ``.defect`` its defect.
+    InvalidConnectionError
+        ``Omega`` is not a real vector of length ``n_2``; ``holonomy`` has the wrong number of
+        free angles or torsion residues.
+    NonFiniteError
+        ``Omega`` contains NaN or infinity.
 
     Examples
     --------
@@ -104,6 +119,26 @@ def _split_holonomy(holonomy):
 
 class BundlesWithCurvature:
     """All hermitian line bundles with curvature Ω up to isomorphism: a torsor over H¹(X; S¹).
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+        A complex of dimension >= 2.
+    Omega : (n_2,) float array_like
+        Real, closed and integral; one value per row of ``X.simplices(2)``.
+    atol : float, default 1e-8
+        Tolerance of the closedness and integrality tests and of :meth:`coordinates`.
+
+    Raises
+    ------
+    NotClosedError
+        ``dΩ ≠ 0`` on a tetrahedron.
+    IntegralityError
+        Ω is not integral.
+    InvalidConnectionError
+        ``Omega`` is not a real vector of length ``n_2``.
+    NonFiniteError
+        ``Omega`` contains NaN or infinity.
 
     Attributes
     ----------
@@ -187,6 +222,29 @@ class BundlesWithCurvature:
 def bundles_with_curvature(X: SimplicialComplex, Omega: ArrayLike, *, atol: float = 1e-8) -> BundlesWithCurvature:
     """The H¹(X; S¹)-parametrized family of bundles with curvature Ω (Remark 7).
 
+    Parameters
+    ----------
+    X : SimplicialComplex
+        A complex of dimension >= 2.
+    Omega : (n_2,) float array_like
+        Real, closed and integral; one value per row of ``X.simplices(2)``.
+    atol : float, default 1e-8
+        Tolerance of the closedness and integrality tests.
+
+    Returns
+    -------
+    BundlesWithCurvature
+        The family, with its base bundle and the coordinates of H¹(X; S¹).
+
+    Raises
+    ------
+    NotClosedError
+        ``dΩ ≠ 0`` on a tetrahedron.
+    IntegralityError
+        Ω is not integral.
+    InvalidConnectionError
+        ``Omega`` is not a real vector of length ``n_2``.
+
     Examples
     --------
     >>> from dhlb.examples import torus
@@ -203,6 +261,26 @@ def flat_line_bundles(X: SimplicialComplex, free_angles: ArrayLike | None = None
 
     Over RP² there are exactly two (holonomy 0 and π); over the torus the list has one
     element for each choice of the two free angles.
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+        A complex of dimension >= 2.
+    free_angles : (b1,) float array_like, optional
+        The holonomy around each free generator of H₁(X; Z) (default: all 0).
+    atol : float, default 1e-8
+        Tolerance of the construction.
+
+    Returns
+    -------
+    list of HermitianLineBundle
+        One flat bundle per torsion residue vector: ``Π d`` of them, ``d`` the torsion orders
+        of H₁(X; Z).
+
+    Raises
+    ------
+    InvalidConnectionError
+        ``free_angles`` does not have ``b1`` entries.
 
     Examples
     --------

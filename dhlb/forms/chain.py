@@ -78,6 +78,23 @@ def _coefficients(chain, X, k, integer: bool) -> np.ndarray:
 class Chain:
     """An integer k-chain: one coefficient per canonically oriented k-simplex.
 
+    Parameters
+    ----------
+    X : SimplicialComplex
+        The complex.
+    k : int >= 0
+        The degree.
+    coefficients : (n_k,) int array_like or Chain
+        One integer per row of ``X.simplices(k)`` (floats with integer values are accepted), or
+        a k-chain on ``X``. Kept as a read-only int64 array (:attr:`coefficients`).
+
+    Raises
+    ------
+    InvalidCochainError
+        ``X`` is not a :class:`~dhlb.topology.complex.SimplicialComplex`, ``k`` is not a
+        non-negative integer, or ``coefficients`` is not a 1-D array of ``n_k`` finite integer
+        values (or a chain of another degree or on another complex).
+
     Examples
     --------
     >>> from dhlb import SimplicialComplex

@@ -47,6 +47,16 @@ DEFAULT_RTOL = 1e-9
 def wrap_angle(theta: ArrayLike) -> np.ndarray | float:
     """Representative of ``theta`` modulo 2π in the half-open interval (−π, π].
 
+    Parameters
+    ----------
+    theta : float or array_like of float
+        Angles in radians, any shape.
+
+    Returns
+    -------
+    float or float64 array
+        ``theta`` wrapped into (−π, π], of the shape of ``theta`` (a float for a scalar).
+
     Examples
     --------
     >>> wrap_angle(-np.pi) == np.pi
@@ -268,6 +278,16 @@ GROUP_NAMES = tuple(_GROUPS)
 
 def get_group(group: str | Group) -> Group:
     """The :class:`Group` for a name (case-insensitive; aliases such as ``"circle"``, ``"cstar"``).
+
+    Parameters
+    ----------
+    group : str or Group
+        A name in :data:`GROUP_NAMES` or an alias; a :class:`Group` is returned as it is.
+
+    Returns
+    -------
+    Group
+        The (shared, stateless) group object.
 
     Raises
     ------

@@ -35,8 +35,16 @@ def integrate_closed_1form(omega: Cochain, root: int = 0, tol: float | None = No
     tol : float, optional
         Per-edge tolerance for ``df = ω`` (default: relative 1e-9; exact for Z).
 
+    Returns
+    -------
+    Cochain
+        The 0-form f in the group of ω, the identity at the roots, with ``df = ω``.
+
     Raises
     ------
+    InvalidCochainError
+        ``omega`` is not a 1-form (a :class:`Cochain` of degree 1), or ``root`` is not a vertex
+        index ``0 .. N−1``.
     NotClosedError
         If ω does not integrate to zero around some cycle.  The message names the fundamental
         cycle of a violating non-tree edge (input labels) and ω's integral over it; the

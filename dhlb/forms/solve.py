@@ -53,7 +53,9 @@ _DENSE_LIMIT = 40_000  # matrix entries up to which least squares uses a dense S
 class SolveResult:
     """Result of :func:`solve_d`.
 
-    Attributes
+    Every parameter is kept as the attribute of the same name.
+
+    Parameters
     ----------
     solution : Cochain
         A (k−1)-form α (one particular solution).
@@ -276,8 +278,13 @@ def solve_d(beta: Cochain, group: str | Group | None = None, tol: float | None =
 
     Raises
     ------
+    InvalidCochainError
+        ``beta`` is not a :class:`Cochain`, is a 0-form, ``group`` is unknown, or β has no
+        standard conversion to ``group``.
     NotExactError
         Over Z, S¹ and C* when β is not exact; the message names a violating cycle or simplex.
+    ConvergenceError
+        The sparse least-squares solve (k ≥ 2 on a large complex) did not converge.
 
     Examples
     --------
@@ -318,6 +325,25 @@ def solve_d(beta: Cochain, group: str | Group | None = None, tol: float | None =
 
 def is_exact(beta: Cochain, tol: float | None = None) -> bool:
     """True if ``β = dα`` for some (k−1)-form α in β's group (0-forms: iff β is the identity).
+
+    Parameters
+    ----------
+    beta : Cochain
+        A k-form in any group.
+    tol : float, optional
+        Per-simplex tolerance (default: relative 1e-9, see
+        :meth:`dhlb.forms.groups.Group.default_tol`).
+
+    Returns
+    -------
+    bool
+        Whether :func:`solve_d` finds an α with ``dα = β`` within ``tol`` (a k-form that is not
+        exact gives ``False``, no error).
+
+    Raises
+    ------
+    ConvergenceError
+        The sparse least-squares solve of :func:`solve_d` did not converge.
 
     Examples
     --------

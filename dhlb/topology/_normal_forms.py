@@ -232,6 +232,23 @@ def integer_determinant(A) -> int:
 def is_unimodular(U: ArrayLike) -> bool:
     """True iff ``U`` is a square integer matrix with determinant ±1.
 
+    Parameters
+    ----------
+    U : (m, n) int array_like or sparse matrix
+        An integer matrix (floats with integer values are accepted).
+
+    Returns
+    -------
+    bool
+        Whether ``m == n`` and ``det U = ±1`` (computed exactly).
+
+    Raises
+    ------
+    InvalidMatrixError
+        ``U`` has a non-integer or non-finite entry, or is ragged.
+    ShapeError
+        ``U`` is not 2-dimensional.
+
     Examples
     --------
     >>> is_unimodular([[1, 5], [0, -1]]), is_unimodular([[2, 0], [0, 1]])

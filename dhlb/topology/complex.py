@@ -16,9 +16,10 @@ import numpy as np
 import scipy.sparse as sp
 
 from dhlb.errors import InvalidParameterError, InvalidSimplexError, SimplexNotFoundError
-from dhlb.topology import _incidence, _keys
+from dhlb.topology import _graphs, _incidence, _keys
 from dhlb.topology._incidence import VertexAdjacency
 from dhlb.topology._input import parse_rows, parse_simplices
+from dhlb.topology.cliques import maximal_cliques
 
 if TYPE_CHECKING:
     from collections.abc import Iterable, Sequence
@@ -396,15 +397,17 @@ class SimplicialComplex:
     # ------------------------------------------------------------------ graphs (networkx, optional)
     @classmethod
     def from_graph(cls, G, kind: str = "clique", max_dim: int | None = None) -> SimplicialComplex:
-        """The complex of a networkx graph: its clique (flag) complex.
+        """The complex of a graph: its clique (flag) complex.
 
         Vertex ``i`` is the node ``list(G.nodes)[i]``;
         :func:`~dhlb.topology.networkx_bridge.flag_complex` also returns that list, and says how
-        directed graphs and multigraphs are read.
+        directed graphs and multigraphs are read. The graph is read through ``G.nodes`` and
+        ``G.edges()`` only, so networkx itself is not needed; the cliques are enumerated by
+        :func:`~dhlb.topology.cliques.maximal_cliques`.
 
         Parameters
         ----------
-        G : networkx.Graph (or DiGraph, MultiGraph, MultiDiGraph)
+        G : networkx.Graph (or DiGraph, MultiGraph, MultiDiGraph, or an object with .nodes and .edges)
             The graph; any hashable nodes, no self-loops.
         kind : {"clique"}
             ``"clique"``: the k-simplices are the (k+1)-cliques of ``G``.
@@ -420,12 +423,12 @@ class SimplicialComplex:
         ------
         InvalidParameterError
             ``kind`` is not ``"clique"``, or ``max_dim`` is negative.
-        ImportError
-            networkx is not installed (the message names ``pip install "dhlb[graph]"``).
         InvalidTypeError
-            ``G`` is not a networkx graph, or ``max_dim`` is not an integer.
+            ``G`` has no ``.nodes`` or no ``.edges``, or ``max_dim`` is not an integer.
         InvalidSimplexError
-            ``G`` has a self-loop.
+            ``G`` has a self-loop (the message names the node), or an edge end that is not a node.
+        EmptyComplexError
+            ``G`` has no nodes.
 
         Examples
         --------
@@ -435,9 +438,8 @@ class SimplicialComplex:
         """
         if kind != "clique":
             raise InvalidParameterError(f"kind must be one of ('clique',), got {kind!r}")
-        from dhlb.topology.networkx_bridge import flag_complex
-
-        return flag_complex(G, max_dim)[0]
+        nodes, edges = _graphs.read_graph(G)
+        return cls(maximal_cliques(len(nodes), edges, max_dim))
 
     def to_networkx(self, kind: str = "skeleton"):
         """The complex as a networkx graph: its 1-skeleton or its dual graph.
@@ -468,9 +470,7 @@ class SimplicialComplex:
         >>> T.to_networkx().number_of_edges(), T.to_networkx("dual").number_of_edges()
         (21, 21)
         """
-        from dhlb.topology import networkx_bridge
-
-        graphs = {"skeleton": networkx_bridge.skeleton_graph, "dual": networkx_bridge.dual_graph}
+        graphs = {"skeleton": _graphs.skeleton_graph, "dual": _graphs.dual_graph}
         if kind not in graphs:
             raise InvalidParameterError(f"kind must be one of {tuple(graphs)}, got {kind!r}")
         return graphs[kind](self)

@@ -63,17 +63,26 @@ __all__ = [
 
 @dataclass(frozen=True)
 class SpanningForest:
-    """A BFS spanning forest of the 1-skeleton.
+    """A BFS spanning forest of the 1-skeleton (made by :func:`spanning_forest`).
 
-    Attributes
+    Every parameter is kept as the attribute of the same name.
+
+    Parameters
     ----------
-    roots : (c,) int64, the root (base vertex) of each component
-    component : (n_0,) int64, component label of each vertex (index into ``roots``)
-    parent : (n_0,) int64, parent vertex, ``-1`` at roots
-    parent_edge : (n_0,) int64, row in ``X.simplices(1)`` of the edge to the parent, ``-1`` at roots
-    order : (n_0,) int64, vertices in BFS order (parents before children)
-    tree_mask : (n_1,) bool, which edges are tree edges
-    nontree : (m,) int64, the non-tree edges (one loop-group generator each), increasing
+    roots : (c,) int64 array
+        The root (base vertex) of each component.
+    component : (n_0,) int64 array
+        Component label of each vertex (index into ``roots``).
+    parent : (n_0,) int64 array
+        Parent vertex, ``-1`` at roots.
+    parent_edge : (n_0,) int64 array
+        Row in ``X.simplices(1)`` of the edge to the parent, ``-1`` at roots.
+    order : (n_0,) int64 array
+        Vertices in BFS order (parents before children).
+    tree_mask : (n_1,) bool array
+        Which edges are tree edges.
+    nontree : (m,) int64 array
+        The non-tree edges (one loop-group generator each), increasing.
 
     Examples
     --------
@@ -157,6 +166,27 @@ def spanning_forest(X: ComplexLike, base: int | None = None, edges: ArrayLike | 
 
     ``edges`` (optional edge rows) restricts the graph to a subset of the 1-skeleton; then
     ``nontree`` lists only the subset's non-tree edges.
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+        Any complex; its 1-skeleton is the graph.
+    base : int, optional
+        A compact vertex index: the root of its component (the other components keep their
+        smallest vertex).
+    edges : (m,) int array_like, optional
+        Rows of ``X.simplices(1)``: the graph is restricted to these edges (every vertex kept).
+        Default: every edge.
+
+    Returns
+    -------
+    SpanningForest
+        The BFS forest, its ``tree_mask`` over all ``X.n_simplices(1)`` edges.
+
+    Raises
+    ------
+    NotAPathError
+        ``base`` is not a vertex index ``0 .. X.n_vertices - 1``.
 
     Examples
     --------
@@ -319,6 +349,22 @@ def fundamental_cycles(X: ComplexLike, forest: SpanningForest, edges: ArrayLike 
 
     Together (``edges=None``: all non-tree edges) they form a Z-basis of ker ∂₁.  Cost
     ``O(m · depth)`` nonzeros; meant for small complexes and few edges.
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+        The complex whose 1-skeleton ``forest`` spans.
+    forest : SpanningForest
+        A spanning forest of ``X`` (:func:`spanning_forest`); ``chain(v)`` is its path root → v.
+    edges : (m,) int array_like, optional
+        The edges ``e = (u, v)``, ``u < v`` (rows of ``X.simplices(1)``) closing the cycles.
+        Default: ``forest.nontree``.
+
+    Returns
+    -------
+    (m, n_1) scipy.sparse int64 csr matrix
+        Row ``i``: the 1-chain ``chain(u) + e − chain(v)`` of ``edges[i]``, a cycle over
+        ``X.simplices(1)`` (zero for a tree edge).
 
     Examples
     --------

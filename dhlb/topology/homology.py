@@ -71,14 +71,17 @@ def _group_str(rank: int, torsion, free: str = "Z") -> str:
 class HomologyGroup:
     """``H_k ≅ Z^rank ⊕ Z/t_1 ⊕ ... ⊕ Z/t_s`` with representative cycles.
 
-    Attributes
+    Every parameter is kept as the attribute of the same name.
+
+    Parameters
     ----------
     degree : int
+        The degree ``k``.
     rank : int
         Betti number ``b_k``.
     torsion : tuple of int
         Torsion coefficients ``t_1 | t_2 | ...`` (all > 1).
-    generators : ndarray, shape (n_k, rank + len(torsion))
+    generators : (n_k, rank + len(torsion)) int array
         Integer cycles: the free generators first, then the torsion generators (in the order of
         ``torsion``).  Column ``j`` is a chain over ``X.simplices(k)``.
 
@@ -103,9 +106,12 @@ class HomologyGroup:
 class CohomologyGroup:
     """``H^k(X; G)`` described via universal coefficients, with representative cocycles.
 
-    Attributes
+    Every parameter is kept as the attribute of the same name.
+
+    Parameters
     ----------
     degree : int
+        The degree ``k``.
     coefficients : str
         ``"Z"``, ``"R"``, ``"Z/m"`` or ``"S1"``.
     rank : int
@@ -115,11 +121,11 @@ class CohomologyGroup:
         Z: orders of the torsion part (``Ext(H_{k-1}, Z)``); Z/m: the orders of all cyclic
         factors (``Hom`` part first, then ``Ext`` part); S1: the orders of the finite part
         (``≅`` torsion of ``H_k``); R: ``()``.
-    cocycles : ndarray, shape (n_k, rank + len(torsion))
+    cocycles : (n_k, rank + len(torsion)) int or float array
         One cocycle per generator, over ``X.simplices(k)``: Z: int cocycles; R: float; Z/m: ints
         in ``[0, m)``; S1: float — first ``rank`` columns are integer cocycles ``ε_i`` (the torus
         is ``{θ·ε : θ ∈ (R/2πZ)^rank}``), then the finite part as angles in ``(−π, π]``.
-    n_hom : int
+    n_hom : int, default 0
         The first ``n_hom`` cocycles represent ``Hom(H_k, G)``, the others ``Ext(H_{k-1}, G)``.
 
     Examples
@@ -163,8 +169,11 @@ def homology_from_boundaries(boundaries: Sequence[Any]) -> list:
 
     Raises
     ------
-    ShapeError, InvalidMatrixError
-        Inconsistent shapes, non-integer entries, or ``∂_{k-1} ∂_k ≠ 0``.
+    ShapeError
+        ``boundaries`` is empty, ``∂_0`` does not have 0 rows, or the rows of ``∂_k`` do not
+        match the columns of ``∂_{k-1}``.
+    InvalidMatrixError
+        A matrix has non-integer entries (or entries beyond int64), or ``∂_{k-1} ∂_k ≠ 0``.
 
     Examples
     --------
@@ -190,6 +199,17 @@ def homology(X: ComplexLike) -> list:
     ``X.simplices(k)``).  Large complexes are fine: boundary matrices are reduced by sparse ±1
     pivoting before an exact Smith form on the small residual.
 
+    Parameters
+    ----------
+    X : SimplicialComplex
+        Any complex.
+
+    Returns
+    -------
+    list of HomologyGroup
+        ``H_0, ..., H_dim``; ``H_k.generators`` is an ``(n_k, rank + len(torsion))`` int array
+        of cycles over ``X.simplices(k)``.
+
     Examples
     --------
     >>> import dhlb
@@ -204,6 +224,16 @@ def homology(X: ComplexLike) -> list:
 
 def betti_numbers(X: ComplexLike) -> tuple:
     """Betti numbers ``(b_0, ..., b_dim)`` (ranks of integral homology).
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+        Any complex.
+
+    Returns
+    -------
+    tuple of int, length X.dim + 1
+        ``b_k = rank H_k(X; Z)``.
 
     Examples
     --------
@@ -230,6 +260,27 @@ def _parse_coefficients(coefficients):
 
 def cohomology_from_boundaries(boundaries: Sequence[Any], coefficients: str | int = "Z") -> list:
     """Cohomology ``H^k(G)``, ``k = 0..n``, of a chain complex; see :func:`cohomology`.
+
+    Parameters
+    ----------
+    boundaries : list of sparse or dense integer matrices
+        ``[∂_0, ∂_1, ..., ∂_n]``, ``∂_k`` of shape ``(n_{k-1}, n_k)``, as for
+        :func:`homology_from_boundaries`.
+    coefficients : {"Z", "R", "S1"} or ("Z", m) or "Z/m", default "Z"
+        The coefficient group ``G`` (``m >= 2``).
+
+    Returns
+    -------
+    list of CohomologyGroup
+        ``H^0, ..., H^n``; the cocycles of ``H^k`` are over the ``n_k`` columns of ``∂_k``.
+
+    Raises
+    ------
+    InvalidMatrixError
+        ``coefficients`` is none of the above; a matrix has non-integer entries, or
+        ``∂_{k-1} ∂_k ≠ 0``.
+    ShapeError
+        The shapes of the boundary matrices do not fit together (see :func:`homology_from_boundaries`).
 
     Examples
     --------
@@ -285,12 +336,19 @@ def cohomology(X: ComplexLike, coefficients: str | int = "Z") -> list:
     Parameters
     ----------
     X : SimplicialComplex
-    coefficients : {"Z", "R", "S1"} or ("Z", m) or "Z/m"
-        The coefficient group ``G``; S¹-valued cocycles are angles (``docs/conventions.md``).
+        Any complex.
+    coefficients : {"Z", "R", "S1"} or ("Z", m) or "Z/m", default "Z"
+        The coefficient group ``G`` (``m >= 2``); S¹-valued cocycles are angles (``docs/conventions.md``).
 
     Returns
     -------
     list of CohomologyGroup
+        ``H^0, ..., H^dim``; the cocycles of ``H^k`` are over ``X.simplices(k)``.
+
+    Raises
+    ------
+    InvalidMatrixError
+        ``coefficients`` is none of the above.
 
     Examples
     --------

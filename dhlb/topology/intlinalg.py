@@ -102,8 +102,17 @@ def solve_integer(A: ArrayLike | sp.spmatrix, b: ArrayLike) -> np.ndarray | None
 
     Returns
     -------
-    x : ndarray of shape (n,) or (n, p), or None
-        One integer solution (for 2-D ``b``, all columns must be solvable).
+    x : (n,) or (n, p) int array, or None
+        One integer solution (for 2-D ``b``, all columns must be solvable); ``None`` when there
+        is none. An object array of Python ints when an entry does not fit int64.
+
+    Raises
+    ------
+    ShapeError
+        ``b`` is neither 1- nor 2-dimensional, its number of rows is not ``m``, or ``A`` is not
+        2-dimensional.
+    InvalidMatrixError
+        ``A`` or ``b`` has a non-integer or non-finite entry (or a non-numeric dtype).
 
     Examples
     --------

@@ -80,7 +80,31 @@ class ManifoldReport:
     """Result of :func:`manifold_report`; ``offenses`` lists the first offending simplices.
 
     The checks run in order (purity, branching (n−1)-faces, then links of increasing dimension)
-    and ``offenses`` holds the simplices failing the first check that fails.
+    and ``offenses`` holds the simplices failing the first check that fails. Every parameter is
+    kept as the attribute of the same name.
+
+    Parameters
+    ----------
+    dim : int
+        The dimension ``n`` of the complex.
+    is_pure : bool
+        Every simplex is a face of an n-simplex.
+    is_pseudomanifold : bool
+        Pure, every (n−1)-simplex has one or two cofaces, and strongly connected (for ``n = 0``:
+        one or two vertices).
+    is_manifold : bool
+        A manifold, possibly with boundary, in the sense of the module docstring.
+    has_boundary : bool
+        Some (n−1)-simplex has exactly one coface.
+    n_strong_components : int
+        The number of connected components of the dual graph of the n-simplices (for ``n = 0``:
+        the number of vertices).
+    criterion : str
+        What ``is_manifold`` certifies: ``"combinatorial manifold"`` for ``n <= 3``, a homology
+        manifold with PL links of dimension <= 2 above.
+    offenses : tuple of Offense, default ()
+        The first offending simplices (at most ``limit`` of :func:`manifold_report`), empty for a
+        manifold.
 
     Examples
     --------
@@ -157,6 +181,19 @@ def _link_offenses(X, k, on_bd, limit):
 def manifold_report(X: ComplexLike, limit: int = 10) -> ManifoldReport:
     """Check the (pseudo)manifold conditions and list the first offending simplices.
 
+    Parameters
+    ----------
+    X : SimplicialComplex
+        Any complex.
+    limit : int, default 10
+        The largest number of offending simplices listed in the report.
+
+    Returns
+    -------
+    ManifoldReport
+        The outcome of every check, and the simplices (at most ``limit``) failing the first check
+        that fails.
+
     Examples
     --------
     >>> from dhlb import SimplicialComplex
@@ -232,6 +269,22 @@ def require_manifold(X: ComplexLike) -> ManifoldReport:
     """Return the report of a manifold, raise :class:`NonManifoldError` naming an offending simplex.
 
     The error has attributes ``simplex`` (input labels), ``k`` and ``report``.
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+        Any complex.
+
+    Returns
+    -------
+    ManifoldReport
+        The report of :func:`manifold_report`, with ``is_manifold`` true.
+
+    Raises
+    ------
+    NonManifoldError
+        ``X`` is not a manifold; the message and the attributes ``simplex``, ``k`` name the first
+        offending simplex, ``report`` is the whole :class:`ManifoldReport`.
 
     Examples
     --------

@@ -129,6 +129,24 @@ def fundamental_cycle(X: ComplexLike) -> np.ndarray:
     On a closed oriented pseudomanifold it is a cycle; with boundary its boundary is the
     fundamental cycle of the boundary (interior faces cancel).
 
+    Parameters
+    ----------
+    X : SimplicialComplex
+        A pure complex of dimension n whose (n−1)-faces have one or two cofaces, orientable.
+
+    Returns
+    -------
+    (n_n,) int64 array
+        The coefficient ``o_σ = ±1`` of every n-simplex (row of ``X.simplices(X.dim)``).
+
+    Raises
+    ------
+    NonManifoldError
+        ``X`` is not pure or an (n−1)-face has three or more cofaces (attribute ``simplex``).
+    NonOrientableError
+        ``X`` is not orientable; the message (and the attribute ``simplex``, in input labels)
+        names a face where the signs clash.
+
     Examples
     --------
     >>> from dhlb import SimplicialComplex

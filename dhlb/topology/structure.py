@@ -67,6 +67,28 @@ def _from_blocks(X: ComplexLike, blocks) -> ComplexLike | None:
 def incidence(X: ComplexLike, k: int, j: int) -> sp.csr_matrix:
     """Inclusion matrix of shape ``(n_k, n_j)``: entry 1 iff the k-simplex is a face of the j-simplex.
 
+    Parameters
+    ----------
+    X : SimplicialComplex
+        Any complex.
+    k : int
+        The dimension of the faces, ``0 <= k <= j``.
+    j : int
+        The dimension of the cofaces, ``k <= j <= X.dim``.
+
+    Returns
+    -------
+    (n_k, n_j) scipy.sparse int64 csr matrix
+        Entry ``(a, b)`` is 1 when the k-simplex ``a`` is a face of the j-simplex ``b``, else 0
+        (for ``k == j``: the identity).
+
+    Raises
+    ------
+    InvalidSimplexError
+        ``k`` or ``j`` is not an integer, or ``j < k``.
+    SimplexNotFoundError
+        ``k`` or ``j`` is outside ``0 .. X.dim``.
+
     Examples
     --------
     >>> from dhlb import SimplicialComplex
@@ -140,6 +162,28 @@ def subcomplex(X: ComplexLike, k: int, indices: ArrayLike) -> ComplexLike | None
 
     Returns ``None`` when ``indices`` is empty.
 
+    Parameters
+    ----------
+    X : SimplicialComplex
+        Any complex.
+    k : int
+        The dimension of the simplices, ``0 <= k <= X.dim``.
+    indices : (m,) int array_like
+        Rows of ``X.simplices(k)``; repeats are allowed.
+
+    Returns
+    -------
+    SimplicialComplex or None
+        The smallest subcomplex containing these simplices, of the type of ``X``, its vertex
+        labels the compact vertex indices of ``X``; ``None`` when ``indices`` is empty.
+
+    Raises
+    ------
+    InvalidSimplexError
+        ``k`` is not an integer, or ``indices`` are not integers.
+    SimplexNotFoundError
+        ``k`` is outside ``0 .. X.dim``, or an index is not a row of ``X.simplices(k)``.
+
     Examples
     --------
     >>> from dhlb import SimplicialComplex
@@ -191,6 +235,28 @@ def _maximal_in_star(X: ComplexLike, st: list[np.ndarray]) -> list[np.ndarray]:
 
 def closed_star(X: ComplexLike, k: int, index: int) -> ComplexLike:
     """Closure of the star of a k-simplex (vertex labels: X's compact indices).
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+        Any complex.
+    k : int
+        The dimension of the simplex, ``0 <= k <= X.dim``.
+    index : int
+        Its row in ``X.simplices(k)``.
+
+    Returns
+    -------
+    SimplicialComplex
+        The closure of every simplex containing the k-simplex, of the type of ``X``, its vertex
+        labels the compact vertex indices of ``X``.
+
+    Raises
+    ------
+    InvalidSimplexError
+        ``k`` or ``index`` is not an integer.
+    SimplexNotFoundError
+        ``k`` is outside ``0 .. X.dim``, or ``index`` is not a row of ``X.simplices(k)``.
 
     Examples
     --------
@@ -290,6 +356,17 @@ def connected_components(X: ComplexLike) -> tuple[int, np.ndarray]:
 
 def components(X: ComplexLike) -> list[ComplexLike]:
     """The connected components as complexes (vertex labels: X's compact indices), in label order.
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+        Any complex.
+
+    Returns
+    -------
+    list of SimplicialComplex
+        One complex (of the type of ``X``) per connected component, ordered by the smallest vertex
+        of each, as the labels of :func:`connected_components`.
 
     Examples
     --------

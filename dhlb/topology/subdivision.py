@@ -24,10 +24,17 @@ def barycentric_subdivision(X: ComplexLike) -> tuple[ComplexLike, np.ndarray]:
     with row r is vertex ``sum(counts[:k]) + r``. A j-simplex of Sd X is a flag
     σ_0 ⊂ σ_1 ⊂ … ⊂ σ_j of simplices of X.
 
+    Parameters
+    ----------
+    X : SimplicialComplex
+        Any complex.
+
     Returns
     -------
     Sd : SimplicialComplex
-    vertex_map : ndarray, shape (n_vertices(Sd), 2)
+        The subdivision, of the type of ``X`` and of the same dimension; its vertex labels are
+        ``0 .. sum(X.counts) - 1``.
+    vertex_map : (n_vertices(Sd), 2) int64 array
         ``vertex_map[w] = (k, row)`` of the simplex of X that vertex w stands for.
 
     Examples
@@ -72,6 +79,26 @@ def relabeled(X: ComplexLike, permutation: ArrayLike) -> ComplexLike:
     """The same complex with compact vertex v renamed ``permutation[v]``.
 
     ``permutation`` holds one distinct non-negative integer label per vertex of X.
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+        Any complex.
+    permutation : (X.n_vertices,) int array_like
+        The new label of every compact vertex: distinct, non-negative (any injective labelling,
+        not only a permutation of ``0 .. n-1``).
+
+    Returns
+    -------
+    SimplicialComplex
+        The complex (of the type of ``X``) with the new labels, compacted again: its rows are
+        sorted in the new labels' order and ``vertex_labels`` are the sorted new labels.
+
+    Raises
+    ------
+    InvalidSimplexError
+        ``permutation`` does not have one entry per vertex, is not integer, has a negative entry,
+        or gives two vertices the same label (the message names them).
 
     Examples
     --------
