@@ -28,7 +28,7 @@ import scipy.sparse.linalg as spla
 
 from dhlb.fields import direction_field, energy_matrices
 from dhlb.io import read_surface
-from dhlb.linalg import default_shift, smallest_eigenpairs
+from dhlb.linalg import SolverOptions, default_shift, smallest_eigenpairs
 from dhlb.mesh.compact import compact_mesh
 
 MESHES = "/work/shared/meshes"
@@ -126,7 +126,7 @@ def tolerance_check():
         try:
             V, F = load(name)
             a = direction_field(V, F, n=4)
-            b = direction_field(V, F, n=4, tol=1e-14)
+            b = direction_field(V, F, n=4, solver=SolverOptions(tol=1e-14))
         except Exception as err:  # e.g. a non-manifold or non-orientable scan: say so and go on
             print(f"{name:<24}  skipped: {type(err).__name__}: {str(err)[:70]}")
             continue
@@ -163,13 +163,13 @@ def main():
         res = None
         for _ in range(args.repeat):  # best of `repeat`, each with a cold ordering cache (as the baseline)
             _backend(args.backend)
-            r = direction_field(V, F, n=args.n, s=0.0, backend=args.backend)
+            r = direction_field(V, F, n=args.n, s=0.0, solver=args.backend)
             res = r if res is None or r.timings["total"] < res.timings["total"] else res
         e2e = t_io + res.timings["total"]
         base = laplace_baseline(res.mesh.points, res.mesh.faces, args.backend)
         A, M = energy_matrices(res.tangent, s=0.0)
         _backend(args.backend)
-        eig = smallest_eigenpairs(A, M, 1, backend=args.backend)  # same solve, for its statistics
+        eig = smallest_eigenpairs(A, M, 1, solver=args.backend)  # same solve, for its statistics
         cf = complex_factorization(A, M, args.backend)
         T = res.timings
         print(f"{name:<20}{len(F):>8}{T['setup']:>8.2f}{T['solve']:>8.2f}{T['indices']:>8.2f}{e2e:>8.2f}"

@@ -5,7 +5,7 @@ Usage (from the MPI environment of docs/mpi.md)::
     python benchmarks/bench_mpi.py [--faces 200000] [--ranks 1 2] [--json OUT.json]
 
 For each rank count P it runs ``mpirun -n P python bench_mpi.py --worker`` (which times
-``direction_field(V, F, n=4, backend="petsc")`` and reports the peak resident memory of every
+``direction_field(V, F, n=4, solver="petsc")`` and reports the peak resident memory of every
 rank and MUMPS' factor statistics) and, in one plain process, the default backend.  It prints
 time, peak memory per rank and the ratio to the default backend, then a *projection* (a model,
 not a measurement) to 16 and 64 ranks on 10M and 100M faces: factor entries ``∝ N log N`` and
@@ -65,7 +65,7 @@ def worker(faces: int) -> None:
     V, F = torus_mesh(faces)
     MPI.COMM_WORLD.Barrier()
     t = time.perf_counter()
-    res = direction_field(V, F, n=4, backend="petsc")
+    res = direction_field(V, F, n=4, solver="petsc")
     elapsed = MPI.COMM_WORLD.allreduce(time.perf_counter() - t, op=MPI.MAX)
     mem = MPI.COMM_WORLD.gather(peak_mb(), root=0)
     if MPI.COMM_WORLD.rank == 0:

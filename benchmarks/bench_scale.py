@@ -141,7 +141,7 @@ def child_surface(label, backend, breakdown):
     V, F = midpoint_subdivide(V, F, levels)
     t_sub = time.perf_counter() - t1
     be = None if backend == "auto" else backend
-    res = direction_field(V, F, n=4, backend=be)
+    res = direction_field(V, F, n=4, solver=be)
     T = res.timings
     out = {"kind": "surface", "label": label, "size": len(F), "vertices": len(V), "backend": res.solver["backend"],
            "requested": backend, "iterations": res.solver["iterations"], "read": t_read, "subdivide": t_sub,
@@ -173,7 +173,7 @@ def child_tets(m, backend):
     field, _ = demo_velocity("ring", mesh.points)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = vortex_filaments(mesh.points, mesh.tets, field, 1.0, backend=None if backend == "auto" else backend)
+        res = vortex_filaments(mesh.points, mesh.tets, field, 1.0, solver=None if backend == "auto" else backend)
     s, T = res.statistics, res.timings
     return {"kind": "tets", "label": f"box m={m}", "size": int(s["n_tets"]), "vertices": int(s["n_vertices"]),
             "backend": s["solver"]["backend"], "requested": backend, "iterations": s["solver"]["iterations"],
@@ -208,7 +208,7 @@ def child_icosphere(level, order, backend):
         inv[p] = np.arange(len(V))
         V, F = V[p], inv[F]
     t = time.perf_counter()
-    res = direction_field(V, F, n=4, backend=None if backend == "auto" else backend)
+    res = direction_field(V, F, n=4, solver=None if backend == "auto" else backend)
     total = time.perf_counter() - t
     rss = _rss_mb()
     from dhlb.fem import bundle_matrices  # noqa: F401  (L_ref below: plain cotangent Laplacian, splu defaults)

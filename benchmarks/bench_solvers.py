@@ -40,7 +40,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 from dhlb.fem import bundle_matrices
 from dhlb.geometry import EuclideanComplex
-from dhlb.linalg import default_shift, smallest_eigenpairs
+from dhlb.linalg import SolverOptions, default_shift, smallest_eigenpairs
 from dhlb.linalg.backends import available_backends, clear_cache, get_backend
 
 BUNNY = os.path.join(os.path.dirname(__file__), "..", "..", "shared", "meshes", "stanford-bunny.obj")
@@ -98,7 +98,7 @@ def run_problem(label, A, M, L, M0, backends, repeat):
 
         def eig(name=name):
             clear_cache()
-            return smallest_eigenpairs(A, M, k=1, tol=1e-9, backend=name)
+            return smallest_eigenpairs(A, M, k=1, solver=SolverOptions(tol=1e-9, backend=name))
 
         t_eig, res = best_of(eig, repeat)
         rows.append({"problem": label, "n": n, "nnz": int(A.nnz), "backend": name, "real": t_real, "cplx": t_cplx,
@@ -161,7 +161,7 @@ def compare_lanczos(repeat):
 
         def run_new(AA=AA, MM=MM, k=k):
             clear_cache()
-            return smallest_eigenpairs(AA, MM, k, tol=1e-10, backend="superlu")
+            return smallest_eigenpairs(AA, MM, k, solver=SolverOptions(tol=1e-10, backend="superlu"))
 
         t_old, r_old = best_of(run_old, repeat)
         t_new, r_new = best_of(run_new, repeat)

@@ -34,7 +34,7 @@ from dhlb.io import read_surface
 from dhlb.linalg import default_shift, select_backend, solve
 from dhlb.mesh import validate_surface
 from dhlb.mesh.tangent import TangentBundle
-from dhlb.stripes import stripe_pattern
+from dhlb.stripes import SectionOptions, StripeOptions, stripe_pattern
 
 MESHES = os.path.join(os.path.dirname(__file__), "..", "..", "shared", "meshes")
 FILES = ["spot.obj", "kitten.obj", "stanford-bunny.obj"]
@@ -74,8 +74,9 @@ def main(backend=None):
         V, F = read_surface(path)
         t_base = baseline(V, F, backend)
         for n, energy in CASES:
-            fld, t_field = best(lambda: direction_field(V, F, n=n, backend=backend), 1)
-            res, t_all = best(lambda: stripe_pattern(V, F, fld, spacing=8.0, n=n, energy=energy, backend=backend))
+            fld, t_field = best(lambda: direction_field(V, F, n=n, solver=backend), 1)
+            res, t_all = best(lambda: stripe_pattern(V, F, fld, spacing=8.0, n=n, options=StripeOptions(energy=energy),
+                                                     solver=backend))
             t = res.timings
             rows.append((name, res.mesh.n_faces, n, energy, t_field, t["setup"], t["solve"], t["texture"], t_all,
                          t_base, t_all / t_base, res.solver["iterations"], res.solver["unknowns"],
@@ -100,10 +101,11 @@ def sections(backend=None, name="stanford-bunny.obj", spacing=8.0):
     V, F = read_surface(path)
     rows = []
     for n in (1, 2):
-        fld = direction_field(V, F, n=n, backend=backend)
-        eig, t_eig = best(lambda: stripe_pattern(V, F, fld, spacing=spacing, n=n, section="eigenvector",
-                                                 backend=backend))
-        unit, t_unit = best(lambda: stripe_pattern(V, F, fld, spacing=spacing, n=n, section="unit", backend=backend))
+        fld = direction_field(V, F, n=n, solver=backend)
+        eig, t_eig = best(lambda: stripe_pattern(V, F, fld, spacing=spacing, n=n, solver=backend,
+                                                 options=StripeOptions(section=SectionOptions(kind="eigenvector"))))
+        unit, t_unit = best(lambda: stripe_pattern(V, F, fld, spacing=spacing, n=n, solver=backend,
+                                                   options=StripeOptions(section=SectionOptions(kind="unit"))))
         rows.append((name, eig.mesh.n_faces, n, t_eig, t_unit, t_unit / t_eig, unit.iteration.iterations,
                      eig.unit_energy, unit.unit_energy, unit.unit_energy / eig.unit_energy, unit.eigenvalue,
                      unit.solver["backend"]))

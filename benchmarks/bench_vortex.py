@@ -54,7 +54,7 @@ def single(m: int, backend, name: str, per_vertex: bool = False, order: int = 4)
     import warnings
 
     from dhlb.mesh import box_tet_mesh
-    from dhlb.vortex import vortex_filaments
+    from dhlb.vortex import VortexOptions, vortex_filaments
 
     t0 = time.perf_counter()
     mesh = box_tet_mesh(m, lower=-1.0, upper=1.0)
@@ -66,7 +66,7 @@ def single(m: int, backend, name: str, per_vertex: bool = False, order: int = 4)
         if per_vertex:  # a sampled field, as from a fluid solver: ω is then the exact PL line integral
             v = v(mesh.points)
         t_sample = time.perf_counter() - t1
-        res = vortex_filaments(mesh.points, mesh.tets, v, 1.0, backend=backend, order=order)
+        res = vortex_filaments(mesh.points, mesh.tets, v, 1.0, solver=backend, options=VortexOptions(order=order))
     s = res.statistics
     return {
         "m": m, "tets": s["n_tets"], "vertices": s["n_vertices"], "field": name,

@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from collections.abc import Callable
 
-__all__ = ["MOVED", "moved_module", "moved_package", "warn_moved"]
+__all__ = ["MOVED", "fold_deprecated_kwargs", "moved_module", "moved_package", "warn_moved"]
 
 MOVED: dict[str, str] = {}
 """Every deprecated module path → the path that replaces it (filled as the shims are imported)."""
@@ -128,3 +128,89 @@ def moved_package(old: str, homes: dict[str, str]) -> tuple[Callable[[str], obje
         return sorted(homes)
 
     return __getattr__, __dir__
+
+
+def fold_deprecated_kwargs(func: str, kwargs: dict, *groups: tuple) -> tuple:
+    """Old keyword arguments of ``func`` → the options objects that replace them, each with a warning.
+
+    A public function whose knobs moved into option groups keeps accepting the old keywords through
+    ``**kwargs``; this folds them into its options objects (:func:`dataclasses.replace`, so the
+    options class validates them) and warns once per keyword, naming the new spelling.
+
+    Parameters
+    ----------
+    func : str
+        The public function's name (for the messages).
+    kwargs : dict
+        The ``**kwargs`` the function received.
+    *groups : (param, given, default, names) tuples
+        One per options parameter: its name, the value the caller gave (``None`` if not given), the
+        object to start from when it was not given, and ``names``: a mapping old keyword → field of the
+        options class (a dotted path such as ``"section.kind"`` for a nested options object), or an
+        iterable of keywords that kept their name.
+
+    Returns
+    -------
+    tuple
+        Per group, the options object to use: ``given`` if it is not None (then no old keyword of the
+        group may be present), else ``default`` with the old keywords applied.
+
+    Raises
+    ------
+    TypeError
+        A keyword that no group knows, in Python's own words.
+    InvalidParameterError
+        An old keyword together with the options object that replaces it.
+
+    Warns
+    -----
+    DeprecationWarning
+        Once per old keyword, e.g. ``f(tol=...) is deprecated ...; use solver=SolverOptions(tol=...)``.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from dataclasses import dataclass
+    >>> @dataclass(frozen=True)
+    ... class Knobs:
+    ...     tol: float = 1e-9
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     (knobs,) = fold_deprecated_kwargs("f", {"tol": 1e-6}, ("knobs", None, Knobs(), ["tol"]))
+    >>> knobs, str(caught[0].message).split("; ")[1]
+    (Knobs(tol=1e-06), 'use knobs=Knobs(tol=...)')
+    """
+    import dataclasses
+
+    from dhlb.errors import InvalidParameterError
+
+    known = {}
+    for i, (_, _, _, names) in enumerate(groups):
+        for old, path in (names.items() if isinstance(names, dict) else ((n, n) for n in names)):
+            known[old] = (i, path)
+    for old in kwargs:
+        if old not in known:
+            raise TypeError(f"{func}() got an unexpected keyword argument {old!r}")
+    out = []
+    for i, (param, given, default, _) in enumerate(groups):
+        changes = {old: known[old][1] for old in kwargs if known[old][0] == i}
+        if changes and given is not None:
+            raise InvalidParameterError(f"{func}(): pass either {param}= or the deprecated keyword(s) "
+                                        f"{', '.join(changes)}, not both")
+        value = default if given is None else given
+        for old, path in changes.items():
+            *outer, field = path.split(".")
+            objs = [value]
+            for name in outer:
+                objs.append(getattr(objs[-1], name))
+            spelled = f"{field}=..."
+            for obj, name in zip(reversed(objs), reversed([None, *outer])):
+                spelled = f"{type(obj).__name__}({spelled})"
+                spelled = spelled if name is None else f"{name}={spelled}"
+            warn_moved(f"{func}({old}=...)", f"{param}={spelled}", stacklevel=4)
+            new = kwargs[old]
+            for obj, name in zip(reversed(objs), reversed([*outer, field])):
+                new = dataclasses.replace(obj, **{name: new})
+            value = new
+        out.append(value)
+    return tuple(out)

@@ -22,18 +22,19 @@ import numpy as np
 
 from dhlb.fields import direction_field
 from dhlb.io import example_path, read_surface
-from dhlb.render import render_field_png
+from dhlb.render import Camera, StripeStyle, render_field_png
+from dhlb.stripes import SectionOptions, StripeOptions
 
 OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "_static", "gallery")
 SIZE = (500, 500)
 MAX_BYTES = 150_000
-SPOT_VIEW = {"view": (1.0, 0.6, 0.4), "up": (0.0, 1.0, 0.0)}
-SADDLE_VIEW = {"view": (0.3, -1.0, 1.2), "up": (0.0, 0.0, 1.0)}
+SPOT_VIEW = Camera(view=(1.0, 0.6, 0.4), up=(0.0, 1.0, 0.0), size=SIZE)
+SADDLE_VIEW = Camera(view=(0.3, -1.0, 1.2), up=(0.0, 0.0, 1.0), size=SIZE)
 
 
-def back(view: dict) -> dict:
+def back(view: Camera) -> Camera:
     """The view from the other side: the camera direction negated, the same up vector."""
-    return {**view, "view": tuple(-float(c) for c in view["view"])}
+    return view.replace(view=tuple(-float(c) for c in view.view))
 
 
 def shrink(path: str) -> None:
@@ -45,16 +46,16 @@ def shrink(path: str) -> None:
     q.save(path, optimize=True)
 
 
-def picture(name: str, mesh: str, view: dict, **kw) -> dict:
+def picture(name: str, mesh: str, view: Camera, **kw) -> dict:
     """Compute ``direction_field(mesh, **kw)``, render it to ``OUT/name.png`` and check it."""
     t0 = time.perf_counter()
     res = direction_field(*read_surface(example_path(mesh)), **kw)
     m = res.mesh
     path = render_field_png(os.path.join(OUT, f"{name}.png"), m.points, m.faces, res.directions,
-                            res.singularities, size=SIZE, **view)
+                            res.singularities, camera=view)
     shrink(path)
     shrink(render_field_png(os.path.join(OUT, f"{name}-back.png"), m.points, m.faces, res.directions,
-                            res.singularities, size=SIZE, **back(view)))
+                            res.singularities, camera=back(view)))
     nbytes = os.path.getsize(path)
     if nbytes > MAX_BYTES:
         raise SystemExit(f"{path}: {nbytes} bytes > {MAX_BYTES}")
@@ -72,7 +73,7 @@ def picture(name: str, mesh: str, view: dict, **kw) -> dict:
     return rec
 
 
-def stripes(name: str, view: dict, *, n: int, spacing: float, **field_kw) -> None:
+def stripes(name: str, view: Camera, *, n: int, spacing: float, **field_kw) -> None:
     """A stripe pattern on Spot along a direction field (``orthogonal`` pictures: both directions)."""
     from dhlb.render import render_stripes_png
     from dhlb.stripes import stripe_pattern
@@ -81,9 +82,9 @@ def stripes(name: str, view: dict, *, n: int, spacing: float, **field_kw) -> Non
     V, F = read_surface(example_path("spot.obj"))
     field = direction_field(V, F, n=n, **field_kw)
     res = stripe_pattern(V, F, field, spacing=spacing)
-    path = render_stripes_png(os.path.join(OUT, f"{name}.png"), res.texture, size=SIZE, **view)
+    path = render_stripes_png(os.path.join(OUT, f"{name}.png"), res.texture, camera=view)
     shrink(path)
-    shrink(render_stripes_png(os.path.join(OUT, f"{name}-back.png"), res.texture, size=SIZE, **back(view)))
+    shrink(render_stripes_png(os.path.join(OUT, f"{name}-back.png"), res.texture, camera=back(view)))
     info = res.to_json()
     print(f"{os.path.basename(path):28s} {os.path.getsize(path):7d} B  {len(info['zero_faces'])} zero faces, "
           f"{len(info['branch_faces'])} branch faces  {time.perf_counter() - t0:5.1f} s")
@@ -97,14 +98,16 @@ def tube_stripes(section: str) -> list:
 
     t0 = time.perf_counter()
     tube = stepped_tube((1.0, 1.5, 2.0), stripes=8, around=96, jitter=0.25, seed=1)
-    res = stripe_pattern(tube.points, tube.faces, tube.directions, frequency=tube.frequency, section=section)
+    res = stripe_pattern(tube.points, tube.faces, tube.directions, frequency=tube.frequency,
+                         options=StripeOptions(section=SectionOptions(kind=section)))
     counts = np.round(tube.winding(res.psi, res.mesh.vertex_labels)[tube.middle_rings()]).astype(int).tolist()
-    tube_view = {"view": (1.0, -1.2, 0.35), "up": (0.0, 0.0, 1.0)}
-    path = render_stripes_png(os.path.join(OUT, f"stripes-tube-{section}.png"), res.texture, size=SIZE,
-                              mark_singularities=True, **tube_view)
+    tube_view = Camera(view=(1.0, -1.2, 0.35), up=(0.0, 0.0, 1.0), size=SIZE)
+    marked = StripeStyle(mark_singularities=True)
+    path = render_stripes_png(os.path.join(OUT, f"stripes-tube-{section}.png"), res.texture, camera=tube_view,
+                              style=marked)
     shrink(path)
-    shrink(render_stripes_png(os.path.join(OUT, f"stripes-tube-{section}-back.png"), res.texture, size=SIZE,
-                              mark_singularities=True, **back(tube_view)))
+    shrink(render_stripes_png(os.path.join(OUT, f"stripes-tube-{section}-back.png"), res.texture,
+                              camera=back(tube_view), style=marked))
     print(f"{os.path.basename(path):28s} {os.path.getsize(path):7d} B  stripes per level {counts} "
           f"(want {tube.stripes_per_level.astype(int).tolist()}), {res.zero_faces.size} zeros, "
           f"unit energy {res.unit_energy:.3g} (λ₁ = {res.eigenvalue:.3g})  {time.perf_counter() - t0:5.1f} s")
@@ -115,18 +118,19 @@ def filaments(name: str, kind: str) -> None:
     """Vortex filaments of a demo velocity field (``ring``/``linked-rings``/``trefoil``) in a tet cube."""
     from dhlb.cli.vortex import demo_velocity
     from dhlb.mesh import box_tet_mesh
-    from dhlb.render import render_filaments_png
+    from dhlb.render import FILAMENT_CAMERA, render_filaments_png
     from dhlb.vortex import vortex_filaments
 
     t0 = time.perf_counter()
     mesh = box_tet_mesh(14, lower=(-1.0, -1.0, -1.0), upper=(1.0, 1.0, 1.0))
     field, _ = demo_velocity(kind, mesh.points)
     res = vortex_filaments(mesh, None, field, 1.0)
+    camera = FILAMENT_CAMERA.replace(size=SIZE)
     path = render_filaments_png(os.path.join(OUT, f"{name}.png"), res.filaments, res.mesh.points,
-                                res.mesh.boundary_faces, size=SIZE)
+                                res.mesh.boundary_faces, camera=camera)
     shrink(path)
     shrink(render_filaments_png(os.path.join(OUT, f"{name}-back.png"), res.filaments, res.mesh.points,
-                                res.mesh.boundary_faces, size=SIZE, view=(-1.0, 1.6, 0.9)))
+                                res.mesh.boundary_faces, camera=back(camera)))
     print(f"{os.path.basename(path):28s} {os.path.getsize(path):7d} B  {len(res.filaments)} filaments  "
           f"{time.perf_counter() - t0:5.1f} s")
 
@@ -142,7 +146,7 @@ def main() -> int:
             picture(f"spot-n{n}-s{s:+.0f}", "spot.obj", SPOT_VIEW, n=n, s=s)
     picture("spot-n4-curvature", "spot.obj", SPOT_VIEW, n=4, align="curvature")
     picture("saddle-n4-boundary", "saddle.obj", SADDLE_VIEW, n=4, align="boundary", lam=-10.0)
-    picture("torus-n4-s+1", "torus.obj", {"view": (0.4, -1.0, 1.4), "up": (0.0, 0.0, 1.0)}, n=4, s=1.0)
+    picture("torus-n4-s+1", "torus.obj", Camera(view=(0.4, -1.0, 1.4), up=(0.0, 0.0, 1.0), size=SIZE), n=4, s=1.0)
     stripes("stripes-spot-smoothest", SPOT_VIEW, n=2, spacing=6.0)
     stripes("stripes-spot-curvature", SPOT_VIEW, n=2, spacing=8.0, align="curvature")
     for section in ("eigenvector", "unit"):

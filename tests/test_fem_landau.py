@@ -10,13 +10,14 @@ import numpy as np
 import pytest
 
 from dhlb.fem import bundle_matrices, smallest_eigenpairs
+from dhlb.linalg import SolverOptions
 from tests.fem_fixtures import flat_torus_landau
 
 
 def _levels(n, m, d, k):
     L, geo, B = flat_torus_landau(n, m, d)
     A, M = bundle_matrices(L, geo)
-    res = smallest_eigenpairs(A, M, k=k, tol=1e-10)
+    res = smallest_eigenpairs(A, M, k=k, solver=SolverOptions(tol=1e-10))
     assert res.converged
     return res.eigenvalues / B
 

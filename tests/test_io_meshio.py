@@ -29,6 +29,7 @@ from dhlb.io.meshio_bridge import (  # noqa: E402
     write_vtu_volume,
 )
 from dhlb.io.paraview import field_to_vtu, stripes_to_vtu, vortex_to_vtu  # noqa: E402
+from dhlb.stripes import SectionOptions, StripeOptions  # noqa: E402
 
 DATA = Path(__file__).parent / "data"
 
@@ -193,7 +194,8 @@ def test_stripes_to_vtu(tmp_path):
     from dhlb.stripes import stripe_pattern
 
     V, F = read_surface(example_path("torus.obj"))
-    res = stripe_pattern(V, F, direction_field(V, F, n=2), spacing=6.0, section="eigenvector")
+    res = stripe_pattern(V, F, direction_field(V, F, n=2), spacing=6.0,
+                         options=StripeOptions(section=SectionOptions(kind="eigenvector")))
     m = meshio.read(stripes_to_vtu(res, tmp_path / "s.vtu"))
     assert np.array_equal(m.cell_data["corner_alpha"][0], res.corner_alpha)
     assert np.array_equal(m.cell_data["branch"][0].astype(bool), res.texture.is_branch)

@@ -9,8 +9,8 @@ import scipy.sparse as sp
 
 from dhlb.errors import InvalidOperatorError, InvalidParameterError
 from dhlb.fem import bundle_matrices
+from dhlb.linalg import SolverOptions, backward_errors, smallest_eigenpairs, solve
 from dhlb.linalg import backends as B
-from dhlb.linalg import backward_errors, smallest_eigenpairs, solve
 
 ALL = ["superlu", "cholmod", "cholespy", "amg-lobpcg"]
 NEEDS = {"cholmod": "sksparse", "cholespy": "cholespy", "amg-lobpcg": "pyamg"}
@@ -64,7 +64,7 @@ def test_same_eigenpairs_on_every_backend(backend, problem, request):
     k, tol = 4, 1e-10
     lam_ref, U_ref = _dense_reference(A, M, k + 1)
     assert lam_ref[k] - lam_ref[k - 1] > 1e-3 * lam_ref[k]                   # k-th pair well separated
-    res = smallest_eigenpairs(A, M, k=k, tol=tol, backend=backend)
+    res = smallest_eigenpairs(A, M, k=k, solver=SolverOptions(tol=tol, backend=backend))
     assert res.converged and res.backend == backend
     # eigenvalues to the accuracy implied by the backward error: |δλ| <= η (‖A‖₁ + |λ| ‖M‖₁) κ(M)-ish
     normA, normM = abs(A).sum(0).max(), abs(M).sum(0).max()
@@ -97,7 +97,7 @@ def test_indefinite_shift_and_singular_on_direct_backends(backend, torus_problem
     A, M = torus_problem
     lam_ref = _dense_reference(A, M, 6)[0]
     sigma = 0.5 * (lam_ref[2] + lam_ref[3])                                    # inside the spectrum
-    res = smallest_eigenpairs(A, M, k=2, sigma=sigma, backend=backend)
+    res = smallest_eigenpairs(A, M, k=2, sigma=sigma, solver=SolverOptions(backend=backend))
     np.testing.assert_allclose(np.sort(res.eigenvalues), np.sort(lam_ref[[2, 3]]), rtol=1e-8)
     assert res.backend in (backend, "superlu")                                 # Cholesky falls back to LU
     b = np.ones(A.shape[0])
@@ -106,17 +106,17 @@ def test_indefinite_shift_and_singular_on_direct_backends(backend, torus_problem
     with pytest.raises(InvalidOperatorError):                                  # A − λM exactly singular
         solve(sp.diags(np.arange(5.0)), sp.identity(5), 2.0, np.ones(5), backend=backend)
     with pytest.raises(InvalidOperatorError, match="not positive semidefinite"):
-        smallest_eigenpairs(A - 2 * lam_ref[0] * M, M, k=1, backend=backend)
+        smallest_eigenpairs(A - 2 * lam_ref[0] * M, M, k=1, solver=SolverOptions(backend=backend))
 
 
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_real_matrices_and_warm_start(backend):
     n = 60                                                  # path graph: λ_j = 2 − 2cos(πj/n)
     A = sp.diags([-np.ones(n - 1), np.r_[1, 2 * np.ones(n - 2), 1], -np.ones(n - 1)], [-1, 0, 1], format="csr")
-    res = smallest_eigenpairs(A, sp.identity(n), k=3, backend=backend)
+    res = smallest_eigenpairs(A, sp.identity(n), k=3, solver=SolverOptions(backend=backend))
     np.testing.assert_allclose(res.eigenvalues, 2 - 2 * np.cos(np.pi * np.arange(3) / n), atol=1e-10)
     assert res.eigenvectors.dtype == np.float64 and res.backend == backend
-    warm = smallest_eigenpairs(A, sp.identity(n), k=3, backend=backend, v0=res.eigenvectors)
+    warm = smallest_eigenpairs(A, sp.identity(n), k=3, v0=res.eigenvectors, solver=SolverOptions(backend=backend))
     assert warm.iterations <= res.iterations and warm.converged
 
 
@@ -124,7 +124,7 @@ def test_real_matrices_and_warm_start(backend):
 def test_amg_lobpcg_rejects_sigma(torus_problem):
     A, M = torus_problem
     with pytest.raises(InvalidParameterError, match="sigma"):
-        smallest_eigenpairs(A, M, k=1, sigma=1.0, backend="amg-lobpcg")
+        smallest_eigenpairs(A, M, k=1, sigma=1.0, solver=SolverOptions(backend="amg-lobpcg"))
 
 
 # ---------------------------------------------------------------------- selection
@@ -148,7 +148,7 @@ def test_auto_selection_rules(torus_problem, monkeypatch):
     A, M = torus_problem
     assert A.shape[0] <= 400                                                     # the example torus is small:
     assert smallest_eigenpairs(A, M, k=1).backend == "dense"                     # auto solves it densely
-    assert smallest_eigenpairs(A, M, k=1, backend="auto").method == "dense"
+    assert smallest_eigenpairs(A, M, k=1, solver=SolverOptions(backend="auto")).method == "dense"
     big = sp.block_diag([A] * 3, format="csr"), sp.block_diag([M] * 3, format="csr")
     assert smallest_eigenpairs(*big, k=1).backend == B.select_backend(big[0].shape[0], big[0].nnz) == "superlu"
 
@@ -156,16 +156,16 @@ def test_auto_selection_rules(torus_problem, monkeypatch):
 def test_bad_backend_name_lists_available(monkeypatch):
     A, M = sp.identity(3, format="csr"), sp.identity(3, format="csr")
     with pytest.raises(InvalidParameterError, match=r"unknown backend 'lapack'.*superlu") as info:
-        smallest_eigenpairs(A, M, k=1, backend="lapack")
+        smallest_eigenpairs(A, M, k=1, solver=SolverOptions(backend="lapack"))
     for name in B.available_backends():
         assert repr(name) in str(info.value)
     with pytest.raises(InvalidParameterError, match="unknown backend"):
         solve(A, M, 0.5, np.ones(3), backend="mumps")
     monkeypatch.setattr(B, "available_backends", lambda: ["superlu"])         # registered, not installed
     with pytest.raises(InvalidParameterError, match=r"'cholmod' is not installed.*scikit-sparse"):
-        smallest_eigenpairs(A, M, k=1, backend="cholmod")
+        smallest_eigenpairs(A, M, k=1, solver=SolverOptions(backend="cholmod"))
     with pytest.raises(TypeError, match="factorize"):
-        smallest_eigenpairs(A, M, k=1, backend=object())
+        smallest_eigenpairs(A, M, k=1, solver=SolverOptions(backend=object()))
 
 
 # ---------------------------------------------------------------------- symbolic reuse, thread guard
@@ -175,7 +175,7 @@ def test_symbolic_analysis_is_reused_across_a_parameter_sweep(backend, torus_pro
     B.clear_cache()
     lams = []
     for t in (1.0, 2.0, 3.0):                       # same pattern, new values: a sweep over a scale
-        res = smallest_eigenpairs(t * A, M, k=2, backend=backend)
+        res = smallest_eigenpairs(t * A, M, k=2, solver=SolverOptions(backend=backend))
         lams.append(res.eigenvalues)
     info = B.cache_info()
     assert info == {"misses": 1, "hits": 2, "size": 1}      # one analysis, then numeric factorizations only
@@ -202,7 +202,7 @@ def test_blas_threads_are_limited_inside_factorizations():
     A = sp.diags([-np.ones(n - 1), np.r_[1, 2 * np.ones(n - 2), 1], -np.ones(n - 1)], [-1, 0, 1], format="csr")
     with threadpool_limits(limits=2, user_api="blas"):
         before = [p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"]
-        assert smallest_eigenpairs(A, sp.identity(n), k=1, backend=Spy()).backend == "superlu"
+        assert smallest_eigenpairs(A, sp.identity(n), k=1, solver=SolverOptions(backend=Spy())).backend == "superlu"
         solve(A, sp.identity(n), -1.0, np.ones(n), backend=Spy())
         after = [p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"]
     assert len(seen) == 2 and all(t == [B.BLAS_THREADS] * len(t) for t in seen)
@@ -257,10 +257,10 @@ def test_cholmod_metis_ordering_for_large_matrices_gives_the_same_eigenpairs(tor
     import dhlb.linalg.backends_cholesky as C
 
     A, M = torus_problem
-    ref = smallest_eigenpairs(A, M, k=2, backend="superlu")
+    ref = smallest_eigenpairs(A, M, k=2, solver=SolverOptions(backend="superlu"))
     monkeypatch.setattr(C, "METIS_MIN", 10)  # the torus counts as "large": METIS ordering (or the fallback)
     B.clear_cache()
-    res = smallest_eigenpairs(A, M, k=2, backend="cholmod")
+    res = smallest_eigenpairs(A, M, k=2, solver=SolverOptions(backend="cholmod"))
     assert res.backend == "cholmod"
     np.testing.assert_allclose(res.eigenvalues, ref.eigenvalues, rtol=1e-9)
 
@@ -278,7 +278,7 @@ def test_factorization_that_does_not_fit_says_memory(monkeypatch):
     need = memory.factor_bytes(n, A.nnz, complex_=False, dimension=2.0)
     monkeypatch.setattr(memory, "_LIMIT", need // 4)       # an artificially small limit
     with pytest.raises(memory.InsufficientMemoryError, match=r"40,000-unknown .* needs about .* GiB") as info:
-        smallest_eigenpairs(A, M, k=1, backend="superlu")
+        smallest_eigenpairs(A, M, k=1, solver=SolverOptions(backend="superlu"))
     assert info.value.needed == need and info.value.available <= need // 4
     with pytest.raises(memory.InsufficientMemoryError):
         solve(A, M, -1.0, np.ones(n), backend="superlu")
@@ -310,12 +310,12 @@ def test_bitwise_reproducible_and_seeded(backend):
     T2 = sp.diags([-np.ones(m), 2 * np.ones(m + 1), -np.ones(m)], [-1, 0, 1])
     A = (sp.kron(T1, sp.identity(m + 1)) + sp.kron(sp.identity(m), T2)).tocsr()
     M = sp.identity(m * (m + 1), format="csr")
-    r1, r2 = (smallest_eigenpairs(A, M, k=2, backend=backend, seed=7) for _ in range(2))
+    r1, r2 = (smallest_eigenpairs(A, M, k=2, solver=SolverOptions(backend=backend, seed=7)) for _ in range(2))
     assert np.array_equal(r1.eigenvalues, r2.eigenvalues) and np.array_equal(r1.eigenvectors, r2.eigenvectors)
-    r3 = smallest_eigenpairs(A, M, k=2, backend=backend, seed=8)
+    r3 = smallest_eigenpairs(A, M, k=2, solver=SolverOptions(backend=backend, seed=8))
     np.testing.assert_allclose(r3.eigenvalues, r1.eigenvalues, rtol=1e-8)
     with pytest.raises(InvalidParameterError, match="seed"):
-        smallest_eigenpairs(A, M, k=1, backend=backend, seed=-1)
+        smallest_eigenpairs(A, M, k=1, solver=SolverOptions(backend=backend, seed=-1))
 
 
 def test_number_of_eigenpairs_is_checked_against_memory_before_work(monkeypatch):

@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from dhlb import SimplicialComplex
 from dhlb.errors import ConvergenceError, InvalidOperatorError, InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.geometry import EuclideanComplex
-from dhlb.linalg import EigenResult, backward_errors, default_shift, smallest_eigenpairs, solve
+from dhlb.linalg import EigenResult, SolverOptions, backward_errors, default_shift, smallest_eigenpairs, solve
 
 
 # ---------------------------------------------------------------------- fixtures
@@ -177,11 +177,11 @@ def test_residual_criterion_and_convergence_error():
     n = 300
     A, Mm = path_laplacian(n), sp.identity(n)
     with pytest.raises(ConvergenceError) as info:
-        smallest_eigenpairs(A, Mm, k=4, maxiter=5, tol=1e-17)
+        smallest_eigenpairs(A, Mm, k=4, solver=SolverOptions(maxiter=5, tol=1e-17))
     part = info.value.result
     assert not part.converged and part.residuals.shape == (4,) and part.method == "arpack"
-    loose = smallest_eigenpairs(A, Mm, k=4, tol=1e-4)
-    tight = smallest_eigenpairs(A, Mm, k=4, tol=1e-13)
+    loose = smallest_eigenpairs(A, Mm, k=4, solver=SolverOptions(tol=1e-4))
+    tight = smallest_eigenpairs(A, Mm, k=4, solver=SolverOptions(tol=1e-13))
     assert loose.method == tight.method == "arpack"
     assert loose.solves < tight.solves
     assert np.all(loose.residuals <= 1e-4) and np.all(tight.residuals <= 1e-13)
@@ -247,7 +247,7 @@ def test_typed_errors_on_bad_input():
     with pytest.raises(InvalidParameterError):
         smallest_eigenpairs(A, M, k=0)
     with pytest.raises(InvalidParameterError):
-        smallest_eigenpairs(A, M, k=1, tol=0.0)
+        smallest_eigenpairs(A, M, k=1, solver=SolverOptions(tol=0.0))
     with pytest.raises(InvalidParameterError):
         smallest_eigenpairs(A, M, k=1, sigma=np.nan)
     bad = A.toarray()
@@ -286,13 +286,13 @@ def test_block_size_option_and_cluster_message():
     # a 12-fold cluster just above the lowest eigenvalue
     d = np.concatenate([[0.0], 1.0 + 1e-7 * np.arange(12), 5.0 + np.arange(40)])
     A, M = sp_.diags(d).tocsr(), sp_.identity(d.size, format="csr")
-    res = _se(A, M, k=2, block_size=16)
+    res = _se(A, M, k=2, solver=SolverOptions(block_size=16))
     assert res.converged and res.block_size == 16
     np.testing.assert_allclose(res.eigenvalues, d[:2], atol=1e-9)
     with pytest.raises(_IPE, match="block_size"):
-        _se(A, M, k=3, block_size=2)
+        _se(A, M, k=3, solver=SolverOptions(block_size=2))
     with pytest.raises(_CE, match="raise block_size"):
-        _se(A, M, k=2, block_size=5, maxiter=3)
+        _se(A, M, k=2, solver=SolverOptions(block_size=5, maxiter=3))
 
 
 # ---------------------------------------------------------------------- ARPACK: multiplicities, counts
@@ -321,7 +321,7 @@ def test_dense_path_for_small_problems(monkeypatch):
     np.testing.assert_allclose(res.eigenvalues, 2 - 2 * np.cos(np.pi * np.arange(n) / n), atol=1e-12)
     x = res.factor.solve(np.ones(n))                     # the factor of A − σM, σ = −ε
     np.testing.assert_allclose((A - res.shift * M) @ x, np.ones(n), rtol=1e-6)
-    assert smallest_eigenpairs(A, M, k=2, backend="superlu").method == "arpack"   # a named backend: sparse
+    assert smallest_eigenpairs(A, M, k=2, solver="superlu").method == "arpack"   # a named backend: sparse
     small = sp.diags(np.r_[-40.0, -2e-7, np.linspace(0.5, 3.0, 48)]).tocsr()      # psd=False: the lowest pairs,
     low = smallest_eigenpairs(small, sp.identity(50), k=2, psd=False)             # not the ones nearest to −ε
     assert low.method == "dense"

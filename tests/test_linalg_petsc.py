@@ -22,7 +22,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dhlb.errors import InvalidOperatorError
-from dhlb.linalg import smallest_eigenpairs
+from dhlb.linalg import SolverOptions, smallest_eigenpairs
 from dhlb.linalg.backends import _REGISTRY, register_backend
 from dhlb.linalg.backends_petsc import PetscBackend, petsc_available, row_ranges
 
@@ -54,7 +54,7 @@ def _path(n):
 @needs_petsc
 def test_path_graph_eigenvalues_match_the_closed_form():
     n = 800                                            # λ_j = 2 - 2 cos(πj/n), proofs/ of the path Laplacian
-    res = smallest_eigenpairs(_path(n), sp.identity(n, format="csr"), k=4, backend="petsc")
+    res = smallest_eigenpairs(_path(n), sp.identity(n, format="csr"), k=4, solver=SolverOptions(backend="petsc"))
     assert res.converged and res.backend == "petsc" and res.residuals.max() <= 1e-10
     assert np.allclose(res.eigenvalues, 2 - 2 * np.cos(np.pi * np.arange(4) / n), rtol=0, atol=1e-12)
 
@@ -73,7 +73,7 @@ def _hermitian_pencil(seed, n):
 @given(st.integers(0, 2**31), st.integers(1, 5))
 def test_random_complex_hermitian_pencils_agree_with_dense_eigh(seed, k):
     A, M = _hermitian_pencil(seed, 450)
-    res = smallest_eigenpairs(A, M, k=k, backend="petsc")
+    res = smallest_eigenpairs(A, M, k=k, solver=SolverOptions(backend="petsc"))
     ref = sla.eigh(A.toarray(), M.toarray(), eigvals_only=True, subset_by_index=[0, k - 1])
     scale = abs(A).sum(axis=0).max()
     assert res.converged and np.all(res.residuals <= 1e-10)
@@ -104,7 +104,7 @@ def test_indefinite_a_is_reported_not_psd():
     n = 500
     A = (_path(n) - 0.5 * sp.identity(n)).tocsr()
     with pytest.raises(InvalidOperatorError, match="not positive semidefinite"):
-        smallest_eigenpairs(A, sp.identity(n, format="csr"), k=1, backend="petsc")
+        smallest_eigenpairs(A, sp.identity(n, format="csr"), k=1, solver=SolverOptions(backend="petsc"))
 
 
 def _mpirun(args, timeout):

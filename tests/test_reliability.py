@@ -312,15 +312,17 @@ def test_complex_or_text_coordinates_are_refused():
 
 
 def test_vortex_filaments_checks_hbar_orientation_and_options_first():
+    from dhlb.linalg import SolverOptions
     from dhlb.mesh import box_tet_mesh
-    from dhlb.vortex import uniform_flow, vortex_filaments
+    from dhlb.vortex import VortexOptions, uniform_flow, vortex_filaments
 
     mesh = box_tet_mesh(1)
     flow = uniform_flow([0.1, 0.0, 0.0])
-    for kwargs in ({"orientation": "x"}, {"placement": "y"}, {"order": 60000}, {"order": 0}, {"tol": float("nan")},
-                   {"tol": 2.0}):
+    for make in (lambda: VortexOptions(orientation="x"), lambda: VortexOptions(placement="y"),
+                 lambda: VortexOptions(order=60000), lambda: VortexOptions(order=0),
+                 lambda: SolverOptions(tol=float("nan")), lambda: SolverOptions(tol=-1.0)):
         with pytest.raises(InvalidParameterError):
-            vortex_filaments(mesh, None, flow, 1.0, **kwargs)
+            make()
     for hbar in ("1", 1 + 0j, b"1", True, None):
         with pytest.raises(InvalidParameterError, match="hbar must be a real number"):
             vortex_filaments(mesh, None, flow, hbar)

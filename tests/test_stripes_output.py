@@ -10,6 +10,7 @@ import pytest
 from dhlb.errors import InvalidParameterError
 from dhlb.io import read_surface
 from dhlb.io.stripes import write_stripes_obj
+from dhlb.render import Camera, StripeStyle
 from dhlb.stripes import stripe_form, texture_coordinates
 from tests.test_stripes_texture import flat_grid, random_texture
 
@@ -120,7 +121,7 @@ def test_png_of_a_plane_wave_shows_the_stripes(tmp_path):
     form = stripe_form(mesh, np.tile([1.0, 0, 0], (mesh.n_vertices, 1)), frequency=f)
     tex = texture_coordinates(form, np.exp(2j * np.pi * f * mesh.points[:, 0]))
     W = 300
-    path = render_stripes_png(tmp_path / "s.png", tex, view=(0, 0, 1), up=(0, 1, 0), size=(W, W), k=12)
+    path = render_stripes_png(tmp_path / "s.png", tex, k=12, camera=Camera(view=(0, 0, 1), up=(0, 1, 0), size=(W, W)))
     img = mpimg.imread(path)[..., :3]
     assert img.shape == (W, W, 3)
     half = 0.53 * 6  # the renderer's framing: centre 3, half-width 0.53 × extent
@@ -136,7 +137,8 @@ def test_png_marks_zeros_and_branch_points(tmp_path):
     from dhlb.render.stripes_png import render_stripes_png
 
     tex = random_texture("sphere", 2, 2)
-    path = render_stripes_png(tmp_path / "b.png", tex, size=(240, 200), mark_singularities=True)
+    path = render_stripes_png(tmp_path / "b.png", tex, camera=Camera(size=(240, 200)),
+                              style=StripeStyle(mark_singularities=True))
     img = mpimg.imread(path)[..., :3]
     assert img.shape == (200, 240, 3) and np.all(img[0, 0] == 1)
     green = (img[..., 1] > 0.5) & (img[..., 0] < 0.3) & (img[..., 2] < 0.4)

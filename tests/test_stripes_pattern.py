@@ -22,8 +22,9 @@ from dhlb.errors import (
 from dhlb.fem import bundle_matrices, connection_laplacian, smallest_eigenpairs
 from dhlb.fields import direction_vectors, field_indices
 from dhlb.geometry import EuclideanComplex
+from dhlb.linalg import SolverOptions
 from dhlb.mesh import tangent_bundle
-from dhlb.stripes import stripe_form, stripe_matrices, stripe_pattern, texture_coordinates
+from dhlb.stripes import StripeOptions, stripe_form, stripe_matrices, stripe_pattern, texture_coordinates
 from dhlb.topology.complex import SimplicialComplex
 from tests.surface_meshes import grid, icosphere, torus
 from tests.test_stripes_texture import jittered, side_points, twin_sides
@@ -61,7 +62,8 @@ def test_constant_field_on_flat_meshes_gives_the_exact_plane_wave(name, n, energ
     rng = np.random.default_rng(1)
     sgn = rng.choice([-1.0, 1.0], len(V)) if n == 2 else np.ones(len(V))
     d = np.array([np.cos(0.4), np.sin(0.4), 0.0])
-    res = stripe_pattern(V, F, sgn[:, None] * d, spacing=4.0, n=n, energy=energy, tol=1e-13)
+    res = stripe_pattern(V, F, sgn[:, None] * d, spacing=4.0, n=n, options=StripeOptions(energy=energy),
+                         solver=SolverOptions(tol=1e-13))
     mesh = res.mesh
     assert res.zero_faces.size == 0 and res.branch_faces.size == 0
     assert abs(res.eigenvalue) < 1e-9 and res.solver["converged"]
@@ -80,7 +82,7 @@ def test_constant_field_on_flat_meshes_gives_the_exact_plane_wave(name, n, energ
 
 def test_orthogonal_pattern_runs_across():
     V, F = flat("square", seed=2)
-    res = stripe_pattern(V, F, np.tile([1.0, 0, 0], (len(V), 1)), frequency=0.3, orthogonal=True)
+    res = stripe_pattern(V, F, np.tile([1.0, 0, 0], (len(V), 1)), frequency=0.3, options=StripeOptions(orthogonal=True))
     ort = res.orthogonal
     assert ort is not None and ort.zero_faces.size == 0
     mesh = ort.mesh
@@ -101,10 +103,10 @@ def test_solved_pattern_is_continuous_across_edges_and_inside_singular_faces(see
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DhlbWarning)
         try:
-            res = stripe_pattern(mesh, None, X, n=n, energy=energy, spacing=sp)
+            res = stripe_pattern(mesh, None, X, n=n, spacing=sp, options=StripeOptions(energy=energy))
         except InvalidParameterError as err:  # a vertex only in branch triangles: no lift for the fem energy
             assert energy == "fem" and "only in branch triangles" in str(err)
-            res = stripe_pattern(mesh, None, X, n=n, energy="cotan", spacing=sp)
+            res = stripe_pattern(mesh, None, X, n=n, spacing=sp, options=StripeOptions(energy="cotan"))
     tex = res.texture
     a, b = twin_sides(mesh)
     for s in (t, 0.0, 1.0):
@@ -298,7 +300,7 @@ def test_bad_input_is_named():
     with pytest.raises(InvalidParameterError, match="exactly one"):
         stripe_pattern(V, F, X)
     with pytest.raises(InvalidParameterError, match="energy"):
-        stripe_pattern(V, F, X, frequency=0.2, energy="dirichlet")
+        stripe_pattern(V, F, X, frequency=0.2, options=StripeOptions(energy="dirichlet"))
     with pytest.raises(InvalidParameterError, match="n must be"):
         stripe_pattern(V, F, X, frequency=0.2, n=3)
     with pytest.raises(InvalidParameterError, match="directions"):

@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 import scipy.spatial
 
-from dhlb.stripes import stripe_pattern
+from dhlb.stripes import SectionOptions, StripeOptions, stripe_pattern
 
 LEVELS = (1.0, 2.0, 3.0)          # radii of the three levels: h ∈ [0, 1), [1, 2), [2, 3]
 
@@ -54,7 +54,8 @@ def test_dislocations_sit_where_the_number_of_stripes_changes(spacing):
     V, F, X = _stepped_surface()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = stripe_pattern(V, F, X, frequency=1.0 / spacing, section="eigenvector")
+        res = stripe_pattern(V, F, X, frequency=1.0 / spacing,
+                             options=StripeOptions(section=SectionOptions(kind="eigenvector")))
     zeros = res.to_json()["zero_faces"]
     h = np.array([V[F[z["face"]], 2].mean() for z in zeros])
     index = np.array([z["index"] for z in zeros])

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from dhlb.errors import InvalidParameterError, ResourceLimitError
 from dhlb.fields import direction_field
 from dhlb.io import example_path, read_surface
-from dhlb.stripes import isolines, stripe_pattern
+from dhlb.stripes import SectionOptions, StripeOptions, isolines, stripe_pattern
 from dhlb.stripes.energy import stripe_matrices
 from dhlb.stripes.revolution import stepped_tube
 from dhlb.stripes.section import normalize_per_vertex, unit_energy
@@ -31,7 +31,8 @@ def quiet(fn, *args, **kw):
 
 def tube_pattern(radii, jitter, seed, section="unit", around=64):
     tube = stepped_tube(radii, stripes=8, around=around, jitter=jitter, seed=seed)
-    res = quiet(stripe_pattern, tube.points, tube.faces, tube.directions, frequency=tube.frequency, section=section)
+    res = quiet(stripe_pattern, tube.points, tube.faces, tube.directions, frequency=tube.frequency,
+                options=StripeOptions(section=SectionOptions(kind=section)))
     return tube, res
 
 
@@ -93,8 +94,9 @@ def fields():
 def test_unit_section_has_lower_unit_energy_than_the_eigenvector(fields, name, per_diagonal):
     V, F, fld = fields[name]
     f = per_diagonal / np.linalg.norm(V.max(0) - V.min(0))
-    eig = quiet(stripe_pattern, V, F, fld, frequency=f, section="eigenvector")
-    unit = quiet(stripe_pattern, V, F, fld, frequency=f, section="unit")
+    eig = quiet(stripe_pattern, V, F, fld, frequency=f,
+                options=StripeOptions(section=SectionOptions(kind="eigenvector")))
+    unit = quiet(stripe_pattern, V, F, fld, frequency=f, options=StripeOptions(section=SectionOptions(kind="unit")))
     it = unit.iteration
     assert unit.eigenvalue == pytest.approx(eig.eigenvalue, rel=1e-7)
     assert it.start_energy == pytest.approx(eig.unit_energy, rel=1e-6)          # it starts from the eigenvector
@@ -121,8 +123,10 @@ def spot_lines():
 @pytest.mark.parametrize("energy", ["cotan", "fem"])
 def test_line_field_unit_section_lives_on_the_double_cover_and_is_continuous(spot_lines, energy):
     V, F, fld = spot_lines
-    eig = quiet(stripe_pattern, V, F, fld, spacing=6.0, section="eigenvector", energy=energy)
-    res = quiet(stripe_pattern, V, F, fld, spacing=6.0, section="unit", energy=energy)
+    eig = quiet(stripe_pattern, V, F, fld, spacing=6.0,
+                options=StripeOptions(energy=energy, section=SectionOptions(kind="eigenvector")))
+    res = quiet(stripe_pattern, V, F, fld, spacing=6.0,
+                options=StripeOptions(energy=energy, section=SectionOptions(kind="unit")))
     assert res.branch_faces.size > 0 and not res.solver["complex"]       # the real 2N problem
     assert np.allclose(np.abs(res.psi), 1.0, atol=1e-12)                 # normalized per vertex of the cover
     dc = res.form.double_cover
@@ -161,7 +165,8 @@ def test_unit_section_never_exceeds_the_eigenvector_and_returns_its_best_iterate
 
     mesh = jittered("sphere", seed % 1000)
     X = np.random.default_rng(seed).normal(size=(mesh.n_vertices, 3))
-    res = quiet(stripe_pattern, mesh, None, X, n=n, spacing=spacing, section="unit")
+    res = quiet(stripe_pattern, mesh, None, X, n=n, spacing=spacing,
+                options=StripeOptions(section=SectionOptions(kind="unit")))
     it = res.iteration
     assert it.energies[0] >= res.eigenvalue * (1 - 1e-9)
     assert res.unit_energy == min(it.energies) <= it.energies[0]
@@ -172,9 +177,9 @@ def test_unit_section_never_exceeds_the_eigenvector_and_returns_its_best_iterate
 def test_zero_iterations_is_the_normalized_eigenvector():
     tube = stepped_tube((1.0, 1.5), stripes=6, around=48)
     eig = quiet(stripe_pattern, tube.points, tube.faces, tube.directions, frequency=tube.frequency,
-                section="eigenvector")
+                options=StripeOptions(section=SectionOptions(kind="eigenvector")))
     res = quiet(stripe_pattern, tube.points, tube.faces, tube.directions, frequency=tube.frequency,
-                section="unit", iterations=0)
+                options=StripeOptions(section=SectionOptions(kind="unit", iterations=0)))
     assert res.iteration.iterations == 0 and res.unit_energy == pytest.approx(eig.unit_energy, rel=1e-8)
     ok = np.abs(eig.psi) > 1e-8
     assert np.allclose(res.psi[ok], eig.psi[ok] / np.abs(eig.psi[ok]), atol=1e-7)
@@ -184,9 +189,10 @@ def test_zero_iterations_is_the_normalized_eigenvector():
 def test_power_section_is_the_seeds_algorithm_9_and_reproducible():
     V, F = read_surface(example_path("spot.obj"))
     X = np.tile([1.0, 0.2, 0.1], (len(V), 1))
-    a = quiet(stripe_pattern, V, F, X, spacing=8.0, section="power", seed=3)
-    b = quiet(stripe_pattern, V, F, X, spacing=8.0, section="power", seed=3)
-    c = quiet(stripe_pattern, V, F, X, spacing=8.0, section="power", seed=4, iterations=5)
+    a = quiet(stripe_pattern, V, F, X, spacing=8.0, options=StripeOptions(section=SectionOptions(kind="power", seed=3)))
+    b = quiet(stripe_pattern, V, F, X, spacing=8.0, options=StripeOptions(section=SectionOptions(kind="power", seed=3)))
+    c = quiet(stripe_pattern, V, F, X, spacing=8.0,
+              options=StripeOptions(section=SectionOptions(kind="power", seed=4, iterations=5)))
     assert np.array_equal(a.psi, b.psi) and a.iteration.iterations == 20 and c.iteration.iterations == 5
     A, M, cplx = stripe_matrices(a.form, "cotan")
     assert cplx
@@ -208,19 +214,19 @@ def test_json_records_section_iterations_and_both_energies():
     assert eig.to_json()["iteration"] is None and eig.to_json()["section"] == "eigenvector"
 
 
-@pytest.mark.parametrize("kw,word", [({"section": "unity"}, "section"), ({"iterations": -1}, "iterations"),
+@pytest.mark.parametrize("kw,word", [({"kind": "unity"}, "section"), ({"iterations": -1}, "iterations"),
                                      ({"iterations": 2.5}, "iterations"), ({"unit_tol": 0.0}, "unit_tol"),
-                                     ({"section": "power", "iterations": 0}, "iterations"),
+                                     ({"kind": "power", "iterations": 0}, "iterations"),
                                      ({"seed": "x"}, "seed")])
 def test_bad_section_parameters_are_named(kw, word):
-    tube = stepped_tube((1.0,), stripes=4, around=16)
     with pytest.raises(InvalidParameterError, match=word):
-        stripe_pattern(tube.points, tube.faces, tube.directions, frequency=tube.frequency, **kw)
+        SectionOptions(**kw)
 
 
 def test_isolines_refuse_a_frequency_beyond_the_memory_budget_before_allocating():
     tube = stepped_tube((1.0,), stripes=4, around=16)
-    res = quiet(stripe_pattern, tube.points, tube.faces, tube.directions, frequency=40.0, section="eigenvector")
+    res = quiet(stripe_pattern, tube.points, tube.faces, tube.directions, frequency=40.0,
+                options=StripeOptions(section=SectionOptions(kind="eigenvector")))
     with pytest.raises(ResourceLimitError, match=r"frequency = 40 .*allowed: frequency <= ") as err:
         isolines(res.texture, max_bytes=1e5)
     assert err.value.estimate_bytes > 1e5 and isinstance(err.value, InvalidParameterError)

@@ -20,8 +20,9 @@ from dhlb.errors import (
     NonOrientableError,
     UnreferencedVertexWarning,
 )
-from dhlb.fields import direction_field, energy_matrices, user_guidance
+from dhlb.fields import FieldOptions, direction_field, energy_matrices, user_guidance
 from dhlb.io import example_path, read_surface
+from dhlb.linalg import SolverOptions
 from dhlb.mesh import tangent_bundle
 from tests.surface_meshes import cylinder, ellipsoid, grid, icosphere
 
@@ -119,7 +120,8 @@ def test_boundary_aligned_field_on_a_cylinder_follows_the_boundary(n):
     V, F = cylinder(32, 8)
     for normal in (False, True):
         # strong alignment with the lumped mass (the consistent one oscillates at λ ≪ 0, see the square test)
-        res = direction_field(V, F, n=n, align="boundary-normal" if normal else "boundary", lam=-10.0, lumped=True)
+        res = direction_field(V, F, n=n, align="boundary-normal" if normal else "boundary", lam=-10.0,
+                              options=FieldOptions(lumped=True))
         b = res.mesh.is_boundary_vertex
         P = res.mesh.points[b]
         up = np.where(P[:, 2] > 1.0, 1.0, -1.0)[:, None]  # the top circle is traversed clockwise seen from above
@@ -146,7 +148,8 @@ def test_boundary_aligned_cross_field_on_a_square_has_no_singularities():
     # ±1 pairs, the lumped mass does not
     strong = direction_field(V, F, n=4, align="boundary", lam=-10.0)
     assert len(strong.singularities.faces) > 0 and strong.index_sum == 0
-    lumped = direction_field(V, F, n=4, align="boundary", lam=-10.0, lumped=True)
+    lumped = direction_field(V, F, n=4, align="boundary", lam=-10.0,
+                              options=FieldOptions(lumped=True))
     assert len(lumped.singularities.faces) == 0
 
 
@@ -263,7 +266,7 @@ def test_inconsistent_orientation_offers_reorient():
     F[3] = F[3, ::-1]
     with pytest.raises(InconsistentOrientationError, match="reorient=True"):
         direction_field(V, F, n=1)
-    res = direction_field(V, F, n=1, reorient=True)
+    res = direction_field(V, F, n=1, options=FieldOptions(reorient=True))
     assert res.mesh.flipped.sum() == 1 and res.index_sum == 2 == res.poincare_hopf
 
 
@@ -368,7 +371,7 @@ def test_aligned_field_reports_the_backend_it_used():
     V, F = grid(5, 5)
     res = direction_field(V, F, n=4, align="boundary", lam=-1.0)
     assert res.solver["backend"] in available_backends()
-    assert direction_field(V, F, n=4, align="boundary", lam=-1.0, backend="superlu").solver["backend"] == "superlu"
+    assert direction_field(V, F, n=4, align="boundary", lam=-1.0, solver="superlu").solver["backend"] == "superlu"
 
 
 @pytest.mark.parametrize("path", [example_path("spot.obj"), os.path.join(os.path.dirname(__file__), "data",
@@ -377,7 +380,7 @@ def test_default_tolerance_gives_the_singularities_of_a_tight_solve(path):
     """Issue 15 point 4: the scaled default tol places every singularity where a tol = 1e-14 solve does."""
     V, F = read_surface(path)
     default = direction_field(V, F, n=4)
-    tight = direction_field(V, F, n=4, tol=1e-14)
+    tight = direction_field(V, F, n=4, solver=SolverOptions(tol=1e-14))
     assert tight.solver["residual"] <= 1e-14 and default.solver["residual"] <= 1e-10
     np.testing.assert_array_equal(default.indices.face_index, tight.indices.face_index)
     assert np.count_nonzero(default.indices.face_index) > 0
@@ -419,7 +422,7 @@ def test_progress_reports_the_phases_only_when_asked(monkeypatch, capsys):
     monkeypatch.setattr(P, "MIN_SECONDS", 0.0)
     direction_field(V, F, n=2)
     assert "direction field" not in capsys.readouterr().err
-    direction_field(V, F, n=2, progress=True)
+    direction_field(V, F, n=2, options=FieldOptions(progress=True))
     assert "direction field" in capsys.readouterr().err
 
 

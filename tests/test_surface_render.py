@@ -9,6 +9,7 @@ from dhlb.errors import InvalidParameterError, InvalidSimplexError, NonFiniteErr
 from dhlb.fields.directions import direction_vectors, field_indices
 from dhlb.fields.guidance import curvature_guidance
 from dhlb.mesh import tangent_bundle
+from dhlb.render import Camera
 from tests.surface_meshes import ellipsoid, grid, icosphere
 
 mpimg = pytest.importorskip("matplotlib.image")
@@ -28,7 +29,7 @@ def test_render_ellipsoid_with_umbilics(tmp_path):
     path = tmp_path / "ellipsoid.png"
     out = tb.mesh.points, tb.mesh.faces
     assert render(path, *out, directions=direction_vectors(tb, u), singularities=fi.singularities,
-                  view=(0, -0.3, 1), up=(0, 1, 0), size=(400, 300)) == str(path)
+                  camera=Camera(view=(0, -0.3, 1), up=(0, 1, 0), size=(400, 300))) == str(path)
     img = _read(path)
     assert img.shape[:2] == (300, 400)
     rgb = img[..., :3]
@@ -46,8 +47,8 @@ def test_back_faces_and_hidden_dots_are_culled(tmp_path):
     back = (np.array([[0.0, 0.0, -1.0]]), np.array([-1]))  # behind the sphere, seen from +z
     front = (np.array([[0.0, 0.0, 1.0]]), np.array([-1]))
     p1, p2 = tmp_path / "back.png", tmp_path / "front.png"
-    render(p1, V, F, singularities=back, view=(0, 0, 1), up=(0, 1, 0), size=(200, 200))
-    render(p2, V, F, singularities=front, view=(0, 0, 1), up=(0, 1, 0), size=(200, 200))
+    render(p1, V, F, singularities=back, camera=Camera(view=(0, 0, 1), up=(0, 1, 0), size=(200, 200)))
+    render(p2, V, F, singularities=front, camera=Camera(view=(0, 0, 1), up=(0, 1, 0), size=(200, 200)))
 
     def blue(p):
         rgb = _read(p)[..., :3]
@@ -59,7 +60,7 @@ def test_back_faces_and_hidden_dots_are_culled(tmp_path):
 def test_open_mesh_shows_both_sides(tmp_path):
     V, F = grid(4, 4, z=lambda x, y: 0.2 * np.sin(x))
     p = tmp_path / "grid.png"
-    render(p, V, F, view=(0.2, 0.3, -1.0), size=(120, 120))  # seen from below
+    render(p, V, F, camera=Camera(view=(0.2, 0.3, -1.0), size=(120, 120)))  # seen from below
     rgb = _read(p)[..., :3]
     assert (rgb.max(axis=2) < 0.99).sum() > 2000
 
@@ -76,7 +77,7 @@ def test_render_rejects_bad_input(tmp_path):
     with pytest.raises(InvalidSimplexError):
         render(p, V, F + 1)
     with pytest.raises(InvalidParameterError):
-        render(p, V, F, view=(0, 0, 0))
+        render(p, V, F, camera=Camera(view=(0, 0, 0)))
     with pytest.raises(ShapeError):
         render(p, V, F, singularities=(np.zeros((2, 3)), np.ones(3)))
     V2 = V.copy()

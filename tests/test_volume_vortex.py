@@ -29,6 +29,7 @@ from dhlb.mesh import box_tet_mesh
 from dhlb.vortex import (
     Filament,
     FilamentField,
+    VortexOptions,
     extract_filaments,
     filament_linking_numbers,
     hausdorff_distance,
@@ -302,7 +303,7 @@ def test_bad_velocity_arrays(small):
     with pytest.raises(ShapeError, match="either a TetMesh"):
         vortex_filaments(small, T, vel, 1.0)
     with pytest.raises(InvalidParameterError, match="placement"):
-        vortex_filaments(small, None, uniform_flow([1.0, 0, 0]), 1.0, placement="middle")
+        vortex_filaments(small, None, uniform_flow([1.0, 0, 0]), 1.0, options=VortexOptions(placement="middle"))
 
 
 def test_degenerate_tet_is_named(small):
@@ -320,7 +321,7 @@ def test_inverted_tet_is_named(small):
     T = small.tets.copy()
     T[5] = T[5, [1, 0, 2, 3]]
     with pytest.raises(InconsistentOrientationError, match=r"tetrahedron #5 .* negatively oriented"):
-        vortex_filaments(V, T, uniform_flow([1.0, 0, 0]), 1.0, orientation="require")
+        vortex_filaments(V, T, uniform_flow([1.0, 0, 0]), 1.0, options=VortexOptions(orientation="require"))
 
 
 def test_non_manifold_mesh_is_named():

@@ -13,15 +13,16 @@ import numpy as np
 
 from dhlb.io.results import FIELD_NPZ_NOTE as NPZ_NOTE
 from dhlb.io.results import write_field_npz
+from dhlb.render import CONFORMAL_CAMERA, FILAMENT_CAMERA, Camera
 
 __all__ = ["fields", "aligned", "boundary", "stripes", "vortex", "write_field_npz", "NPZ_NOTE"]
 
-_SPOT_VIEW = {"view": (1.0, 0.6, 0.4), "up": (0.0, 1.0, 0.0), "size": (600, 600)}
+_SPOT_VIEW = Camera(view=(1.0, 0.6, 0.4), up=(0.0, 1.0, 0.0), size=(600, 600))
 
 
-def _back(view: dict) -> dict:
+def _back(camera: Camera) -> Camera:
     """The view from the other side (camera direction negated): every result is shown front and back."""
-    return {**view, "view": tuple(-float(c) for c in view["view"])}
+    return camera.replace(view=tuple(-float(c) for c in camera.view))
 
 
 def _back_path(png: str) -> str:
@@ -85,9 +86,9 @@ def _field(out, progress, name, V, F, mesh_name, caption, view, **kw):
         res = direction_field(V, F, **kw)
         m = res.mesh
         png = render_field_png(os.path.join(out, f"{name}.png"), m.points, m.faces, res.directions,
-                               res.singularities, title=caption, **view)
+                               res.singularities, title=caption, camera=view)
         render_field_png(_back_path(png), m.points, m.faces, res.directions, res.singularities,
-                         title=caption + " (back)", **_back(view))
+                         title=caption + " (back)", camera=_back(view))
         write_field_npz(os.path.join(out, f"{name}.npz"), res)  # the layout of dhlb field
         return res, png, time.perf_counter() - t0
 
@@ -103,7 +104,7 @@ def fields(out, progress, *, backend=None) -> list[dict]:
         for s in (-1.0, 0.0, 1.0):
             recs.append(_field(out, progress, f"field-n{n}-s{s:+.0f}", V, F, "spot",
                                f"smoothest {n}-direction field, s = {s:+.0f}", _SPOT_VIEW, n=n, s=s,
-                               backend=backend))
+                               solver=backend))
     return recs
 
 
@@ -112,7 +113,7 @@ def aligned(out, progress, *, backend=None) -> list[dict]:
     V, F = _spot()
     return [_field(out, progress, "aligned-curvature-n4", V, F, "spot",
                    "cross field aligned to principal curvature (λ = 0)", _SPOT_VIEW, n=4, align="curvature",
-                   backend=backend)]
+                   solver=backend)]
 
 
 def boundary(out, progress, *, backend=None) -> list[dict]:
@@ -120,10 +121,10 @@ def boundary(out, progress, *, backend=None) -> list[dict]:
     from dhlb.io import example_path, read_surface
 
     V, F = read_surface(example_path("saddle.obj"))
-    view = {"view": (0.3, -1.0, 1.2), "up": (0.0, 0.0, 1.0), "size": (600, 600)}
+    view = Camera(view=(0.3, -1.0, 1.2), up=(0.0, 0.0, 1.0), size=(600, 600))
     caption = "cross field aligned to the boundary (λ = −10), saddle disk"
     return [_field(out, progress, "boundary-n4", V, F, "saddle", caption, view, n=4, align="boundary", lam=-10.0,
-                   backend=backend)]
+                   solver=backend)]
 
 
 def stripes(out, progress, *, backend=None) -> list[dict]:
@@ -138,10 +139,10 @@ def stripes(out, progress, *, backend=None) -> list[dict]:
 
     def work():
         t0 = time.perf_counter()
-        field = direction_field(V, F, n=2, backend=backend)
-        res = stripe_pattern(V, F, field, spacing=6.0, backend=backend)
-        png = render_stripes_png(os.path.join(out, "stripes.png"), res.texture, title=caption, **_SPOT_VIEW)
-        render_stripes_png(_back_path(png), res.texture, title=caption + " (back)", **_back(_SPOT_VIEW))
+        field = direction_field(V, F, n=2, solver=backend)
+        res = stripe_pattern(V, F, field, spacing=6.0, solver=backend)
+        png = render_stripes_png(os.path.join(out, "stripes.png"), res.texture, title=caption, camera=_SPOT_VIEW)
+        render_stripes_png(_back_path(png), res.texture, title=caption + " (back)", camera=_back(_SPOT_VIEW))
         write_stripes_obj(os.path.join(out, "stripes.obj"), res.texture)
         return res, png, time.perf_counter() - t0
 
@@ -170,12 +171,12 @@ def vortex(out, progress, *, backend=None) -> list[dict]:
         def work(name=name, kind=kind, caption=caption):
             t0 = time.perf_counter()
             field, _ = demo_velocity(kind, mesh.points)
-            res = vortex_filaments(mesh, None, field, 1.0, backend=backend)
+            res = vortex_filaments(mesh, None, field, 1.0, solver=backend)
             write_polylines_obj(os.path.join(out, f"{name}.obj"), res.filaments)
             png = render_filaments_png(os.path.join(out, f"{name}.png"), res.filaments, res.mesh.points,
                                        res.mesh.boundary_faces, title=caption)
             render_filaments_png(_back_path(png), res.filaments, res.mesh.points, res.mesh.boundary_faces,
-                                 title=caption + " (back)", view=(-1.0, 1.6, 0.9))
+                                 title=caption + " (back)", camera=_back(FILAMENT_CAMERA))
             return res, png, time.perf_counter() - t0
 
         res, png, sec = progress.run(caption, work)
@@ -196,9 +197,9 @@ def vortex(out, progress, *, backend=None) -> list[dict]:
 
 def conformal(out, progress, *, backend=None) -> list[dict]:
     """Close-to-conformal deformations of a tetrahedral ball (seed part 3, §2.4): a Möbius factor and point charges."""
-    from dhlb.cli.conformal import boundary_distortion, render_conformal_png
     from dhlb.conformal import conformal_deformation, mobius_factor, point_charge_factor
     from dhlb.mesh import ball_tet_mesh
+    from dhlb.render import boundary_distortion, render_conformal_png
 
     mesh = ball_tet_mesh(6)
     cases = [("conformal-mobius", mobius_factor((2.5, 0.0, 0.0), 1.5),
@@ -214,7 +215,7 @@ def conformal(out, progress, *, backend=None) -> list[dict]:
             png = render_conformal_png(os.path.join(out, f"{name}.png"), mesh.points, res.points, F, dF,
                                        title=caption)
             render_conformal_png(_back_path(png), mesh.points, res.points, F, dF, title=caption + " (back)",
-                                 view=(-1.0, 1.6, -0.9))
+                                 camera=_back(CONFORMAL_CAMERA))
             return res, png, time.perf_counter() - t0
 
         res, png, sec = progress.run(caption, work)

@@ -1,7 +1,6 @@
 """``dhlb conformal``: close-to-conformal deformation of a tet mesh (:func:`dhlb.conformal.conformal_deformation`).
 
-Also home of :func:`render_conformal_png`, the before/after picture of the boundary coloured by
-distortion.
+Its picture, :func:`dhlb.render.render_conformal_png`, is importable from here too.
 """
 
 from __future__ import annotations
@@ -14,6 +13,7 @@ import numpy as np
 
 from dhlb.cli._common import UsageError, add_command, check_outputs, report_table, resolve_input
 from dhlb.errors import DhlbWarning
+from dhlb.render.conformal_png import boundary_distortion, render_conformal_png
 
 __all__ = ["NAME", "SUMMARY", "boundary_distortion", "format_report", "parse_charge", "register",
            "render_conformal_png", "run"]
@@ -72,97 +72,6 @@ def parse_charge(text: str) -> list[float]:
     if len(vals) != 4 or not np.all(np.isfinite(vals)):
         raise UsageError(f"--charge needs four finite numbers x,y,z,q, got {text!r}")
     return vals
-
-
-def render_conformal_png(path, before, after, faces, distortion_faces, *, title=None, size=(1200, 600),
-                         dpi: int = 100, view=(1.0, -1.6, 0.9), up=(0.0, 0.0, 1.0)) -> str:
-    r"""Two panels, the boundary surface before and after, each triangle coloured by the distortion of its tet.
-
-    Parameters
-    ----------
-    path : str or path-like
-    before, after : (N, 3) points
-    faces : (b, 3) int boundary triangles (outward)
-    distortion_faces : (b,) the distortion of the tet of each boundary triangle (1 = conformal)
-
-    Examples
-    --------
-    >>> import os, tempfile, numpy as np
-    >>> from dhlb.mesh import box_tet_mesh
-    >>> m = box_tet_mesh(2)
-    >>> F = m.boundary_faces
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     p = render_conformal_png(os.path.join(d, "c.png"), m.points, 2 * m.points, F, np.ones(len(F)),
-    ...                              size=(300, 150))
-    ...     open(p, "rb").read(4) == b"\x89PNG"
-    True
-    """
-    from dhlb.render.png import _camera, _matplotlib
-
-    Figure, FigureCanvasAgg, PolyCollection = _matplotlib()
-    from matplotlib import colormaps
-    from matplotlib.colors import Normalize
-
-    right, upv, w = _camera(view, up)
-    F = np.asarray(faces, dtype=np.int64)
-    B, A = np.asarray(before, float), np.asarray(after, float)
-    U, _, Vt = np.linalg.svd((A - A.mean(0)).T @ (B - B.mean(0)))   # f is defined up to a rigid motion:
-    D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])          # show it best aligned with the input
-    after = (A - A.mean(0)) @ U @ D @ Vt + B.mean(0)
-    d = np.asarray(distortion_faces, dtype=float)
-    hi = max(float(np.nanmax(d)) if d.size else 1.0, 1.0 + 1e-6)
-    norm = Normalize(1.0, hi)
-    cmap = colormaps["viridis"]
-    fig = Figure(figsize=(size[0] / dpi, size[1] / dpi), dpi=dpi)
-    FigureCanvasAgg(fig)
-    for k, (V, name) in enumerate(((np.asarray(before, float), "before"), (np.asarray(after, float), "after"))):
-        ax = fig.add_axes([k / 2, 0.0, 0.5, 0.92])
-        ax.set_axis_off()
-        xy = np.c_[V @ right, V @ upv]
-        depth = V[F].mean(axis=1) @ w
-        n = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
-        front = n @ w > 0
-        order = np.argsort(depth)
-        order = order[front[order]]
-        shade = 0.55 + 0.45 * np.abs(n[order] @ w) / np.maximum(np.linalg.norm(n[order], axis=1), 1e-300)
-        colors = cmap(norm(d[order]))
-        colors[:, :3] *= shade[:, None]
-        ax.add_collection(PolyCollection(xy[F[order]], facecolors=colors, edgecolors="none"))
-        lo, hi_ = xy.min(0), xy.max(0)
-        mid, half = (lo + hi_) / 2, 0.55 * max((hi_ - lo).max(), 1e-12)
-        ax.set_xlim(mid[0] - half, mid[0] + half)
-        ax.set_ylim(mid[1] - half, mid[1] + half)
-        ax.set_aspect("equal")
-        ax.set_title(name, fontsize=10)
-    if title:
-        fig.suptitle(title, fontsize=10)
-    from dhlb._files import atomic_write
-
-    out = os.fspath(path)
-    with atomic_write(out, "wb") as fh:
-        fig.savefig(fh, format="png", dpi=dpi, facecolor="white")
-    return out
-
-
-def boundary_distortion(result) -> tuple[np.ndarray, np.ndarray]:
-    """The boundary triangles of a :class:`~dhlb.conformal.ConformalResult` and the distortion of their tets.
-
-    Examples
-    --------
-    >>> from dhlb.conformal import conformal_deformation, point_charge_factor
-    >>> from dhlb.mesh import ball_tet_mesh
-    >>> m = ball_tet_mesh(2)
-    >>> F, d = boundary_distortion(conformal_deformation(m.points, m.tets, point_charge_factor([(3, 0, 0, 0.5)])))
-    >>> F.shape[0] == d.shape[0] and bool((d >= 1).all())
-    True
-    """
-    mesh = result.mesh
-    F = mesh.boundary_faces
-    local = np.array([[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]])  # the tet of each boundary triangle
-    allf = np.sort(mesh.tets[:, local].reshape(-1, 3), axis=1)
-    tet_of = np.repeat(np.arange(mesh.tets.shape[0]), 4)
-    keys = {tuple(f): t for f, t in zip(allf.tolist(), tet_of.tolist())}
-    return F, np.array([result.distortion[keys[tuple(sorted(f))]] for f in F.tolist()])
 
 
 def _mesh(args):

@@ -172,7 +172,7 @@ def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
 
 def run(args) -> int:
     """Entry point of ``dhlb field``."""
-    from dhlb.fields import direction_field, prescribed_field
+    from dhlb.fields import FieldOptions, direction_field, prescribed_field
     from dhlb.io import read_surface
 
     if not args.output or args.output == "-":
@@ -193,10 +193,10 @@ def run(args) -> int:
     V, F = read_surface(args.mesh, fmt)
     t1 = time.perf_counter()
     if args.singularity:
-        res = prescribed_field(V, F, args.n, sing, reorient=args.reorient, backend=args.backend)
+        res = prescribed_field(V, F, args.n, sing, options=FieldOptions(reorient=args.reorient), solver=args.backend)
     else:
-        res = direction_field(V, F, n=args.n, s=args.s, align=align, lam=args.lam, reorient=args.reorient,
-                              backend=args.backend, progress=not (args.quiet or args.json))
+        res = direction_field(V, F, n=args.n, s=args.s, align=align, lam=args.lam, solver=args.backend,
+                              options=FieldOptions(reorient=args.reorient, progress=not (args.quiet or args.json)))
     t2 = time.perf_counter()
     note = (getattr(res, "solver", None) or {}).get("note")
     if note and not args.quiet:

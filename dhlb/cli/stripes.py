@@ -89,7 +89,7 @@ def _directions(args, V, F, n):
     if fld in ("smoothest", "curvature"):
         if fld == "curvature" and n == 1:
             raise UsageError("--field curvature gives lines (principal directions have no orientation): use --n 2")
-        return direction_field(V, F, n=n, align=None if fld == "smoothest" else "curvature", backend=args.backend)
+        return direction_field(V, F, n=n, align=None if fld == "smoothest" else "curvature", solver=args.backend)
     if not os.path.isfile(fld):
         raise UsageError(f"--field {fld}: not 'smoothest', 'curvature' or an existing file of per-vertex vectors")
     try:
@@ -183,10 +183,10 @@ def _outputs(res, paths, args) -> dict:
         written["isolines"] = paths["isolines"]
         written["n_isolines"] = _write_isolines(paths["isolines"], iso)
     if not args.no_png:
-        from dhlb.render.stripes_png import render_stripes_png  # written atomically by the render layer
+        from dhlb.render import Camera, StripeStyle, render_stripes_png  # written atomically by the render layer
 
-        written["png"] = render_stripes_png(paths["png"], res.texture, size=(args.size, args.size),
-                                            mark_singularities=True)
+        written["png"] = render_stripes_png(paths["png"], res.texture, camera=Camera(size=(args.size, args.size)),
+                                            style=StripeStyle(mark_singularities=True))
     if res.orthogonal is not None:
         o = output_paths(paths["obj"][:-4] + "-orthogonal")
         written["orthogonal_obj"], written["orthogonal_sidecar"] = write_stripes_obj(o["obj"], res.orthogonal.texture)
@@ -234,7 +234,7 @@ def run(args) -> int:
 def _run(args) -> int:
     from dhlb._files import refuse_overwrite
     from dhlb.io import read_surface
-    from dhlb.stripes import stripe_pattern
+    from dhlb.stripes import SectionOptions, StripeOptions, stripe_pattern
 
     fmt = resolve_input(args.file, args.fmt)
     _check_args(args)
@@ -247,9 +247,11 @@ def _run(args) -> int:
     V, F = read_surface(args.file, fmt)
     _check_density(args, V, F, n)
     directions = _directions(args, V, F, n)
-    res = stripe_pattern(V, F, directions, args.frequency, spacing=args.spacing, n=n, energy=args.energy,
-                         backend=args.backend, orthogonal=args.orthogonal, section=args.section,
-                         iterations=args.iterations, seed=args.seed, progress=not (args.quiet or args.json))
+    section = SectionOptions(kind=args.section, iterations=args.iterations, seed=args.seed)
+    options = StripeOptions(energy=args.energy, orthogonal=args.orthogonal, progress=not (args.quiet or args.json),
+                            section=section)
+    res = stripe_pattern(V, F, directions, args.frequency, spacing=args.spacing, n=n, options=options,
+                         solver=args.backend)
     written = _outputs(res, paths, args)
     summary = res.to_json()
     summary["files"] = written

@@ -228,7 +228,8 @@ def format_report(meta: dict, data: dict) -> str:
 
 def run(args) -> int:
     """Entry point of ``dhlb vortex``."""
-    from dhlb.vortex import vortex_filaments
+    from dhlb.linalg import SolverOptions
+    from dhlb.vortex import VortexOptions, vortex_filaments
 
     if args.output and args.output != "-":
         ext = os.path.splitext(args.output)[1].lower()
@@ -243,7 +244,8 @@ def run(args) -> int:
             raise UsageError(f"cannot write {args.output}: the folder does not exist")
     V, T, mesh_name = _mesh(args)
     velocity, vname = _velocity(args, V, T)
-    result = vortex_filaments(V, T, velocity, args.hbar, order=args.order, backend=args.backend, tol=args.tol,
+    result = vortex_filaments(V, T, velocity, args.hbar, options=VortexOptions(order=args.order),
+                              solver=SolverOptions(backend=args.backend, tol=args.tol),
                               progress=not (args.quiet or args.json))
     meta = {"mesh": mesh_name, "velocity": vname, "hbar": float(args.hbar)}
     meta["written"] = _outputs(args, result, meta, velocity)

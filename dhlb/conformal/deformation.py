@@ -80,12 +80,12 @@ def _smallest_pair(A, M, tol, backend):
     engine's ``psd=False`` mode finds the smallest pair certified by the inertia of ``A − σM``.
     """
     from dhlb.errors import NotSemidefiniteError
-    from dhlb.fem import smallest_eigenpairs
+    from dhlb.fem import SolverOptions, smallest_eigenpairs
 
     try:
-        return smallest_eigenpairs(A, M, k=1, tol=tol, backend=backend)
+        return smallest_eigenpairs(A, M, k=1, solver=SolverOptions(tol=tol, backend=backend))
     except NotSemidefiniteError:
-        return smallest_eigenpairs(A, M, k=1, tol=tol, backend=backend, psd=False)
+        return smallest_eigenpairs(A, M, k=1, psd=False, solver=SolverOptions(tol=tol, backend=backend))
 
 
 # ---------------------------------------------------------------------------- checks

@@ -14,7 +14,15 @@ from dhlb.fem.integrals import (
     theta,
     xi,
 )
-from dhlb.linalg import EigenResult, available_backends, backward_errors, select_backend, smallest_eigenpairs, solve
+from dhlb.linalg import (
+    EigenResult,
+    SolverOptions,
+    available_backends,
+    backward_errors,
+    select_backend,
+    smallest_eigenpairs,
+    solve,
+)
 
 __all__ = [
     "bundle_matrices",
@@ -35,6 +43,7 @@ __all__ = [
     "available_backends",
     "select_backend",
     "EigenResult",
+    "SolverOptions",
     "backward_errors",
     "smallest_eigenpairs",
     "solve",

@@ -30,12 +30,13 @@ from dhlb.fields.guidance import (
     hopf_differential,
     user_guidance,
 )
+from dhlb.fields.options import FieldOptions
 from dhlb.fields.prescribed import locate_faces, prescribed_field
 from dhlb.fields.result import DirectionField, PrescribedField
 
 __all__ = [
     "Guidance", "boundary_guidance", "curvature_guidance", "dihedral_angles", "hopf_differential", "user_guidance",
     "FieldIndices", "Singularities", "direction_vectors", "field_indices", "section_values",
-    "energy_matrices", "boundary_form", "DirectionField", "direction_field", "guidance_for",
+    "energy_matrices", "boundary_form", "DirectionField", "direction_field", "guidance_for", "FieldOptions",
     "PrescribedField", "prescribed_field", "locate_faces",
 ]

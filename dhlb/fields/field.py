@@ -36,12 +36,14 @@ import warnings
 
 import numpy as np
 
+from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import DhlbWarning, InvalidParameterError, ShapeError
 from dhlb.fields.directions import direction_vectors, field_indices
 from dhlb.fields.energy import _tangent, check_s, energy_matrices
 from dhlb.fields.guidance import Guidance, boundary_guidance, curvature_guidance, user_guidance
+from dhlb.fields.options import FieldOptions
 from dhlb.fields.result import DirectionField
-from dhlb.linalg import smallest_eigenpairs, solve
+from dhlb.linalg import SolverOptions, smallest_eigenpairs, solve, solver_options
 from dhlb.linalg.backends import get_backend
 from dhlb.mesh.tangent import TangentBundle
 
@@ -95,34 +97,37 @@ def _sub(S, idx):
 
 
 def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None, lam: float = 0.0, *,
-                    lumped: bool = False, reorient: bool = False, components: str = "all", backend=None,
-                    tol: float | None = None, progress: bool = False) -> DirectionField:
+                    options: FieldOptions | None = None, solver: SolverOptions | str | None = None,
+                    **deprecated) -> DirectionField:
     """The smoothest (or guidance-aligned) n-direction field of a triangle mesh.
 
     Parameters
     ----------
-    V, F : mesh arrays (``(k, 3)`` float, ``(m, 3)`` int), or a SurfaceMesh / TangentBundle as V
-    n : int >= 1, symmetry: 1 vector field, 2 line field, 4 cross field (default: that of a
-        TangentBundle ``V``, else 1)
-    s : float in [−1, 1], energy ``E_s = E_D − s(E_A − E_H)``; +1 holomorphic, −1 anti-holomorphic
+    V : (k, 3) float array, or SurfaceMesh / TangentBundle
+        Vertex positions (or a mesh, then ``F`` is None).
+    F : (m, 3) int array, optional
+        Triangles (rows of ``V``).
+    n : int >= 1, optional
+        Symmetry: 1 vector field, 2 line field, 4 cross field (default: that of a TangentBundle
+        ``V``, else 1).
+    s : float in [−1, 1]
+        Energy ``E_s = E_D − s(E_A − E_H)``; +1 holomorphic, −1 anti-holomorphic.
     align : None or str or array or Guidance
         None: smoothest field. ``"curvature"`` / ``"min-curvature"`` (even n), ``"boundary"`` /
         ``"boundary-normal"``, real ``(k, 3)`` vectors or complex ``(k,)`` values per vertex.
-    lam : float, λ_t of the aligned problem (must stay below the smallest eigenvalue)
-    lumped : bool
-        Use the lumped (diagonal) mass matrix instead of the consistent one of Theorem 15 (the
-        seed's choice). For strongly aligned fields (λ_t ≪ 0) the consistent mass makes
-        ``(A − λ_t M)⁻¹ M`` oscillate (M is not an M-matrix): spurious ±1 pairs appear near
-        the guidance; the lumped mass avoids them.
-    reorient, components : passed to :func:`dhlb.mesh.validate_surface`
-    backend : solver backend (see :mod:`dhlb.linalg`)
-    tol : float, optional
-        Backward-error tolerance of the eigen solve; default :func:`dhlb.linalg.default_tol`, which scales
-        with the mesh so that the singularities are those of a tol = 1e-14 solve.
-    progress : bool
-        Report the phases (setup, eigen solve, indices) on stderr with tqdm when the run is expected
-        to take more than about two seconds (``pip install 'dhlb[progress]'``); the CLI passes
-        ``not --quiet``.
+    lam : float
+        λ_t of the aligned problem (must stay below the smallest eigenvalue).
+    options : FieldOptions, optional
+        Lumped mass, mesh repair (``reorient``, ``components``) and progress reporting
+        (:class:`~dhlb.fields.FieldOptions`; default ``FieldOptions()``).
+    solver : SolverOptions or str, optional
+        Backend and tolerance of the eigen solve or the aligned solve
+        (:class:`~dhlb.linalg.SolverOptions`, or a backend name); the default tolerance
+        :func:`dhlb.linalg.default_tol` scales with the mesh so that the singularities are those of a
+        tol = 1e-14 solve.
+    **deprecated
+        The keywords ``lumped``, ``reorient``, ``components``, ``progress`` (→ ``options``), ``backend``
+        and ``tol`` (→ ``solver``) of dhlb 0.1, with a :class:`DeprecationWarning`.
 
     Returns
     -------
@@ -134,6 +139,8 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
         Bad n, s, lam or align (e.g. curvature alignment with odd n).
     InvalidOperatorError
         ``A_s − λ_t M`` is singular or indefinite (aligned field with λ_t too large).
+    TypeError
+        An unknown keyword argument.
 
     Warns
     -----
@@ -143,14 +150,24 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.fields import direction_field
+    >>> from dhlb.fields import FieldOptions, direction_field
     >>> V = [[0, 0, 1], [0, 0, -1], [1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0]]
     >>> F = [[0, 2, 4], [0, 4, 3], [0, 3, 5], [0, 5, 2], [1, 4, 2], [1, 3, 4], [1, 5, 3], [1, 2, 5]]
     >>> res = direction_field(V, F, n=1)
     >>> res.index_sum, res.poincare_hopf          # Poincaré–Hopf on the octahedron: χ = 2
     (2, 2.0)
+    >>> direction_field(V, F, n=1, options=FieldOptions(lumped=True), solver="superlu").index_sum
+    2
     """
     from dhlb._progress import progress_bar
+
+    options, solver = fold_deprecated_kwargs(
+        "direction_field", deprecated, ("options", options, FieldOptions(), ("lumped", "reorient", "components",
+                                                                            "progress")),
+        ("solver", solver, SolverOptions(), ("backend", "tol")))
+    solver = solver_options(solver)
+    lumped, reorient, components, progress = options.lumped, options.reorient, options.components, options.progress
+    backend = solver.backend
 
     t0 = time.perf_counter()
     s = check_s(s)
@@ -181,7 +198,7 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
     for idx in comps:
         Ac, Mc = (A, M) if len(comps) == 1 else (_sub(A, idx), _sub(M, idx))
         if guide is None:
-            res = smallest_eigenpairs(Ac, Mc, 1, tol=tol, backend=backend)
+            res = smallest_eigenpairs(Ac, Mc, 1, solver=solver)
             uc = res.eigenvectors[:, 0]
             eigs.append(float(res.eigenvalues[0]))
             stats.append({"backend": res.backend, "iterations": int(res.iterations),

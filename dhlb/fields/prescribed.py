@@ -68,13 +68,16 @@ from collections.abc import Mapping
 import numpy as np
 import scipy.sparse as sp
 
+from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.bundles._util import simplex_name, wrap_angle
 from dhlb.bundles.paths import bfs_forest, fundamental_cycles, spanning_forest, tree_accumulate
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.fem import cotan_edge_weights, solve
 from dhlb.fields.directions import direction_vectors, field_indices
 from dhlb.fields.energy import _tangent, energy_matrices
+from dhlb.fields.options import FieldOptions
 from dhlb.fields.result import PrescribedField
+from dhlb.linalg import SolverOptions, solver_options
 from dhlb.mesh.tangent import TangentBundle
 
 __all__ = ["prescribed_field", "locate_faces"]
@@ -230,14 +233,18 @@ def _subtree_sums(parent: np.ndarray, depth: np.ndarray, R: np.ndarray) -> np.nd
 
 
 def prescribed_field(V, F=None, n: int | None = None, singularities=None, *, holonomy=None,
-                     weights: str = "auto", reorient: bool = False, components: str = "all",
-                     backend=None) -> PrescribedField:
+                     weights: str = "auto", options: FieldOptions | None = None,
+                     solver: SolverOptions | str | None = None, **deprecated) -> PrescribedField:
     """The n-direction field with exactly the prescribed singularities (dualised trivial connection).
 
     Parameters
     ----------
-    V, F : mesh arrays (``(k, 3)`` float, ``(m, 3)`` int), or a SurfaceMesh / TangentBundle as V
-    n : int >= 1, symmetry (default: that of a TangentBundle ``V``, else 1)
+    V : (k, 3) float array, or SurfaceMesh / TangentBundle
+        Vertex positions (or a mesh, then ``F`` is None).
+    F : (m, 3) int array, optional
+        Triangles (rows of ``V``).
+    n : int >= 1, optional
+        Symmetry (default: that of a TangentBundle ``V``, else 1).
     singularities : mapping or sequence of pairs
         ``{face: k}`` or ``{(x, y, z): k}``: a row of the input F, or a point (the nearest face is
         used), mapped to the integer index ``k`` of the n-th power field (a singularity of index
@@ -254,8 +261,13 @@ def prescribed_field(V, F=None, n: int | None = None, singularities=None, *, hol
         Edges where the minimal δ comes within 1e-3 of π get their weight raised ×3 and δ is solved
         again (at most 20 times): δ is then minimal for ``res.edge_weights``. ``"auto"``: cotan, and
         uniform if cotan cannot realise the indices; ``res.weights`` says which was used.
-    reorient, components : passed to :func:`dhlb.mesh.validate_surface`
-    backend : solver backend of :func:`dhlb.fem.solve`
+    options : FieldOptions, optional
+        Mesh repair (``reorient``, ``components``; :class:`~dhlb.fields.FieldOptions`).
+    solver : SolverOptions or str, optional
+        The backend of :func:`dhlb.fem.solve` (:class:`~dhlb.linalg.SolverOptions`, or a backend name).
+    **deprecated
+        The keywords ``reorient``, ``components`` (→ ``options``) and ``backend`` (→ ``solver``) of
+        dhlb 0.1, with a :class:`DeprecationWarning`.
 
     Returns
     -------
@@ -271,15 +283,24 @@ def prescribed_field(V, F=None, n: int | None = None, singularities=None, *, hol
         a non-integer index, an index that no triangle can carry, ``holonomy`` of the wrong
         length or not admissible, bad ``weights``, or a prescription whose minimal correction
         exceeds π on an edge (not representable on this mesh).
+    TypeError
+        An unknown keyword argument.
 
     Examples
     --------
     >>> from dhlb.io import read_surface, example_path
-    >>> from dhlb.fields import prescribed_field
+    >>> from dhlb.fields import FieldOptions, prescribed_field
     >>> res = prescribed_field(*read_surface(example_path("torus.obj")), n=4, singularities={5: 1, 100: -1})
     >>> res.face_index[res.singularities.faces].tolist(), res.index_sum, res.generators.shape[0]
     ([1, -1], 0, 2)
+    >>> prescribed_field(*read_surface(example_path("torus.obj")), n=4, singularities={5: 1, 100: -1},
+    ...                  options=FieldOptions(reorient=True), solver="superlu").index_sum
+    0
     """
+    options, solver = fold_deprecated_kwargs(
+        "prescribed_field", deprecated, ("options", options, FieldOptions(), ("reorient", "components")),
+        ("solver", solver, SolverOptions(), ("backend",)))
+    reorient, components, backend = options.reorient, options.components, solver_options(solver).backend
     t0 = time.perf_counter()
     if n is None:
         n = V.n if isinstance(V, TangentBundle) else 1

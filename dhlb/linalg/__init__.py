@@ -4,6 +4,8 @@
   factorization (:mod:`dhlb.linalg.eigen`), dense for small problems, LOBPCG for iterative
   backends; every pair passes a normwise backward-error test.
 * :func:`solve` — ``(A − λM) x = b``.
+* :class:`SolverOptions` — the solver knobs (backend, tolerance, ...) as one frozen value, taken by
+  every solving function as ``solver=`` (a backend name is shorthand, :func:`solver_options`).
 * backends (:mod:`dhlb.linalg.backends`): SuperLU in a nested-dissection order (always),
   CHOLMOD, cholespy and AMG-LOBPCG when their packages are installed; :func:`select_backend`
   chooses by size, sparsity and the memory a factorization would need
@@ -22,6 +24,7 @@ from dhlb.linalg.backends import available_backends, select_backend
 from dhlb.linalg.eigen import EigenResult, backward_errors, default_shift, default_tol, smallest_eigenpairs
 from dhlb.linalg.linear import solve
 from dhlb.linalg.memory import InsufficientMemoryError, available_bytes, set_memory_limit
+from dhlb.linalg.options import SolverOptions, solver_options
 
 __all__ = [
     "EigenResult",
@@ -29,6 +32,8 @@ __all__ = [
     "default_shift",
     "default_tol",
     "smallest_eigenpairs",
+    "SolverOptions",
+    "solver_options",
     "solve",
     "available_backends",
     "select_backend",

@@ -340,11 +340,11 @@ class PetscBackend:
     Examples
     --------
     >>> import numpy as np, scipy.sparse as sp
-    >>> from dhlb.linalg import smallest_eigenpairs
+    >>> from dhlb.linalg import SolverOptions, smallest_eigenpairs
     >>> n = 500
     >>> A = sp.diags([-np.ones(n - 1), np.r_[1, 2 * np.ones(n - 2), 1], -np.ones(n - 1)], [-1, 0, 1])
     >>> be = PetscBackend() if petsc_available() else None            # None: the default backend
-    >>> lam = smallest_eigenpairs(A, sp.identity(n), k=2, backend=be).eigenvalues
+    >>> lam = smallest_eigenpairs(A, sp.identity(n), k=2, solver=SolverOptions(backend=be)).eigenvalues
     >>> np.allclose(lam, 2 - 2 * np.cos(np.pi * np.arange(2) / n), atol=1e-12)
     True
     """

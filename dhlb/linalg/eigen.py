@@ -53,6 +53,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import (
     ConvergenceError,
     InvalidOperatorError,
@@ -68,11 +69,14 @@ from dhlb.linalg._checks import validate_pair as _validate_pair
 from dhlb.linalg._eigen_steps import EigenResult, _iterate_lobpcg, _not_converged, _not_psd, _rayleigh_ritz
 from dhlb.linalg.backends import available_backends, blas_guard, get_backend, pattern_dimension
 from dhlb.linalg.memory import InsufficientMemoryError
+from dhlb.linalg.options import SolverOptions, solver_options
 
 __all__ = ["DENSE_MAX", "EigenResult", "backward_errors", "default_shift", "default_tol", "smallest_eigenpairs"]
 
 _EPS = np.finfo(float).eps
 _ComplexWarning = getattr(getattr(np, "exceptions", np), "ComplexWarning", Warning)
+
+_SOLVER = ("tol", "maxiter", "backend", "block_size", "factor_shift", "seed")  # the keywords of dhlb 0.1
 
 DENSE_MAX = 400
 """Problems with at most this many unknowns are solved densely (:func:`scipy.linalg.eigh`)."""
@@ -176,53 +180,39 @@ def default_tol(n: int) -> float:
     return float(min(1e-10, 3e-6 / max(int(n), 1)))
 
 
-def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: int = 1000, sigma=None,
-                        v0=None, backend=None, block_size: int | None = None,
-                        factor_shift: str = "auto", psd: bool = True, seed: int = 0) -> EigenResult:
+def smallest_eigenpairs(A, M, k: int = 1, *, sigma=None, v0=None, psd: bool = True,
+                        solver: SolverOptions | str | None = None, **deprecated) -> EigenResult:
     """The ``k`` smallest eigenpairs of ``A u = λ M u`` (A Hermitian PSD, M Hermitian PD).
 
     Parameters
     ----------
-    A, M : sparse or dense (n, n), real or complex Hermitian
+    A, M : (n, n) sparse or dense matrix, real or complex Hermitian
     k : int
         Number of eigenpairs, ``1 <= k <= n``.
-    tol : float, optional
-        Bound on the normwise backward error of each pair; default :func:`default_tol` ``(n)``.
-    maxiter : int
-        Maximal number of applications of the shifted inverse (direct backends) or of LOBPCG
-        iterations (``amg-lobpcg``).
     sigma : float, optional
         Shift; if given, the ``k`` eigenvalues closest to ``sigma`` are returned (``A`` need not
         be PSD then).  Default ``-ε`` (see module docstring): the ``k`` smallest.
     v0 : (n,) or (n, j) array, optional
         Start vector(s) (summed into one for ARPACK); default a seeded random vector, so results
         are reproducible.
-    backend : str or backend object, optional
-        ``"superlu"``, ``"cholmod"``, ``"cholespy"``, ``"amg-lobpcg"`` (if installed), a backend
-        object, or ``None``/``"auto"``: chosen by size, sparsity and availability
-        (:func:`dhlb.linalg.select_backend`).  ``amg-lobpcg`` needs ``sigma=None``.
-    block_size : int, optional
-        Number of Lanczos vectors ARPACK keeps (its ``ncv``; default ``max(2k + 1, k + 11)``),
-        or the LOBPCG block for ``amg-lobpcg``; raise it above the size of a cluster of nearly
-        equal eigenvalues.
-    factor_shift : {"auto", "floor"}
-        Where the factorization is placed when ``sigma`` is not given: ``"auto"`` lets the solver
-        choose; ``"floor"`` factorizes ``A + εM`` (``σ = −ε``), so that :attr:`EigenResult.factor`
-        approximates ``A⁻¹`` — for callers that go on iterating with ``A⁻¹`` (e.g. the
-        unit-modulus stripe section).
-    seed : int
-        Seed of the random start vectors (when ``v0`` does not give them all).  With one BLAS
-        thread every backend is then bitwise reproducible run to run: the direct backends
-        (SuperLU, CHOLMOD) and ARPACK are deterministic given the start vector, and so are
-        pyamg's aggregation and LOBPCG (``amg-lobpcg``).  A different ``seed`` gives the same
-        eigenvalues to the tolerance and, for a simple eigenvalue, the same eigenvector up to its
-        phase, which :attr:`EigenResult.eigenvectors` fixes (largest entry real positive).
     psd : bool
         ``True`` (default): ``A`` must be positive semidefinite, and an eigenvalue below ``−ε``
         is an error.  ``False``: ``A`` may be indefinite; the ``k`` algebraically smallest pairs
         are returned, certified by inertia: SuperLU's ``L D Lᴴ`` pivots count the eigenvalues
         below the shift, and the shift is lowered (refactorizing) until ARPACK has found all of
         them.  Direct backends only (SuperLU is used for the inertia).
+    solver : SolverOptions or str, optional
+        Backend, tolerance (default :func:`default_tol` ``(n)``), ``maxiter``, ``block_size``,
+        ``factor_shift`` and ``seed`` (:class:`~dhlb.linalg.SolverOptions`); a string names the
+        backend.  With one BLAS thread every backend is bitwise reproducible run to run for a given
+        ``seed``: the direct backends (SuperLU, CHOLMOD) and ARPACK are deterministic given the start
+        vector, and so are pyamg's aggregation and LOBPCG (``amg-lobpcg``).  A different ``seed``
+        gives the same eigenvalues to the tolerance and, for a simple eigenvalue, the same
+        eigenvector up to its phase, which :attr:`EigenResult.eigenvectors` fixes (largest entry
+        real positive).
+    **deprecated
+        The keywords ``tol``, ``maxiter``, ``backend``, ``block_size``, ``factor_shift`` and ``seed``
+        of dhlb 0.1, each folded into ``solver`` with a :class:`DeprecationWarning`.
 
     Returns
     -------
@@ -234,7 +224,9 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
         Bad input: non-square/mismatched matrices, NaN/inf, not Hermitian, ``M`` not PD, or
         (default shift) ``A + εM`` not positive definite, i.e. ``A`` is not PSD.
     InvalidParameterError
-        ``k``, ``tol``, ``maxiter``, ``sigma``, ``block_size`` or ``factor_shift`` out of range.
+        ``k``, ``sigma`` or ``block_size`` (below ``k``) out of range; an old keyword together with ``solver``.
+    TypeError
+        An unknown keyword argument.
     ResourceLimitError
         The ``k`` eigenvectors (and the Krylov basis) would not fit in the available memory; checked
         before any work.
@@ -256,22 +248,20 @@ def smallest_eigenpairs(A, M, k: int = 1, *, tol: float | None = None, maxiter: 
     True
     >>> res.converged, res.method, res.factorizations, bool(res.residuals.max() <= 1e-10)
     (True, 'arpack', 1, True)
+    >>> smallest_eigenpairs(A, sp.identity(n), solver=SolverOptions(backend="superlu", tol=1e-12)).converged
+    True
     """
+    (solver,) = fold_deprecated_kwargs("smallest_eigenpairs", deprecated, ("solver", solver, SolverOptions(), _SOLVER))
+    solver = solver_options(solver)
     A, M = _validate_pair(A, M)
     n = A.shape[0]
     if not (isinstance(k, (int, np.integer)) and not isinstance(k, bool) and 1 <= k <= n):
         raise InvalidParameterError(f"k must be an integer with 1 <= k <= n = {n}, got {k!r}")
-    tol = default_tol(n) if tol is None else tol
-    if not (isinstance(tol, (int, float, np.floating)) and np.isfinite(tol) and tol > 0):
-        raise InvalidParameterError(f"tol must be a positive number, got {tol!r}")
-    if not (isinstance(maxiter, (int, np.integer)) and maxiter >= 1):
-        raise InvalidParameterError(f"maxiter must be a positive integer, got {maxiter!r}")
-    if not (isinstance(seed, (int, np.integer)) and not isinstance(seed, bool) and seed >= 0):
-        raise InvalidParameterError(f"seed must be a non-negative integer, got {seed!r}")
+    tol = default_tol(n) if solver.tol is None else solver.tol
+    maxiter, backend, block_size = solver.maxiter, solver.backend, solver.block_size
+    factor_shift, seed = solver.factor_shift, solver.seed
     if not isinstance(psd, (bool, np.bool_)):
         raise InvalidParameterError(f"psd must be True or False, got {psd!r}")
-    if factor_shift not in ("auto", "floor"):
-        raise InvalidParameterError(f"factor_shift must be 'auto' or 'floor', got {factor_shift!r}")
     default = sigma is None
     if not default and not (np.isscalar(sigma) and np.isreal(sigma) and np.isfinite(sigma)):
         raise InvalidParameterError(f"sigma must be a finite real number, got {sigma!r}")

@@ -15,8 +15,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import InvalidSimplexError, NonFiniteError, ShapeError
-from dhlb.render.png import _camera, _matplotlib, _unit, finish_figure
+from dhlb.render._figure import _CAMERA, Camera, FilamentStyle, _matplotlib, _unit, finish_figure
 
 if TYPE_CHECKING:
     import os
@@ -25,7 +26,11 @@ if TYPE_CHECKING:
 
     from numpy.typing import ArrayLike
 
-__all__ = ["render_filaments_png"]
+__all__ = ["FILAMENT_CAMERA", "render_filaments_png"]
+
+FILAMENT_CAMERA = Camera(view=(1.0, -1.6, 0.9))
+"""The default camera of :func:`render_filaments_png`."""
+_FILAMENT_STYLE = ("line_width", "fill", "outline_color", "background")
 
 _COLORS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2", "#7f7f7f",
            "#bcbd22")
@@ -71,15 +76,10 @@ def render_filaments_png(
     V: ArrayLike | None = None,
     F: ArrayLike | None = None,
     *,
-    view: Sequence[float] = (1.0, -1.6, 0.9),
-    up: Sequence[float] = (0.0, 0.0, 1.0),
-    size: tuple[int, int] = (800, 800),
-    dpi: int = 100,
-    line_width: float = 2.2,
-    fill: Any = (0.90, 0.92, 0.95),
-    outline_color: Any = "#5a6270",
-    background: Any = "white",
+    camera: Camera | None = None,
+    style: FilamentStyle | None = None,
     title: str | None = None,
+    **deprecated: Any,
 ) -> str:
     r"""Render filaments (and optionally the boundary of their domain) to a PNG file.
 
@@ -90,15 +90,21 @@ def render_filaments_png(
     filaments : sequence of Filament or (m, 3) arrays
         Polylines; objects with ``.points`` and ``.closed`` (a :class:`dhlb.vortex.Filament`) or
         plain arrays (taken as closed).
-    V, F : (N, 3) float and (b, 3) int, optional
-        The boundary surface of the domain (e.g. ``mesh.points`` and ``mesh.boundary_faces`` of a
+    V : (N, 3) float array, optional
+        Vertex positions of the boundary surface of the domain (e.g. ``mesh.points`` of a
         :class:`dhlb.mesh.TetMesh`), drawn as silhouette and outline.
-    view, up : 3-vectors
-        Camera direction (from the scene toward the camera) and the world direction shown upward.
-    size : (width, height) in pixels; dpi : int
-    line_width : float
-        Width of the filament lines in points.
+    F : (b, 3) int array, optional
+        Its triangles (e.g. ``mesh.boundary_faces``); give both ``V`` and ``F`` or neither.
+    camera : Camera, optional
+        View direction, up direction, picture size and dpi (:class:`~dhlb.render.Camera`; default
+        :data:`FILAMENT_CAMERA`, looking a little lower than the other pictures).
+    style : FilamentStyle, optional
+        Line width and colours (:class:`~dhlb.render.FilamentStyle`).
     title : str, optional
+        Written in the top left corner.
+    **deprecated
+        The keywords of dhlb 0.1, with a :class:`DeprecationWarning`: ``view``, ``up``, ``size``, ``dpi``
+        (→ ``camera``), ``line_width``, ``fill``, ``outline_color``, ``background`` (→ ``style``).
 
     Returns
     -------
@@ -109,20 +115,26 @@ def render_filaments_png(
     --------
     >>> import os, tempfile
     >>> from dhlb.mesh import box_tet_mesh
+    >>> from dhlb.render import FILAMENT_CAMERA, FilamentStyle
     >>> from dhlb.vortex import hopf_link
     >>> mesh = box_tet_mesh(2, lower=-1.5, upper=2.5)
     >>> with tempfile.TemporaryDirectory() as d:
     ...     p = render_filaments_png(os.path.join(d, "f.png"), hopf_link(n=40), mesh.points, mesh.boundary_faces,
-    ...                              size=(200, 200))
+    ...                              camera=FILAMENT_CAMERA.replace(size=(200, 200)), style=FilamentStyle(line_width=3))
     ...     open(p, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
     True
     """
+    camera, style = fold_deprecated_kwargs("render_filaments_png", deprecated,
+                                           ("camera", camera, FILAMENT_CAMERA, _CAMERA),
+                                           ("style", style, FilamentStyle(), _FILAMENT_STYLE))
+    size, dpi, background, line_width = camera.size, camera.dpi, style.background, style.line_width
+    fill, outline_color = style.fill, style.outline_color
     Figure, FigureCanvasAgg, PolyCollection = _matplotlib()
     from matplotlib.collections import LineCollection
     from matplotlib.colors import to_rgba
 
     curves = _curves(filaments)
-    right, upv, w = _camera(view, up)
+    right, upv, w = camera.frame()
     pts = [P for P, _ in curves]
     P = Ft = None
     if V is not None or F is not None:

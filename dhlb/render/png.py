@@ -15,44 +15,19 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import InvalidParameterError, InvalidSimplexError, NonFiniteError, ShapeError
+from dhlb._deprecation import fold_deprecated_kwargs
+from dhlb.errors import InvalidSimplexError, NonFiniteError, ShapeError
+from dhlb.render._figure import _CAMERA, Camera, FieldStyle, _matplotlib, _unit, finish_figure
 
 if TYPE_CHECKING:
-    from collections.abc import Sequence
     from typing import Any
 
     from numpy.typing import ArrayLike
 
 __all__ = ["render_field_png"]
 
-
-def _matplotlib():
-    try:
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.collections import PolyCollection
-        from matplotlib.figure import Figure
-    except ImportError:  # pragma: no cover - exercised only without matplotlib
-        raise ImportError("render_field_png needs matplotlib; install it with  pip install 'dhlb[viz]'  "
-                          "(or pip install matplotlib)") from None
-    return Figure, FigureCanvasAgg, PolyCollection
-
-
-def _unit(x):
-    n = np.linalg.norm(x, axis=-1, keepdims=True)
-    return x / np.where(n > 0, n, 1.0)
-
-
-def _camera(view, up):
-    w = np.asarray(view, float).reshape(-1)
-    if w.shape != (3,) or not np.all(np.isfinite(w)) or not np.any(w):
-        raise InvalidParameterError("view must be a nonzero 3D direction (camera position relative to the mesh), "
-                                    f"got {view!r}")
-    w = _unit(w)
-    u = np.asarray(up, float).reshape(-1)
-    if u.shape != (3,) or np.linalg.norm(np.cross(u, w)) < 1e-6 * np.linalg.norm(u):
-        u = np.array([0.0, 1.0, 0.0]) if abs(w[1]) < 0.9 else np.array([1.0, 0.0, 0.0])
-    right = _unit(np.cross(u, w))
-    return right, np.cross(w, right), w
+_FIELD_STYLE = ("glyph_length", "glyph_width", "glyph_color", "face_color", "ambient", "max_glyphs", "dot_radius",
+                "background")
 
 
 def _check(V, F, directions, singularities):
@@ -96,19 +71,10 @@ def render_field_png(
     directions: ArrayLike | None = None,
     singularities: Any = None,
     *,
-    view: Sequence[float] = (1.0, -1.6, 1.0),
-    up: Sequence[float] = (0.0, 0.0, 1.0),
-    size: tuple[int, int] = (800, 800),
-    dpi: int = 100,
-    glyph_length: float | None = None,
-    glyph_width: float = 0.7,
-    glyph_color: Any = "#1a1a1a",
-    face_color: Any = (0.78, 0.80, 0.86),
-    ambient: float = 0.3,
-    max_glyphs: int = 40000,
-    dot_radius: float | None = None,
-    background: Any = "white",
+    camera: Camera | None = None,
+    style: FieldStyle | None = None,
     title: str | None = None,
+    **deprecated: Any,
 ) -> str:
     r"""Render a mesh with a direction field and its singularities to a PNG file.
 
@@ -116,23 +82,26 @@ def render_field_png(
     ----------
     path : str or path-like
         Output file (PNG).
-    V : (N, 3) float, F : (m, 3) int
-        The mesh (e.g. ``mesh.points`` and ``mesh.faces`` of a :class:`dhlb.mesh.SurfaceMesh`).
-    directions : (N, k, 3) or (N, 3) float, optional
+    V : (N, 3) float array
+        Vertex positions (e.g. ``mesh.points`` of a :class:`dhlb.mesh.SurfaceMesh`).
+    F : (m, 3) int array
+        Triangles (e.g. ``mesh.faces``).
+    directions : (N, k, 3) or (N, 3) float array, optional
         Unit directions per vertex (:func:`dhlb.fields.direction_vectors`); rows of zeros
         draw nothing.
     singularities : Singularities or tuple, optional
         A :class:`dhlb.fields.Singularities` or a tuple ``(points, index)`` of shapes ``(s, 3)``
         and ``(s,)``; drawn as red (index > 0) and blue (index < 0) dots.
-    view, up : 3-vectors
-        Camera direction (from the mesh toward the camera) and the world direction shown upward.
-    size : (width, height) in pixels; dpi : int
-    glyph_length : float, optional
-        Length of a glyph in world units (default: 0.45 × mean edge length).
-    max_glyphs : int
-        At most this many vertices get glyphs (an evenly spread subset if there are more).
-    dot_radius : float, optional
-        Radius of a singularity dot (default: the larger of 0.35 × mean edge length and 0.6 % of the picture).
+    camera : Camera, optional
+        View direction, up direction, picture size and dpi (:class:`~dhlb.render.Camera`).
+    style : FieldStyle, optional
+        Glyphs, dots, colours and shading (:class:`~dhlb.render.FieldStyle`).
+    title : str, optional
+        Written in the top left corner.
+    **deprecated
+        The keywords of dhlb 0.1, with a :class:`DeprecationWarning`: ``view``, ``up``, ``size``, ``dpi``
+        (→ ``camera``), ``glyph_length``, ``glyph_width``, ``glyph_color``, ``face_color``, ``ambient``,
+        ``max_glyphs``, ``dot_radius``, ``background`` (→ ``style``).
 
     Returns
     -------
@@ -142,17 +111,27 @@ def render_field_png(
     Examples
     --------
     >>> import os, tempfile, numpy as np
-    >>> from dhlb.render import render_field_png
+    >>> from dhlb.render import Camera, FieldStyle, render_field_png
     >>> V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1.0]])
     >>> F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
     >>> with tempfile.TemporaryDirectory() as d:
     ...     p = render_field_png(os.path.join(d, "t.png"), V, F, directions=np.tile([1.0, 0, 0], (4, 1)))
     ...     open(p, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
     True
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = render_field_png(os.path.join(d, "t.png"), V, F, np.tile([1.0, 0, 0], (4, 1)),
+    ...                          camera=Camera(view=(0, 0, 1), size=(64, 64)), style=FieldStyle(glyph_color="red"))
+    ...     os.path.getsize(p) > 0
+    True
     """
+    camera, style = fold_deprecated_kwargs("render_field_png", deprecated, ("camera", camera, Camera(), _CAMERA),
+                                           ("style", style, FieldStyle(), _FIELD_STYLE))
     Figure, FigureCanvasAgg, PolyCollection = _matplotlib()
     P, T, D, S = _check(V, F, directions, singularities)
-    right, upv, w = _camera(view, up)
+    right, upv, w = camera.frame()
+    size, dpi, background, ambient = camera.size, camera.dpi, style.background, style.ambient
+    glyph_length, glyph_width, glyph_color = style.glyph_length, style.glyph_width, style.glyph_color
+    face_color, max_glyphs, dot_radius = style.face_color, style.max_glyphs, style.dot_radius
     c = P.mean(axis=0)
     Q = P - c
     xy, depth = np.stack([Q @ right, Q @ upv], axis=1), Q @ w
@@ -216,19 +195,3 @@ def render_field_png(
     ax.add_collection(PolyCollection(tris, facecolors=colors, edgecolors=edgecols, linewidths=glyph_width,
                                      closed=True, antialiaseds=True), autolim=False)
     return finish_figure(fig, ax, path, xy, W / H, title, dpi, background)
-
-
-def finish_figure(fig, ax, path, xy, aspect, title, dpi, background) -> str:
-    """Frame the projected points ``xy`` with a small margin, add the title, write the PNG."""
-    lo, hi = xy.min(axis=0), xy.max(axis=0)
-    mid, half = (lo + hi) / 2, 0.53 * max((hi - lo).max(), 1e-12)
-    ax.set_xlim(mid[0] - half * max(aspect, 1), mid[0] + half * max(aspect, 1))
-    ax.set_ylim(mid[1] - half / min(aspect, 1), mid[1] + half / min(aspect, 1))
-    if title:
-        ax.text(0.02, 0.98, title, transform=ax.transAxes, va="top", ha="left", fontsize=10)
-    from dhlb._files import atomic_write
-
-    out = os.fspath(path)
-    with atomic_write(out, "wb") as fh:  # a failed or interrupted render leaves no half-written picture
-        fig.savefig(fh, format="png", dpi=dpi, facecolor=background)
-    return out

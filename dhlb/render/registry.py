@@ -58,25 +58,29 @@ def picture(result, path: str | os.PathLike[str], size: tuple[int, int] = (320, 
 
 @picture.register
 def _(result: DirectionField, path, size=(320, 320)) -> str:
-    from dhlb.render.png import render_field_png
+    from dhlb.render import Camera, FieldStyle, render_field_png
 
     return render_field_png(path, result.mesh.points, result.mesh.faces, result.directions, result.singularities,
-                            size=size, max_glyphs=4000)
+                            camera=Camera(size=size), style=FieldStyle(max_glyphs=4000))
 
 
 @picture.register
 def _(result: StripePattern, path, size=(320, 320)) -> str:
-    from dhlb.render.stripes_png import render_stripes_png
+    from dhlb.render import Camera, StripeStyle, render_stripes_png
 
-    return render_stripes_png(path, result.texture, size=size, mark_singularities=True, max_triangles=150_000)
+    return render_stripes_png(path, result.texture, camera=Camera(size=size),
+                              style=StripeStyle(mark_singularities=True, max_triangles=150_000))
 
 
 @picture.register
 def _(result: VortexResult, path, size=(320, 320)) -> str:
-    from dhlb.render.filaments_png import render_filaments_png
+    import dataclasses
+
+    from dhlb.render import FILAMENT_CAMERA, render_filaments_png
 
     return render_filaments_png(path, result.filaments, result.mesh.points, result.mesh.boundary_faces,
-                                title=f"{len(result.filaments)} filament(s)", size=size)
+                                title=f"{len(result.filaments)} filament(s)",
+                                camera=dataclasses.replace(FILAMENT_CAMERA, size=size))
 
 
 def show(result, *, screenshot=None, **kwargs):

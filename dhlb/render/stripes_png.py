@@ -15,17 +15,19 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import InvalidParameterError
-from dhlb.render.png import _camera, _matplotlib, _unit, finish_figure
+from dhlb.render._figure import _CAMERA, Camera, StripeStyle, _matplotlib, _unit, finish_figure
 
 if TYPE_CHECKING:
     import os
-    from collections.abc import Callable, Sequence
     from typing import Any
 
     from dhlb.stripes.texture import StripeTexture
 
 __all__ = ["render_stripes_png", "face_grid"]
+
+_STRIPE_STYLE = ("dark", "light", "fn", "ambient", "max_triangles", "mark_singularities", "background")
 
 
 def face_grid(k: int) -> tuple[np.ndarray, np.ndarray]:
@@ -64,35 +66,32 @@ def render_stripes_png(
     texture: StripeTexture,
     *,
     k: int | None = None,
-    view: Sequence[float] = (1.0, -1.6, 1.0),
-    up: Sequence[float] = (0.0, 0.0, 1.0),
-    size: tuple[int, int] = (800, 800),
-    dpi: int = 100,
-    dark: Any = (0.10, 0.10, 0.14),
-    light: Any = (0.96, 0.94, 0.88),
-    fn: Callable[[np.ndarray], np.ndarray] = np.cos,
-    ambient: float = 0.35,
-    max_triangles: int = 400_000,
-    mark_singularities: bool = False,
-    background: Any = "white",
+    camera: Camera | None = None,
+    style: StripeStyle | None = None,
     title: str | None = None,
+    **deprecated: Any,
 ) -> str:
     r"""Render a :class:`~dhlb.stripes.StripeTexture` to a PNG file.
 
     Parameters
     ----------
     path : str or path-like
+        Output file (PNG).
     texture : StripeTexture
+        The texture coordinates of a pattern (``result.texture`` of :func:`dhlb.stripes.stripe_pattern`).
     k : int, optional
         Subdivision of each face (k² sub-triangles); default: about six samples per period, at most
-        16 and within ``max_triangles`` in total.
-    view, up, size, dpi, ambient, background, title :
-        As in :func:`dhlb.render.render_field_png`.
-    dark, light : RGB colours of ``fn(α) = −1`` and ``+1``.
-    fn : callable
-        The periodic profile (even for line fields).
-    mark_singularities : bool
-        Dots at the zeros (red: index > 0, blue: < 0) and branch points (green).
+        16 and within ``style.max_triangles`` in total.
+    camera : Camera, optional
+        View direction, up direction, picture size and dpi (:class:`~dhlb.render.Camera`).
+    style : StripeStyle, optional
+        Colours, profile, shading and singularity marks (:class:`~dhlb.render.StripeStyle`).
+    title : str, optional
+        Written in the top left corner.
+    **deprecated
+        The keywords of dhlb 0.1, with a :class:`DeprecationWarning`: ``view``, ``up``, ``size``, ``dpi``
+        (→ ``camera``), ``dark``, ``light``, ``fn``, ``ambient``, ``max_triangles``, ``mark_singularities``,
+        ``background`` (→ ``style``).
 
     Returns
     -------
@@ -104,25 +103,30 @@ def render_stripes_png(
     >>> import os, tempfile, numpy as np
     >>> from dhlb.mesh import validate_surface
     >>> from dhlb.stripes import stripe_form, texture_coordinates
-    >>> from dhlb.render.stripes_png import render_stripes_png
+    >>> from dhlb.render import Camera, StripeStyle, render_stripes_png
     >>> V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.0]])
     >>> form = stripe_form(validate_surface(V, [[0, 1, 2], [1, 3, 2]]), np.tile([1.0, 0, 0], (4, 1)), frequency=2,
     ...                    warn_aliasing=False)   # period 1/2: stripes narrower than the edges
     >>> tex = texture_coordinates(form, np.exp(4j * np.pi * V[:, 0]))
     >>> with tempfile.TemporaryDirectory() as d:
-    ...     p = render_stripes_png(os.path.join(d, "s.png"), tex, view=(0, 0, 1), up=(0, 1, 0), size=(64, 64))
+    ...     p = render_stripes_png(os.path.join(d, "s.png"), tex, style=StripeStyle(mark_singularities=True),
+    ...                            camera=Camera(view=(0, 0, 1), up=(0, 1, 0), size=(64, 64)))
     ...     open(p, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
     True
     """
+    camera, style = fold_deprecated_kwargs("render_stripes_png", deprecated, ("camera", camera, Camera(), _CAMERA),
+                                           ("style", style, StripeStyle(), _STRIPE_STYLE))
     Figure, FigureCanvasAgg, PolyCollection = _matplotlib()
     mesh = texture.mesh
+    size, dpi, background, ambient, fn = camera.size, camera.dpi, style.background, style.ambient, style.fn
+    dark, light, max_triangles = style.dark, style.light, style.max_triangles
     if k is None:
         k = _auto_k(texture, max_triangles)
     if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 1:
         raise InvalidParameterError(f"k must be an integer >= 1, got {k!r}")
     k = int(k)
     P, F = mesh.points, mesh.faces
-    right, upv, w = _camera(view, up)
+    right, upv, w = camera.frame()
     c = P.mean(axis=0)
     fn_ = _unit(np.cross(P[F[:, 1]] - P[F[:, 0]], P[F[:, 2]] - P[F[:, 0]]))
     facing = fn_ @ w
@@ -147,7 +151,7 @@ def render_stripes_png(
     depth = (Y @ w).mean(axis=2).ravel()
     polys, zs = [xy], [depth]
     rgba = [np.column_stack([col, np.ones(len(col))])]
-    if mark_singularities:
+    if style.mark_singularities:
         E = mesh.complex.simplices(1)
         mean_edge = float(np.mean(np.linalg.norm(P[E[:, 1]] - P[E[:, 0]], axis=1)))
         sf = np.r_[texture.zero_faces, texture.branch_faces]

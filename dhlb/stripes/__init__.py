@@ -7,7 +7,8 @@ the finite-element engine (:mod:`dhlb.fem`) turns that bundle into ``A ψ = λ M
 :func:`texture_coordinates` turns a section ψ into per-corner coordinates α with the frequency
 adjustment, zero indices, the nonlinear interpolant lArg and the subdivision of branch triangles
 (§4.3); :func:`isolines` extracts the curves ``α ≡ c``; :mod:`dhlb.io.stripes` writes OBJ + JSON.
-:func:`stripe_pattern` runs the whole pipeline (energy of :mod:`.energy`, smallest eigenpair, texture).
+:func:`stripe_pattern` runs the whole pipeline (energy of :mod:`.energy`, smallest eigenpair, texture), its
+method knobs in :class:`StripeOptions` (the section step in :class:`SectionOptions`).
 
 Examples
 --------
@@ -24,12 +25,13 @@ Examples
 from dhlb.stripes.energy import stripe_matrices
 from dhlb.stripes.isolines import Isolines, isolines
 from dhlb.stripes.oneform import DoubleCover, StripeForm, stripe_form
+from dhlb.stripes.options import SectionOptions, StripeOptions
 from dhlb.stripes.pattern import StripePattern, stripe_pattern
 from dhlb.stripes.texture import StripeTexture, Subdivision, larg, texture_coordinates
 
 __all__ = ["DoubleCover", "StripeForm", "stripe_form", "StripeTexture", "Subdivision", "larg", "texture_coordinates",
            "Isolines", "isolines", "stripe_matrices", "StripePattern",
-           "stripe_pattern"]
+           "stripe_pattern", "StripeOptions", "SectionOptions"]
 
 
 def __getattr__(name):

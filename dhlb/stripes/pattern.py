@@ -41,16 +41,18 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import DhlbWarning, InvalidParameterError, NotSemidefiniteError
-from dhlb.fem import select_backend, smallest_eigenpairs
+from dhlb.fem import SolverOptions, select_backend, smallest_eigenpairs
+from dhlb.linalg import solver_options
 from dhlb.mesh.surface import SurfaceMesh, validate_surface
 from dhlb.mesh.tangent import TangentBundle
-from dhlb.stripes.energy import ENERGIES, stripe_matrices
+from dhlb.stripes.energy import stripe_matrices
 from dhlb.stripes.oneform import stripe_form
+from dhlb.stripes.options import SECTIONS, SectionOptions, StripeOptions
 from dhlb.stripes.section import (
     MAX_UNIT_ITERATIONS,
     POWER_ITERATIONS,
-    UNIT_RTOL,
     normalize_per_vertex,
     power_section,
     unit_energy,
@@ -64,9 +66,10 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 from dhlb.stripes.result import StripePattern
 
-__all__ = ["SECTIONS", "StripePattern", "stripe_pattern"]
+__all__ = ["SECTIONS", "StripePattern", "stripe_pattern"]   # SECTIONS: re-exported from dhlb.stripes.options
 
-SECTIONS = ("unit", "eigenvector", "power")
+DEFAULT_TOL = 1e-10
+"""Default backward-error tolerance of the eigenpair (``SolverOptions.tol`` when it is None)."""
 
 
 def _is_field(obj) -> bool:
@@ -103,7 +106,7 @@ def _field_directions(fld, mesh, n):
     return np.asarray(fld.directions)[:, 0, :], n
 
 
-def _indefinite(A, M, tol, backend, block_size):
+def _indefinite(A, M, solver):
     """Smallest eigenpair of an indefinite A (negative cotan weights): shift below a Gershgorin bound."""
     d = np.asarray(M.diagonal()).real
     absA = abs(A)
@@ -113,8 +116,8 @@ def _indefinite(A, M, tol, backend, block_size):
     warnings.warn("the cotan stripe energy is indefinite on this mesh (negative cotangent weights of obtuse "
                   f"triangles; the smallest eigenvalue is below 0): searching below the Gershgorin bound {low:.3g}. "
                   "The curvature-corrected energy='fem' is always positive semidefinite", DhlbWarning, stacklevel=4)
-    return smallest_eigenpairs(A, M, 1, tol=tol, backend=backend, block_size=block_size, sigma=sigma,
-                               maxiter=2000)
+    return smallest_eigenpairs(A, M, 1, sigma=sigma, solver=SolverOptions(backend=solver.backend, tol=solver.tol,
+                                                                          block_size=solver.block_size, maxiter=2000))
 
 
 def _factor_solve(res, A, M, tol):
@@ -126,81 +129,69 @@ def _factor_solve(res, A, M, tol):
     if res.factor is not None:
         return res.factor.solve
     direct = select_backend(A.shape[0], A.nnz, eigen=True, shifted=True)
-    again = smallest_eigenpairs(A, M, 1, tol=tol, backend=direct, v0=res.eigenvectors[:, 0], factor_shift="floor")
+    again = smallest_eigenpairs(A, M, 1, v0=res.eigenvectors[:, 0],
+                                solver=SolverOptions(backend=direct, tol=tol, factor_shift="floor"))
     return again.factor.solve
 
 
-def _section(section, A, M, x, res, cplx, tol, iterations, seed, unit_tol):
-    if section == "eigenvector":
+def _section(sec: SectionOptions, A, M, x, res, cplx, tol):
+    if sec.kind == "eigenvector":
         return x, None
     solve = _factor_solve(res, A, M, tol)
-    if section == "power":
-        it = power_section(A, M, solve, POWER_ITERATIONS if iterations is None else iterations, seed=seed,
+    if sec.kind == "power":
+        it = power_section(A, M, solve, POWER_ITERATIONS if sec.iterations is None else sec.iterations, seed=sec.seed,
                            complex_form=cplx)
     else:
         it = unit_section(A, M, solve, x, complex_form=cplx,
-                          maxiter=MAX_UNIT_ITERATIONS if iterations is None else iterations, rtol=unit_tol,
-                          seed=0 if seed is None else seed)
+                          options=sec.replace(iterations=MAX_UNIT_ITERATIONS if sec.iterations is None
+                                              else sec.iterations, seed=0 if sec.seed is None else sec.seed))
     return it.x, it
 
 
-def _solve(form, energy, lumped, branch_weight, backend, tol, block_size, section, iterations, seed, unit_tol):
+def _solve(form, opts: StripeOptions, solver: SolverOptions):
     t0 = time.perf_counter()
-    A, M, cplx = stripe_matrices(form, energy, lumped=lumped, branch_weight=branch_weight)
+    A, M, cplx = stripe_matrices(form, opts.energy, lumped=opts.lumped, branch_weight=opts.branch_weight)
     t1 = time.perf_counter()
-    shift = "auto" if section == "eigenvector" else "floor"   # unit / power iterate with K ≈ A⁻¹ (not K ≈ (A − λ₁M)⁻¹)
+    # unit / power iterate with K ≈ A⁻¹ (not K ≈ (A − λ₁M)⁻¹)
+    shift = "auto" if opts.section.kind == "eigenvector" else "floor"
     try:
-        res = smallest_eigenpairs(A, M, 1, tol=tol, backend=backend, block_size=block_size, factor_shift=shift)
+        res = smallest_eigenpairs(A, M, 1, solver=SolverOptions(backend=solver.backend, tol=solver.tol,
+                                                                block_size=solver.block_size, factor_shift=shift))
         indefinite = False
     except NotSemidefiniteError:
-        res, indefinite = _indefinite(A, M, tol, backend, block_size), True
+        res, indefinite = _indefinite(A, M, solver), True
     t2 = time.perf_counter()
-    x, it = _section(section, A, M, res.eigenvectors[:, 0], res, cplx, tol, iterations, seed, unit_tol)
+    x, it = _section(opts.section, A, M, res.eigenvectors[:, 0], res, cplx, solver.tol)
     t3 = time.perf_counter()
     rho = it.unit_energy if it is not None else unit_energy(A, M, normalize_per_vertex(x, cplx))
     psi = x if cplx else x[0::2] + 1j * x[1::2]
-    solver = {"backend": res.backend, "iterations": int(res.iterations), "residual": float(res.residuals[0]),
-              "converged": bool(res.converged), "shift": float(res.shift), "block_size": int(res.block_size),
-              "unknowns": int(A.shape[0]), "complex": cplx, "indefinite": indefinite}
-    return (np.ascontiguousarray(psi, np.complex128), float(res.eigenvalues[0]), solver, t1 - t0, t3 - t1,
+    stats = {"backend": res.backend, "iterations": int(res.iterations), "residual": float(res.residuals[0]),
+             "converged": bool(res.converged), "shift": float(res.shift), "block_size": int(res.block_size),
+             "unknowns": int(A.shape[0]), "complex": cplx, "indefinite": indefinite}
+    return (np.ascontiguousarray(psi, np.complex128), float(res.eigenvalues[0]), stats, t1 - t0, t3 - t1,
             t3 - t2, it, rho)
 
 
-def _one(tb, X, n, frequency, spacing, method, energy, lumped, branch_weight, backend, tol, block_size,
-         warn_aliasing, section, iterations, seed, unit_tol, t_mesh):
+def _one(tb, X, n, frequency, spacing, opts: StripeOptions, solver: SolverOptions, t_mesh):
     t0 = time.perf_counter()
-    form = stripe_form(tb, X, n, frequency=frequency, spacing=spacing, method=method, warn_aliasing=warn_aliasing)
+    form = stripe_form(tb, X, n, frequency=frequency, spacing=spacing, method=opts.method,
+                       warn_aliasing=opts.warn_aliasing)
     t1 = time.perf_counter()
-    psi, lam, solver, t_mat, t_solve, t_sec, it, rho = _solve(form, energy, lumped, branch_weight, backend, tol,
-                                                                block_size, section, iterations, seed, unit_tol)
+    psi, lam, stats, t_mat, t_solve, t_sec, it, rho = _solve(form, opts, solver)
     t2 = time.perf_counter()
     tex = texture_coordinates(form, psi)
     t3 = time.perf_counter()
     setup = t_mesh + (t1 - t0) + t_mat
     timings = {"setup": setup, "solve": t_solve, "section": t_sec, "texture": t3 - t2,
                "total": setup + t_solve + (t3 - t2)}
-    return StripePattern(form, psi, tex, lam, energy, solver, timings, section=section, unit_energy=rho,
+    return StripePattern(form, psi, tex, lam, opts.energy, stats, timings, section=opts.section.kind, unit_energy=rho,
                          iteration=it)
 
 
-def _check_section(section, iterations, seed, unit_tol):
-    if section not in SECTIONS:
-        raise InvalidParameterError(f"section must be one of {SECTIONS}, got {section!r}")
-    if iterations is not None:
-        if isinstance(iterations, (bool, np.bool_)) or not isinstance(iterations, numbers.Integral):
-            raise InvalidParameterError(f"iterations must be an integer, got {iterations!r}")
-        low = 1 if section == "power" else 0
-        if not low <= int(iterations) <= 100_000:
-            raise InvalidParameterError(f"iterations must be between {low} and 100000 (one back-solve each), "
-                                        f"got {iterations!r}")
-    try:
-        ok = bool(np.isfinite(unit_tol) and unit_tol > 0)
-    except TypeError:
-        ok = False
-    if not ok:
-        raise InvalidParameterError(f"unit_tol must be a positive number, got {unit_tol!r}")
-    if seed is not None and not isinstance(seed, (numbers.Integral, np.random.Generator)):
-        raise InvalidParameterError(f"seed must be an integer or a numpy Generator, got {seed!r}")
+_OPTIONS = {**{k: k for k in ("energy", "orthogonal", "method", "lumped", "branch_weight", "reorient", "components",
+                              "warn_aliasing", "progress")},
+            "section": "section.kind", "iterations": "section.iterations", "seed": "section.seed",
+            "unit_tol": "section.unit_tol"}   # the keywords of dhlb 0.1 → fields of StripeOptions
 
 
 def stripe_pattern(
@@ -211,22 +202,9 @@ def stripe_pattern(
     *,
     spacing: ArrayLike | None = None,
     n: int | None = None,
-    energy: str = "cotan",
-    backend: Any = None,
-    orthogonal: bool = False,
-    method: str = "intrinsic",
-    lumped: bool | None = None,
-    branch_weight: float = 0.0,
-    tol: float = 1e-10,
-    block_size: int | None = None,
-    reorient: bool = False,
-    components: str = "all",
-    warn_aliasing: bool = True,
-    section: str = "unit",
-    iterations: int | None = None,
-    seed: Any = None,
-    unit_tol: float = UNIT_RTOL,
-    progress: bool = False,
+    options: StripeOptions | None = None,
+    solver: SolverOptions | str | None = None,
+    **deprecated: Any,
 ) -> StripePattern:
     """A stripe pattern following ``directions`` with the given frequency (seed part 2).
 
@@ -244,48 +222,18 @@ def stripe_pattern(
         Alternatively, the period in mean edge lengths.
     n : {1, 2}, optional
         1: oriented directions, 2: line field; default the field's n, else 1.
-    energy : {"cotan", "fem"}
-        The seed's cotangent energy (default) or the curvature-corrected FEM energy (see
-        :mod:`dhlb.stripes.energy`).
-    backend : str or backend object, optional
-        Factorization backend of :func:`dhlb.fem.smallest_eigenpairs`.
-    orthogonal : bool
-        Also compute the pattern of the directions turned by 90° (``N × X``), as ``result.orthogonal``.
-    method : {"intrinsic", "extrinsic"}
-        How ω̂ is computed (:func:`dhlb.stripes.stripe_form`).
-    lumped, branch_weight :
-        See :func:`dhlb.stripes.energy.stripe_matrices`.
-    tol : float
-        Backward-error tolerance of the eigenpair.
-    block_size : int, optional
-        Subspace size of the eigensolver.
-    reorient, components :
-        Passed to :func:`dhlb.mesh.validate_surface`.
-    warn_aliasing : bool
-        Warn when stripes are narrower than two edges (the result stays correct, §4.3).
-    section : {"unit", "eigenvector", "power"}
-        Which section ψ gives the pattern:
-
-        * ``"unit"`` (default): the smallest eigenvector, then the unit-modulus iteration
-          ``x ← normalize_per_vertex(M K⁻¹ M x)`` with the eigensolver's factorization of
-          ``K = A + εM`` (:func:`dhlb.stripes.section.unit_section`): it returns the iterate of lowest
-          *unit* energy (the seed's energy of a unit function, part 2 §2.1, before the relaxation
-          Eq. 2.3), so each level of a surface with varying girth keeps its own number of stripes,
-          joined by dislocations. Never higher unit energy than ``"eigenvector"``.
-        * ``"eigenvector"``: the smallest eigenvector of the relaxed problem (the seed's §2.1 / §4.2).
-        * ``"power"``: the seed's Algorithm 9, ``iterations`` inverse power steps (default 20) from a
-          uniformly random start (``seed``), for reproducing published figures.
-    iterations : int, optional
-        ``"unit"``: the maximum number of steps (default 100; 0 = the normalized eigenvector);
-        ``"power"``: the number of steps (default 20).
-    seed : int or numpy Generator, optional
-        Random start of ``"power"``; for ``"unit"`` the seed of the small phase perturbation of the
-        start (default 0, deterministic; see :func:`dhlb.stripes.section.unit_section`).
-    unit_tol : float
-        ``"unit"`` stops when the unit energy changed by less than this (relative) in one step.
-    progress : bool
-        Report the patterns computed (one, or two with ``orthogonal``) on stderr with tqdm when the
-        run is expected to take more than about two seconds; the CLI passes ``not --quiet``.
+    options : StripeOptions, optional
+        Energy, orthogonal pattern, ω̂ method, mass, mesh repair, aliasing warning, progress and the
+        section ψ (:class:`~dhlb.stripes.StripeOptions`, :class:`~dhlb.stripes.SectionOptions`).
+    solver : SolverOptions or str, optional
+        Backend, tolerance (default 1e-10, the backward error of the eigenpair) and block size of
+        :func:`dhlb.fem.smallest_eigenpairs` (:class:`~dhlb.linalg.SolverOptions`, or a backend name).
+    **deprecated
+        The keywords of dhlb 0.1, with a :class:`DeprecationWarning`: ``energy``, ``orthogonal``,
+        ``method``, ``lumped``, ``branch_weight``, ``reorient``, ``components``, ``warn_aliasing``,
+        ``progress`` (→ ``options``), ``section``, ``iterations``, ``seed``, ``unit_tol``
+        (→ ``options.section``: ``kind``, ``iterations``, ``seed``, ``unit_tol``), ``backend``, ``tol``,
+        ``block_size`` (→ ``solver``).
 
     Returns
     -------
@@ -299,6 +247,8 @@ def stripe_pattern(
         :func:`dhlb.mesh.validate_surface` (naming the face or vertex).
     ConvergenceError
         The eigensolver did not reach ``tol``.
+    TypeError
+        An unknown keyword argument.
 
     Warns
     -----
@@ -308,17 +258,22 @@ def stripe_pattern(
     Examples
     --------
     >>> import numpy as np
-    >>> from dhlb.stripes import stripe_pattern
+    >>> from dhlb.stripes import SectionOptions, StripeOptions, stripe_pattern
     >>> V, F = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], [[0, 1, 2], [1, 3, 2]]
     >>> res = stripe_pattern(V, F, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25)    # stripes across x
     >>> alpha = res.texture.evaluate(0, [[1, 0, 0], [0, 1, 0]])    # from x = 0 to x = 1: Δα = 2π/4
     >>> round(float(alpha[1] - alpha[0]) / np.pi, 6)
     0.5
+    >>> res = stripe_pattern(V, F, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25, solver="superlu",
+    ...                      options=StripeOptions(section=SectionOptions(kind="eigenvector")))
+    >>> res.section
+    'eigenvector'
     """
     t0 = time.perf_counter()
-    if energy not in ENERGIES:
-        raise InvalidParameterError(f"energy must be one of {ENERGIES}, got {energy!r}")
-    _check_section(section, iterations, seed, unit_tol)
+    opts, solver = fold_deprecated_kwargs("stripe_pattern", deprecated, ("options", options, StripeOptions(), _OPTIONS),
+                                          ("solver", solver, SolverOptions(), ("backend", "tol", "block_size")))
+    solver = solver_options(solver)
+    solver = solver if solver.tol is not None else solver.replace(tol=DEFAULT_TOL)
     fld = None
     if _is_field(V) and F is None and directions is None:
         fld, V = V, V.mesh
@@ -330,25 +285,24 @@ def stripe_pattern(
         raise InvalidParameterError(f"n must be 1 (vector field) or 2 (line field), got {n!r}")
     if fld is not None and F is None and not isinstance(V, (SurfaceMesh, TangentBundle)):
         V = fld.mesh
-    mesh = _surface(V, F, reorient, components)
+    mesh = _surface(V, F, opts.reorient, opts.components)
     if fld is not None:
         X, n = _field_directions(fld, mesh, n)
     else:
         X, n = directions, 1 if n is None else int(n)
     tb = V if isinstance(V, TangentBundle) and V.n == 1 else TangentBundle(mesh, 1)
     t_mesh = time.perf_counter() - t0
-    args = (frequency, spacing, method, energy, lumped, branch_weight, backend, tol, block_size, warn_aliasing,
-            section, iterations, seed, unit_tol)
     from dhlb._progress import progress_bar
 
-    with progress_bar(2 if orthogonal else 1, "stripe pattern", progress=progress, unit="pattern",
-                      estimate_seconds=(2 if orthogonal else 1) * 1.5e-5 * n * mesh.n_faces) as bar:
-        res = _one(tb, X, n, *args, t_mesh)
+    count = 2 if opts.orthogonal else 1
+    with progress_bar(count, "stripe pattern", progress=opts.progress, unit="pattern",
+                      estimate_seconds=count * 1.5e-5 * n * mesh.n_faces) as bar:
+        res = _one(tb, X, n, frequency, spacing, opts, solver, t_mesh)
         bar.update(1)
-        if orthogonal:
+        if opts.orthogonal:
             t1 = time.perf_counter()
             Y = np.cross(tb.normals, res.form.directions)
-            res.orthogonal = _one(tb, Y, n, *args, time.perf_counter() - t1)
+            res.orthogonal = _one(tb, Y, n, frequency, spacing, opts, solver, time.perf_counter() - t1)
             bar.update(1)
     return res
 

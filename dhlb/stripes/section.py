@@ -55,17 +55,17 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import InvalidParameterError, NonFiniteError
+from dhlb.stripes.options import UNIT_RTOL, SectionOptions
 
 if TYPE_CHECKING:
     from collections.abc import Callable
 
-__all__ = ["SectionIteration", "normalize_per_vertex", "power_section", "unit_energy", "unit_section"]
+__all__ = ["UNIT_RTOL", "SectionIteration", "normalize_per_vertex", "power_section", "unit_energy", "unit_section"]
 
 MAX_UNIT_ITERATIONS = 100
 """Default maximum of unit-modulus steps (each one back-solve with the eigensolver's factorization)."""
-UNIT_RTOL = 1e-3
-"""Default stall tolerance: stop when the unit energy changed by less than this (relative) in a step."""
 UNIT_KICK = 0.3
 """Default amplitude (radians) of the seeded random phase perturbation of the start (see :func:`unit_section`)."""
 POWER_ITERATIONS = 20
@@ -194,16 +194,15 @@ def unit_section(
     x0,
     *,
     complex_form: bool = True,
-    maxiter: int = MAX_UNIT_ITERATIONS,
-    rtol: float = UNIT_RTOL,
     kick: float = UNIT_KICK,
-    seed=0,
+    options: SectionOptions | None = None,
+    **deprecated,
 ) -> SectionIteration:
     """Minimize the unit energy from ``x0``: ``x ← normalize_per_vertex(M K⁻¹ M x)``, keeping the best iterate.
 
     Parameters
     ----------
-    A, M : sparse (n, n)
+    A, M : (n, n) sparse matrix
         The stripe energy and mass (Hermitian, or real symmetric for the 2N form).
     solve : callable
         ``solve(b) = K⁻¹ b`` for a positive definite ``K = A − σM`` (σ below the smallest
@@ -212,35 +211,51 @@ def unit_section(
         Start (normalized per vertex first), e.g. the smallest eigenvector.
     complex_form : bool
         Complex unknowns (True) or interleaved ``(Re ψ_i, Im ψ_i)`` pairs (False).
-    maxiter : int >= 0
-        Maximum number of steps (each one back-solve).
-    rtol : float > 0
-        Stop when ``|ρ_t − ρ_{t−1}| <= rtol · |ρ_{t−1}|`` (or ρ reaches the rounding level).
     kick : float >= 0
         Amplitude (radians) of a random phase ``e^{i kick u_i}``, ``u_i`` uniform in [−1, 1], applied to
         the normalized start before the first step, so that symmetric saddle points are left (see
         the module docstring). ``energies[0]`` is the unperturbed start's.
-    seed : int or numpy Generator
-        Of the perturbation (default 0: deterministic).
+    options : SectionOptions, optional
+        ``iterations``: the maximum number of steps (each one back-solve; default
+        :data:`MAX_UNIT_ITERATIONS`); ``unit_tol``: stop when ``|ρ_t − ρ_{t−1}| <= unit_tol · |ρ_{t−1}|``
+        (or ρ reaches the rounding level); ``seed``: of the perturbation (default 0: deterministic).
+        ``kind`` is not used.
+    **deprecated
+        The keywords ``maxiter`` (→ ``options.iterations``), ``rtol`` (→ ``options.unit_tol``) and
+        ``seed`` of dhlb 0.1, with a :class:`DeprecationWarning`.
 
     Returns
     -------
     SectionIteration
         ``x`` is the iterate of lowest unit energy (the guard of the module docstring).
 
+    Raises
+    ------
+    NonFiniteError
+        ``x0`` has a NaN or infinite entry.
+    InvalidParameterError
+        ``kick`` negative or not finite; an old keyword together with ``options``.
+    TypeError
+        An unknown keyword argument.
+
     Examples
     --------
     >>> import numpy as np, scipy.sparse as sp
+    >>> from dhlb.stripes import SectionOptions
     >>> from dhlb.stripes.section import unit_section
     >>> A = sp.csr_matrix([[2.0, -1.0, -1.0], [-1.0, 2.0, -1.0], [-1.0, -1.0, 2.0]], dtype=complex)
     >>> M = sp.identity(3, dtype=complex, format="csr")
     >>> it = unit_section(A, M, sp.linalg.splu((A + 1e-9 * M).tocsc()).solve, np.array([1, 1j, -1]))
     >>> it.energies[0] > it.unit_energy, round(it.unit_energy, 8), it.converged
     (True, 0.0, True)
+    >>> unit_section(A, M, sp.linalg.splu((A + 1e-9 * M).tocsc()).solve, np.array([1, 1j, -1]),
+    ...              options=SectionOptions(iterations=0)).iterations
+    0
     """
-    maxiter = _check_iterations("maxiter", maxiter, 0)
-    if not (np.isfinite(rtol) and rtol > 0):
-        raise InvalidParameterError(f"rtol must be a positive number, got {rtol!r}")
+    (options,) = fold_deprecated_kwargs("unit_section", deprecated, (
+        "options", options, SectionOptions(), {"maxiter": "iterations", "rtol": "unit_tol", "seed": "seed"}))
+    maxiter = MAX_UNIT_ITERATIONS if options.iterations is None else int(options.iterations)
+    rtol, seed = options.unit_tol, 0 if options.seed is None else options.seed
     x0 = np.asarray(x0)
     if not np.all(np.isfinite(x0)):
         raise NonFiniteError("the start vector x0 contains NaN or inf")

@@ -29,6 +29,7 @@ from dhlb.vortex.linking import (
                                  linking_number,
                                  polyline_distance,
 )
+from dhlb.vortex.options import VortexOptions
 from dhlb.vortex.pipeline import VortexResult, filament_linking_numbers, vortex_filaments
 from dhlb.vortex.velocity import edge_circulation, gauss_legendre, velocity_bundle
 
@@ -38,5 +39,5 @@ __all__ = [
     "hopf_link", "torus_knot", "trefoil", "vortex_ring",
     "Filament", "FilamentSet", "extract_filaments", "face_zeros",
     "gauss_linking_integral", "hausdorff_distance", "linking_matrix", "linking_number", "polyline_distance",
-    "VortexResult", "filament_linking_numbers", "vortex_filaments",
+    "VortexResult", "VortexOptions", "filament_linking_numbers", "vortex_filaments",
 ]

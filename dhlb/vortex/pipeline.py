@@ -53,18 +53,19 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import (
     DhlbWarning,
-    InvalidParameterError,
-    InvalidTypeError,
     NonFiniteError,
     ShapeError,
     UnresolvedFluxWarning,
 )
+from dhlb.linalg import SolverOptions, solver_options
 from dhlb.mesh.tet import TetMesh, check_tet_mesh
 from dhlb.vortex.filaments import extract_filaments
 from dhlb.vortex.linking import gauss_linking_integral
-from dhlb.vortex.velocity import DEFAULT_ORDER, _check_hbar, gauss_legendre, velocity_bundle
+from dhlb.vortex.options import VortexOptions
+from dhlb.vortex.velocity import _check_hbar, velocity_bundle
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
@@ -142,21 +143,6 @@ def _per_vertex_velocity(velocity, n_rows: int, rows: np.ndarray) -> np.ndarray:
     return arr
 
 
-def _check_options(order, tol, placement, orientation) -> None:
-    """Every option of :func:`vortex_filaments` checked before any work (typed errors naming it)."""
-    import numbers
-
-    gauss_legendre(order)  # integer in 1 .. MAX_ORDER
-    if isinstance(tol, (bool, np.bool_)) or not isinstance(tol, numbers.Real):
-        raise InvalidTypeError(f"tol must be a real number in (0, 1), got {type(tol).__name__} {tol!r}")
-    if not (np.isfinite(tol) and 0 < tol < 1):
-        raise InvalidParameterError(f"tol must be a finite number in (0, 1), got {tol!r}")
-    for name, value, allowed in (("placement", placement, ("balanced", "vertex")),
-                                 ("orientation", orientation, ("fix", "require"))):
-        if not isinstance(value, str) or value not in allowed:
-            raise InvalidParameterError(f"{name} must be one of {', '.join(map(repr, allowed))}, got {value!r}")
-
-
 def _warn_flux(X, points, Om) -> int:
     big = np.abs(Om) > np.pi
     nbig = int(big.sum())
@@ -179,12 +165,10 @@ def vortex_filaments(
     velocity: Callable[[np.ndarray], np.ndarray] | ArrayLike,
     hbar: float,
     *,
-    order: int = DEFAULT_ORDER,
-    backend: Any = None,
-    tol: float = DEFAULT_TOL,
-    placement: str = "balanced",
-    orientation: str = "fix",
+    options: VortexOptions | None = None,
+    solver: SolverOptions | str | None = None,
     progress: bool = False,
+    **deprecated: Any,
 ) -> VortexResult:
     """Vortex filaments of a velocity field on a tetrahedral mesh (see the module docstring).
 
@@ -202,21 +186,18 @@ def vortex_filaments(
         TetMesh), meaning the piecewise-linear field (integrated exactly).
     hbar : float > 0
         ħ: every filament carries the circulation ``2πħ``.
-    order : int >= 1
-        Gauss–Legendre nodes per edge for a callable velocity (exact for polynomials of degree
-        ``2·order − 1`` along the edge).
-    backend : str or backend object, optional
-        Linear-algebra backend of :func:`dhlb.fem.smallest_eigenpairs` (default: its default).
-    tol : float
-        Backward-error tolerance of the eigen solve.
-    placement : {"balanced", "vertex"}
-        Local gauge in which the zero on a crossed triangle is interpolated
-        (:func:`~dhlb.vortex.face_zeros`).
-    orientation : {"fix", "require"}
-        Passed to :func:`~dhlb.mesh.check_tet_mesh`: fix negatively oriented tetrahedra, or raise.
+    options : VortexOptions, optional
+        Quadrature ``order``, zero ``placement`` and tet ``orientation`` handling
+        (:class:`~dhlb.vortex.VortexOptions`).
+    solver : SolverOptions or str, optional
+        Backend and tolerance (default :data:`DEFAULT_TOL`) of :func:`dhlb.fem.smallest_eigenpairs`
+        (:class:`~dhlb.linalg.SolverOptions`, or a backend name).
     progress : bool
         Show a progress bar over the five phases on stderr (needs tqdm, ``pip install
         'dhlb[progress]'``) when the run is expected to take more than about two seconds.
+    **deprecated
+        The keywords ``order``, ``placement``, ``orientation`` (→ ``options``), ``backend`` and ``tol``
+        (→ ``solver``) of dhlb 0.1, with a :class:`DeprecationWarning`.
 
     Returns
     -------
@@ -225,10 +206,12 @@ def vortex_filaments(
     Raises
     ------
     InvalidParameterError
-        ``hbar`` not a finite number > 0; bad ``order`` (1 .. 64), ``tol`` (in (0, 1)), ``placement``
-        or ``orientation`` — checked before any work.
+        ``hbar`` not a finite number > 0 (options are checked when they are built); an old keyword
+        together with ``options`` or ``solver``.
     InvalidTypeError
-        ``hbar`` or ``tol`` is not a real number (a string, a complex number).
+        ``hbar`` is not a real number (a string, a complex number).
+    TypeError
+        An unknown keyword argument.
     ShapeError, NonFiniteError
         ``V``/``T`` malformed; a velocity array not of shape (n, 3), not real, or NaN/inf (the
         vertex is named); a callable returning the wrong shape or NaN/inf (the edge and point are
@@ -250,15 +233,25 @@ def vortex_filaments(
     --------
     >>> import numpy as np
     >>> from dhlb.mesh import box_tet_mesh
-    >>> from dhlb.vortex import FilamentField, vortex_filaments, vortex_ring
+    >>> from dhlb.linalg import SolverOptions
+    >>> from dhlb.vortex import FilamentField, VortexOptions, vortex_filaments, vortex_ring
     >>> ring = vortex_ring(0.8, center=(0.01, 0.02, 0.03), n=32)
     >>> v = FilamentField([ring], 2 * np.pi, core_radius=0.2)    # circulation 2πħ: one filament
     >>> res = vortex_filaments(box_tet_mesh(6, lower=-1.5, upper=1.5), None, v, hbar=1.0)
     >>> len(res.filaments), res.filaments[0].closed
     (1, True)
+    >>> res = vortex_filaments(box_tet_mesh(6, lower=-1.5, upper=1.5), None, v, hbar=1.0,
+    ...                        options=VortexOptions(order=6), solver=SolverOptions(backend="superlu", tol=1e-10))
+    >>> len(res.filaments)
+    1
     """
+    options, solver = fold_deprecated_kwargs(
+        "vortex_filaments", deprecated, ("options", options, VortexOptions(), ("order", "placement", "orientation")),
+        ("solver", solver, SolverOptions(), ("backend", "tol")))
+    solver = solver_options(solver)
+    solver = solver if solver.tol is not None else solver.replace(tol=DEFAULT_TOL)
+    order, placement, orientation, backend = options.order, options.placement, options.orientation, solver.backend
     h = _check_hbar(hbar)
-    _check_options(order, tol, placement, orientation)
     from dhlb._progress import progress_bar
     from dhlb.fem import bundle_matrices, smallest_eigenpairs
     from dhlb.geometry import EuclideanComplex
@@ -289,7 +282,7 @@ def vortex_filaments(
         A, M = bundle_matrices(L, geo)
         timings["assembly"] = (t3 := time.perf_counter()) - t2
         bar.update(1)
-        eig = smallest_eigenpairs(A, M, k=1, tol=tol, backend=backend)
+        eig = smallest_eigenpairs(A, M, k=1, solver=solver)
         psi = np.asarray(eig.eigenvectors[:, 0])
         timings["solve"] = (t4 := time.perf_counter()) - t3
         bar.update(1)

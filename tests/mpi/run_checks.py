@@ -20,6 +20,7 @@ from dhlb.errors import InvalidOperatorError  # noqa: E402
 from dhlb.fem import bundle_matrices, smallest_eigenpairs  # noqa: E402
 from dhlb.fields import direction_field  # noqa: E402
 from dhlb.io import read_surface  # noqa: E402
+from dhlb.linalg import SolverOptions  # noqa: E402
 from dhlb.linalg.backends import _REGISTRY, register_backend  # noqa: E402
 from dhlb.linalg.backends_petsc import PetscBackend  # noqa: E402
 from tests.fem_fixtures import flat_torus_landau  # noqa: E402
@@ -34,7 +35,7 @@ RANK, SIZE = COMM.rank, COMM.size
 def check_bunny_field():
     V, F = read_surface(ROOT / "tests" / "data" / "bunny-7k.obj")
     ref = direction_field(V, F, n=4)
-    got = direction_field(V, F, n=4, backend="petsc")
+    got = direction_field(V, F, n=4, solver=SolverOptions(backend="petsc"))
     rel = abs(got.eigenvalue / ref.eigenvalue - 1)
     assert rel <= 1e-9, f"eigenvalue {got.eigenvalue!r} vs {ref.eigenvalue!r}: relative {rel:.2e} > 1e-9"
     a, b = ref.singularities, got.singularities
@@ -45,8 +46,8 @@ def check_bunny_field():
 def check_landau_3torus():
     L, geo, B = flat_torus_landau(3, 12, 2)
     A, M = bundle_matrices(L, geo)
-    res = smallest_eigenpairs(A, M, k=3, tol=1e-10, backend="petsc")
-    ref = smallest_eigenpairs(A, M, k=3, tol=1e-10)
+    res = smallest_eigenpairs(A, M, k=3, solver=SolverOptions(tol=1e-10, backend="petsc"))
+    ref = smallest_eigenpairs(A, M, k=3, solver=SolverOptions(tol=1e-10))
     ev = res.eigenvalues / B
     assert res.converged and res.backend == "petsc"
     assert np.ptp(ev[:2]) < 1e-8, f"lowest level not 2-fold: {ev}"
@@ -67,7 +68,7 @@ def check_mismatched_input_raises_everywhere():
     if SIZE == 1:
         return "skipped (one rank)"
     try:
-        smallest_eigenpairs(A, sp.identity(n, format="csr"), k=2, backend="petsc")
+        smallest_eigenpairs(A, sp.identity(n, format="csr"), k=2, solver=SolverOptions(backend="petsc"))
     except InvalidOperatorError as err:
         msg = str(err)
     else:
@@ -86,7 +87,7 @@ def bad_input():
     if RANK == SIZE - 1:
         A = A.tolil()
         A[7, 7] = np.nan
-    smallest_eigenpairs(A, sp.identity(n, format="csr"), k=2, backend="petsc")
+    smallest_eigenpairs(A, sp.identity(n, format="csr"), k=2, solver=SolverOptions(backend="petsc"))
     if RANK == 0:
         print("bad input was not detected", flush=True)
     return 0

@@ -1,0 +1,164 @@
+"""The picture of a close-to-conformal deformation: the boundary before and after, coloured by distortion.
+
+Examples
+--------
+>>> from dhlb.conformal import conformal_deformation, point_charge_factor
+>>> from dhlb.mesh import ball_tet_mesh
+>>> from dhlb.render.conformal_png import boundary_distortion
+>>> m = ball_tet_mesh(2)
+>>> F, d = boundary_distortion(conformal_deformation(m.points, m.tets, point_charge_factor([(3, 0, 0, 0.5)])))
+>>> F.shape[0] == d.shape[0] and bool((d >= 1).all())
+True
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from dhlb._deprecation import fold_deprecated_kwargs
+from dhlb.render._figure import _CAMERA, Camera, ConformalStyle, _matplotlib, write_png
+
+if TYPE_CHECKING:
+    import os
+    from typing import Any
+
+    from numpy.typing import ArrayLike
+
+__all__ = ["CONFORMAL_CAMERA", "boundary_distortion", "render_conformal_png"]
+
+CONFORMAL_CAMERA = Camera(view=(1.0, -1.6, 0.9), size=(1200, 600))
+"""The default camera of :func:`render_conformal_png` (two panels side by side)."""
+
+
+def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after: ArrayLike, faces: ArrayLike,
+                         distortion_faces: ArrayLike, *, camera: Camera | None = None,
+                         style: ConformalStyle | None = None, title: str | None = None, **deprecated: Any) -> str:
+    r"""Two panels, the boundary surface before and after, each triangle coloured by the distortion of its tet.
+
+    The deformed mesh is shown after the rigid motion that best aligns it with the input (the map is
+    defined up to one).
+
+    Parameters
+    ----------
+    path : str or path-like
+        Output file (PNG).
+    before, after : (N, 3) float array
+        Vertex positions of the mesh and of its deformation.
+    faces : (b, 3) int array
+        Boundary triangles (outward), rows of ``before``.
+    distortion_faces : (b,) float array
+        The distortion of the tet of each boundary triangle (1 = conformal; :func:`boundary_distortion`).
+    camera : Camera, optional
+        View direction, up direction, picture size and dpi (:class:`~dhlb.render.Camera`; default
+        :data:`CONFORMAL_CAMERA`, 1200 × 600).
+    style : ConformalStyle, optional
+        Colormap and background (:class:`~dhlb.render.ConformalStyle`).
+    title : str, optional
+        Written above the panels.
+    **deprecated
+        The keywords ``view``, ``up``, ``size``, ``dpi`` (→ ``camera``) of dhlb 0.1, with a
+        :class:`DeprecationWarning`.
+
+    Returns
+    -------
+    str
+        The path written.
+
+    Raises
+    ------
+    InvalidParameterError
+        An old keyword together with ``camera``.
+    TypeError
+        An unknown keyword argument.
+
+    Examples
+    --------
+    >>> import os, tempfile, numpy as np
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> from dhlb.render import CONFORMAL_CAMERA, ConformalStyle, render_conformal_png
+    >>> m = box_tet_mesh(2)
+    >>> F = m.boundary_faces
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = render_conformal_png(os.path.join(d, "c.png"), m.points, 2 * m.points, F, np.ones(len(F)),
+    ...                              camera=CONFORMAL_CAMERA.replace(size=(300, 150)),
+    ...                              style=ConformalStyle(colormap="magma"))
+    ...     open(p, "rb").read(4) == b"\x89PNG"
+    True
+    """
+    (camera,) = fold_deprecated_kwargs("render_conformal_png", deprecated,
+                                       ("camera", camera, CONFORMAL_CAMERA, _CAMERA))
+    style = ConformalStyle() if style is None else style
+    Figure, FigureCanvasAgg, PolyCollection = _matplotlib()
+    from matplotlib import colormaps
+    from matplotlib.colors import Normalize
+
+    right, upv, w = camera.frame()
+    size, dpi = camera.size, camera.dpi
+    F = np.asarray(faces, dtype=np.int64)
+    B, A = np.asarray(before, float), np.asarray(after, float)
+    U, _, Vt = np.linalg.svd((A - A.mean(0)).T @ (B - B.mean(0)))   # f is defined up to a rigid motion:
+    D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])          # show it best aligned with the input
+    after = (A - A.mean(0)) @ U @ D @ Vt + B.mean(0)
+    d = np.asarray(distortion_faces, dtype=float)
+    hi = max(float(np.nanmax(d)) if d.size else 1.0, 1.0 + 1e-6)
+    norm = Normalize(1.0, hi)
+    cmap = colormaps[style.colormap]
+    fig = Figure(figsize=(size[0] / dpi, size[1] / dpi), dpi=dpi, facecolor=style.background)
+    FigureCanvasAgg(fig)
+    for k, (V, name) in enumerate(((np.asarray(before, float), "before"), (np.asarray(after, float), "after"))):
+        ax = fig.add_axes([k / 2, 0.0, 0.5, 0.92])
+        ax.set_axis_off()
+        xy = np.c_[V @ right, V @ upv]
+        depth = V[F].mean(axis=1) @ w
+        n = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+        front = n @ w > 0
+        order = np.argsort(depth)
+        order = order[front[order]]
+        shade = 0.55 + 0.45 * np.abs(n[order] @ w) / np.maximum(np.linalg.norm(n[order], axis=1), 1e-300)
+        colors = cmap(norm(d[order]))
+        colors[:, :3] *= shade[:, None]
+        ax.add_collection(PolyCollection(xy[F[order]], facecolors=colors, edgecolors="none"))
+        lo, hi_ = xy.min(0), xy.max(0)
+        mid, half = (lo + hi_) / 2, 0.55 * max((hi_ - lo).max(), 1e-12)
+        ax.set_xlim(mid[0] - half, mid[0] + half)
+        ax.set_ylim(mid[1] - half, mid[1] + half)
+        ax.set_aspect("equal")
+        ax.set_title(name, fontsize=10)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    return write_png(fig, path, dpi, style.background)
+
+
+def boundary_distortion(result) -> tuple[np.ndarray, np.ndarray]:
+    """The boundary triangles of a :class:`~dhlb.conformal.ConformalResult` and the distortion of their tets.
+
+    Parameters
+    ----------
+    result : ConformalResult
+        A result of :func:`dhlb.conformal.conformal_deformation`.
+
+    Returns
+    -------
+    faces : (b, 3) int array
+        ``result.mesh.boundary_faces``.
+    distortion : (b,) float array
+        The distortion of the tet of each of them.
+
+    Examples
+    --------
+    >>> from dhlb.conformal import conformal_deformation, point_charge_factor
+    >>> from dhlb.mesh import ball_tet_mesh
+    >>> m = ball_tet_mesh(2)
+    >>> F, d = boundary_distortion(conformal_deformation(m.points, m.tets, point_charge_factor([(3, 0, 0, 0.5)])))
+    >>> F.shape[0] == d.shape[0] and bool((d >= 1).all())
+    True
+    """
+    mesh = result.mesh
+    F = mesh.boundary_faces
+    local = np.array([[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]])  # the tet of each boundary triangle
+    allf = np.sort(mesh.tets[:, local].reshape(-1, 3), axis=1)
+    tet_of = np.repeat(np.arange(mesh.tets.shape[0]), 4)
+    keys = {tuple(f): t for f, t in zip(allf.tolist(), tet_of.tolist())}
+    return F, np.array([result.distortion[keys[tuple(sorted(f))]] for f in F.tolist()])

@@ -1,0 +1,194 @@
+"""The method knobs of :func:`~dhlb.stripes.stripe_pattern` and of its section step, as frozen values.
+
+Examples
+--------
+>>> from dhlb.stripes import SectionOptions, StripeOptions
+>>> opts = StripeOptions(energy="fem", section=SectionOptions(kind="power", iterations=30, seed=1))
+>>> opts.section.kind, opts.replace(orthogonal=True).orthogonal, opts.orthogonal
+('power', True, False)
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import numbers
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from dhlb.errors import InvalidParameterError
+from dhlb.stripes.energy import ENERGIES
+
+__all__ = ["SECTIONS", "UNIT_RTOL", "SectionOptions", "StripeOptions"]
+
+SECTIONS = ("unit", "eigenvector", "power")
+"""The kinds of section ψ a stripe pattern can use (:class:`SectionOptions`)."""
+UNIT_RTOL = 1e-3
+"""Default stall tolerance: stop when the unit energy changed by less than this (relative) in a step."""
+
+
+@dataclass(frozen=True)
+class SectionOptions:
+    """Which section ψ gives a stripe pattern, and how it is iterated.
+
+    Parameters
+    ----------
+    kind : {"unit", "eigenvector", "power"}
+        * ``"unit"`` (default): the smallest eigenvector, then the unit-modulus iteration
+          ``x ← normalize_per_vertex(M K⁻¹ M x)`` with the eigensolver's factorization of
+          ``K = A + εM`` (:func:`dhlb.stripes.section.unit_section`): it returns the iterate of lowest
+          *unit* energy (the seed's energy of a unit function, part 2 §2.1, before the relaxation
+          Eq. 2.3), so each level of a surface with varying girth keeps its own number of stripes,
+          joined by dislocations. Never higher unit energy than ``"eigenvector"``.
+        * ``"eigenvector"``: the smallest eigenvector of the relaxed problem (the seed's §2.1 / §4.2).
+        * ``"power"``: the seed's Algorithm 9, ``iterations`` inverse power steps (default 20) from a
+          uniformly random start (``seed``), for reproducing published figures.
+    iterations : int, optional
+        ``"unit"``: the maximum number of steps (default 100; 0 = the normalized eigenvector);
+        ``"power"``: the number of steps (default 20). At most 100000 (one back-solve each).
+    seed : int or numpy Generator, optional
+        Random start of ``"power"``; for ``"unit"`` the seed of the small phase perturbation of the
+        start (default 0, deterministic).
+    unit_tol : float
+        ``"unit"`` stops when the unit energy changed by less than this (relative) in one step.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``kind`` not one of :data:`SECTIONS`, ``iterations`` not an integer in range, ``unit_tol`` not a
+        positive number, ``seed`` neither an integer nor a Generator.
+
+    Examples
+    --------
+    >>> SectionOptions(kind="power", iterations=0)
+    Traceback (most recent call last):
+    ...
+    dhlb.errors.InvalidParameterError: iterations must be between 1 and 100000 (one back-solve each), got 0
+    """
+
+    kind: str = "unit"
+    iterations: int | None = None
+    seed: Any = None
+    unit_tol: float = UNIT_RTOL
+
+    def __post_init__(self) -> None:
+        if self.kind not in SECTIONS:
+            raise InvalidParameterError(f"section must be one of {SECTIONS}, got {self.kind!r}")
+        iterations = self.iterations
+        if iterations is not None:
+            if isinstance(iterations, (bool, np.bool_)) or not isinstance(iterations, numbers.Integral):
+                raise InvalidParameterError(f"iterations must be an integer, got {iterations!r}")
+            low = 1 if self.kind == "power" else 0
+            if not low <= int(iterations) <= 100_000:
+                raise InvalidParameterError(f"iterations must be between {low} and 100000 (one back-solve each), "
+                                            f"got {iterations!r}")
+        try:
+            ok = bool(np.isfinite(self.unit_tol) and self.unit_tol > 0)
+        except TypeError:
+            ok = False
+        if not ok:
+            raise InvalidParameterError(f"unit_tol must be a positive number, got {self.unit_tol!r}")
+        if self.seed is not None and not isinstance(self.seed, (numbers.Integral, np.random.Generator)):
+            raise InvalidParameterError(f"seed must be an integer or a numpy Generator, got {self.seed!r}")
+
+    def replace(self, **changes: Any) -> SectionOptions:
+        """A copy with some fields changed (:func:`dataclasses.replace`; validated again).
+
+        Parameters
+        ----------
+        **changes
+            Field names and their new values.
+
+        Returns
+        -------
+        SectionOptions
+
+        Examples
+        --------
+        >>> SectionOptions().replace(kind="eigenvector").kind
+        'eigenvector'
+        """
+        return dataclasses.replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class StripeOptions:
+    """How :func:`~dhlb.stripes.stripe_pattern` computes a pattern (solver knobs: :class:`dhlb.linalg.SolverOptions`).
+
+    Parameters
+    ----------
+    energy : {"cotan", "fem"}
+        The seed's cotangent energy (default) or the curvature-corrected FEM energy (see
+        :mod:`dhlb.stripes.energy`).
+    orthogonal : bool
+        Also compute the pattern of the directions turned by 90° (``N × X``), as ``result.orthogonal``.
+    method : {"intrinsic", "extrinsic"}
+        How ω̂ is computed (:func:`dhlb.stripes.stripe_form`, which checks it).
+    lumped : bool, optional
+        See :func:`dhlb.stripes.energy.stripe_matrices`.
+    branch_weight : float
+        See :func:`dhlb.stripes.energy.stripe_matrices`.
+    reorient : bool
+        Passed to :func:`dhlb.mesh.validate_surface`.
+    components : {"all", "largest"}
+        Passed to :func:`dhlb.mesh.validate_surface` (which checks it).
+    warn_aliasing : bool
+        Warn when stripes are narrower than two edges (the result stays correct, §4.3).
+    progress : bool
+        Report the patterns computed (one, or two with ``orthogonal``) on stderr with tqdm when the
+        run is expected to take more than about two seconds; the CLI passes ``not --quiet``.
+    section : SectionOptions
+        Which section ψ gives the pattern (:class:`SectionOptions`).
+
+    Raises
+    ------
+    InvalidParameterError
+        ``energy`` not one of ``"cotan"``, ``"fem"``; ``section`` not a :class:`SectionOptions`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.stripes import StripeOptions, stripe_pattern
+    >>> V, F = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], [[0, 1, 2], [1, 3, 2]]
+    >>> res = stripe_pattern(V, F, np.tile([1.0, 0, 0], (4, 1)), frequency=0.25,
+    ...                      options=StripeOptions(energy="fem", orthogonal=True))
+    >>> res.energy, res.orthogonal is not None
+    ('fem', True)
+    """
+
+    energy: str = "cotan"
+    orthogonal: bool = False
+    method: str = "intrinsic"
+    lumped: bool | None = None
+    branch_weight: float = 0.0
+    reorient: bool = False
+    components: str = "all"
+    warn_aliasing: bool = True
+    progress: bool = False
+    section: SectionOptions = field(default_factory=SectionOptions)
+
+    def __post_init__(self) -> None:
+        if self.energy not in ENERGIES:
+            raise InvalidParameterError(f"energy must be one of {ENERGIES}, got {self.energy!r}")
+        if not isinstance(self.section, SectionOptions):
+            raise InvalidParameterError(f"section must be a SectionOptions, got {self.section!r}")
+
+    def replace(self, **changes: Any) -> StripeOptions:
+        """A copy with some fields changed (:func:`dataclasses.replace`; validated again).
+
+        Parameters
+        ----------
+        **changes
+            Field names and their new values.
+
+        Returns
+        -------
+        StripeOptions
+
+        Examples
+        --------
+        >>> StripeOptions().replace(energy="fem").energy
+        'fem'
+        """
+        return dataclasses.replace(self, **changes)
