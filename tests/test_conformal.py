@@ -276,7 +276,7 @@ def test_charge_inside_is_refused_naming_charge_and_vertex(cube):
 def test_bad_parameters(cube):
     with pytest.raises(InvalidParameterError, match="tol"):
         conformal_deformation(cube, None, 0.0, tol=-1.0)
-    with pytest.raises(ShapeError, match="TetMesh"):
+    with pytest.raises(InvalidParameterError, match="either a TetMesh"):  # as_tet_mesh (was ShapeError)
         conformal_deformation(cube, cube.tets, 0.0)
     with pytest.raises(InvalidParameterError, match="bool"):
         conformal_deformation(cube, None, True)

@@ -151,7 +151,7 @@ def test_writer_errors_name_the_file_and_the_array(tmp_path):
     V, F = np.eye(3), np.array([[0, 1, 2]])
     with pytest.raises(ShapeError, match=r"s\.vtu: point data 'h' needs one row per point \(3\)"):
         write_vtu_surface(tmp_path / "s.vtu", V, F, point_data={"h": [1.0, 2.0]})
-    with pytest.raises(ShapeError, match=r"face 0 .* outside 0 \.\. 2"):
+    with pytest.raises(ShapeError, match=r"face 0 .* outside the points \(rows 0 \.\. 2\)"):
         write_vtu_surface(tmp_path / "s.vtu", V, [[0, 1, 3]])
     with pytest.raises(NonFiniteError, match="point 2"):
         write_vtu_surface(tmp_path / "s.vtu", [[0, 0, 0], [1, 0, 0], [0, np.inf, 0]], F)

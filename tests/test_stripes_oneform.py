@@ -237,7 +237,7 @@ def test_bad_frequencies_name_the_vertex():
             stripe_form(mesh, X, n, frequency=1)
     with pytest.raises(InvalidParameterError, match="method"):
         stripe_form(mesh, X, frequency=1, method="cotan")
-    with pytest.raises(TypeError):
+    with pytest.raises(InvalidParameterError, match="stripe_form needs the face array F"):
         stripe_form((mesh.points, mesh.faces), X, frequency=1)
 
 

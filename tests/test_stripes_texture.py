@@ -260,3 +260,24 @@ def test_bad_sections_name_the_vertex():
         tex.evaluate([0, 1], [[1, 0, 0]] * 3)
     with pytest.raises(InvalidParameterError):
         tex.subdivision(0)
+
+
+def test_spinning_rotation_is_the_rotation_form_tie_rule_bit_for_bit():
+    """The texture's ``ω − δ̂`` (δ̂ ∈ [−π, π)) equals ``ω + ξ`` with ξ from bundles._sections.rotation_angles."""
+    from dhlb.stripes.texture import _spinning_rotation
+
+    rng = np.random.default_rng(7)
+    m = 20_000
+    omega = rng.uniform(-4, 4, m)
+    psi_i = rng.normal(size=m) + 1j * rng.normal(size=m)
+    psi_j = rng.normal(size=m) + 1j * rng.normal(size=m)
+    k = m // 4
+    psi_j[:k] = -np.exp(1j * omega[:k]) * psi_i[:k]                       # ties δ̂ = ±π up to rounding
+    omega[k:2 * k] = 0.0
+    psi_j[k:2 * k] = -psi_i[k:2 * k] * rng.integers(1, 4, k)              # exact ties
+    omega[2 * k:2 * k + 100] = np.pi
+    delta = np.angle(np.exp(1j * omega) * psi_i * np.conj(psi_j))
+    assert np.count_nonzero(delta == np.pi) > 100                         # the tie rule is exercised
+    old = omega - np.where(delta >= np.pi, -np.pi, delta)                 # the former inline rule
+    new = omega + _spinning_rotation(omega, psi_i, psi_j)
+    assert np.array_equal(old, new)

@@ -54,7 +54,8 @@ from dhlb.errors import (
     SectionZeroError,
     ShapeError,
 )
-from dhlb.mesh.tet import TetMesh, check_tet_mesh
+from dhlb.mesh.coerce import as_tet_mesh
+from dhlb.mesh.tet import TetMesh, signed_volumes
 
 if TYPE_CHECKING:
     from typing import Any
@@ -248,7 +249,7 @@ def edge_gradients(mesh: TetMesh, u: Any, values: np.ndarray | None = None) -> n
         B = np.stack([P[T[:, 1]] - p0, P[T[:, 2]] - p0, P[T[:, 3]] - p0], axis=1)  # rows e_k
         du = values[T[:, 1:]] - values[T[:, :1]]
         Gt = np.linalg.solve(B, du[:, :, None])[:, :, 0]                           # B G = du
-        vol = np.abs(np.linalg.det(B)) / 6.0
+        vol = np.abs(signed_volumes(P, T))
         N = P.shape[0]
         acc = np.zeros((N, 3))
         wsum = np.bincount(T.ravel(), weights=np.repeat(vol, 4), minlength=N)
@@ -400,7 +401,8 @@ def conformal_deformation(
         Flat tets, folded (inverted) tets, a non-manifold mesh (the element is named), or a
         disconnected mesh (the components are listed).
     InvalidParameterError
-        A singular point of ``u`` (a charge) inside the mesh: the charge and the nearest vertex
+        A TetMesh together with ``T``, or arrays without ``T``; a singular point of ``u``
+        (a charge) inside the mesh: the charge and the nearest vertex
         are named; bad ``tol``.
     SectionZeroError
         The least-energy section vanishes at a vertex (u varies too fast for the mesh).
@@ -428,12 +430,10 @@ def conformal_deformation(
         timings[name] = now - t
         t = now
 
-    if isinstance(P, TetMesh):
-        if T is not None:
-            raise ShapeError("pass either a TetMesh as P (and T=None) or the arrays P and T")
-        mesh, n_rows, rows = P, P.points.shape[0], np.arange(P.points.shape[0])
+    mesh = as_tet_mesh(P, T, orientation=orientation, caller="conformal_deformation")
+    if mesh is P:
+        n_rows, rows = P.points.shape[0], np.arange(P.points.shape[0])
     else:
-        mesh = check_tet_mesh(P, T, orientation=orientation)
         n_rows, rows = np.shape(P)[0], np.asarray(mesh.complex.vertex_labels)
     _check_connected(mesh)
     if isinstance(u, ConformalFactor):

@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._coerce import as_points
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 
 if TYPE_CHECKING:
@@ -34,13 +35,6 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
 __all__ = ["ConformalFactor", "mobius_factor", "point_charge_factor"]
-
-
-def _points(x) -> np.ndarray:
-    X = np.asarray(x, dtype=np.float64)
-    if X.ndim != 2 or X.shape[1] != 3:
-        raise ShapeError(f"points must have shape (m, 3), got {X.shape}")
-    return X
 
 
 class ConformalFactor:
@@ -80,7 +74,7 @@ class ConformalFactor:
 
     def __call__(self, x: ArrayLike) -> np.ndarray:
         """Values ``u(x)`` at ``(m, 3)`` points."""
-        return np.asarray(self._value(_points(x)), dtype=np.float64)
+        return np.asarray(self._value(as_points(x, "points", finite=False)), dtype=np.float64)
 
     def gradient(self, x: ArrayLike) -> np.ndarray:
         """``grad u`` at ``(m, 3)`` points, shape ``(m, 3)``.
@@ -90,7 +84,7 @@ class ConformalFactor:
         >>> mobius_factor((0.0, 0.0, 0.0), 1.0).gradient([[2.0, 0.0, 0.0]]).tolist()   # −2 r/|r|²
         [[-1.0, -0.0, -0.0]]
         """
-        return np.asarray(self._gradient(_points(x)), dtype=np.float64)
+        return np.asarray(self._gradient(as_points(x, "points", finite=False)), dtype=np.float64)
 
     def __mul__(self, s: float) -> ConformalFactor:
         if not (np.isscalar(s) and np.isfinite(s)):

@@ -2,27 +2,11 @@
 
 from __future__ import annotations
 
-import numbers
 from itertools import combinations, permutations
 
 import numpy as np
 
-from dhlb.errors import InvalidParameterError
 from dhlb.topology.complex import SimplicialComplex
-
-
-def check_int(value, name: str, minimum: int, why: str = "") -> int:
-    """``value`` as a Python int, or :class:`InvalidParameterError` if not an integer ``>= minimum``.
-
-    ``why`` is appended to the message of a too-small value.
-    """
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
-        raise InvalidParameterError(f"{name} must be an integer, got {value!r} ({type(value).__name__})")
-    value = int(value)
-    if value < minimum:
-        reason = f"; {why}" if why else ""
-        raise InvalidParameterError(f"{name} must be an integer >= {minimum}, got {value}{reason}")
-    return value
 
 
 def as_complex(X, name: str = "X") -> SimplicialComplex:

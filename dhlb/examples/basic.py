@@ -7,7 +7,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.examples._util import as_complex, check_int, from_blocks
+from dhlb._coerce import check_int
+from dhlb.examples._util import as_complex, from_blocks
 from dhlb.topology.complex import SimplicialComplex
 
 if TYPE_CHECKING:

@@ -7,8 +7,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._coerce import check_int
 from dhlb.errors import InvalidParameterError
-from dhlb.examples._util import check_int, kuhn_paths
+from dhlb.examples._util import kuhn_paths
 from dhlb.topology.complex import SimplicialComplex
 
 if TYPE_CHECKING:
@@ -19,14 +20,14 @@ __all__ = ["cube_nd", "torus_nd"]
 
 def _cells_per_axis(n: int, m, minimum: int, why: str = "") -> tuple[int, ...]:
     if isinstance(m, numbers.Integral) and not isinstance(m, (bool, np.bool_)):
-        return (check_int(m, "m", minimum, why),) * n
+        return (check_int(m, "m", minimum, why=why),) * n
     try:
         seq = list(m)
     except TypeError:
         raise InvalidParameterError(f"m must be an integer or a sequence of {n} integers, got {m!r}") from None
     if len(seq) != n:
         raise InvalidParameterError(f"m must give one cell count per axis ({n} of them), got {len(seq)}: {seq!r}")
-    return tuple(check_int(v, f"m[{a}]", minimum, why) for a, v in enumerate(seq))
+    return tuple(check_int(v, f"m[{a}]", minimum, why=why) for a, v in enumerate(seq))
 
 
 _PERIODIC_WHY = (

@@ -6,8 +6,9 @@ from math import gcd
 
 import numpy as np
 
+from dhlb._coerce import check_int
 from dhlb.errors import InvalidParameterError
-from dhlb.examples._util import check_int, kuhn_paths, shuffle_paths
+from dhlb.examples._util import kuhn_paths, shuffle_paths
 from dhlb.topology.complex import SimplicialComplex
 
 __all__ = ["lens_space", "projective_space"]
@@ -91,9 +92,7 @@ def lens_space(p: int, q: int = 1) -> SimplicialComplex:
     ((33, 195, 324, 162), 0)
     """
     p = check_int(p, "p", 1)
-    if isinstance(q, (bool, np.bool_)) or not isinstance(q, (int, np.integer)):
-        raise InvalidParameterError(f"q must be an integer, got {q!r}")
-    q = int(q)
+    q = check_int(q, "q")
     if gcd(p, q) != 1:
         raise InvalidParameterError(
             f"L(p, q) needs gcd(p, q) = 1, got p = {p}, q = {q} (gcd {gcd(p, q)}); the Z/p action would not be free"

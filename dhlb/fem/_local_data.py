@@ -15,12 +15,12 @@ from math import comb
 
 import numpy as np
 
+from dhlb._coerce import check_int
 from dhlb.errors import (
     CurvatureMismatchError,
     DegenerateSimplexError,
     InvalidConnectionError,
     InvalidMetricError,
-    InvalidParameterError,
     NonFiniteError,
     NotClosedError,
     ShapeError,
@@ -69,9 +69,7 @@ def _t(row) -> tuple:
 
 
 def _check_dim(n) -> int:
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-        raise InvalidParameterError(f"simplex dimension must be an integer >= 1, got {n!r}")
-    return int(n)
+    return check_int(n, "simplex dimension", 1)
 
 
 def dim_from_triangles(t: int, dim=None) -> int:

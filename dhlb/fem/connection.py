@@ -51,6 +51,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import scipy.sparse as sp
 
+from dhlb._coerce import check_int
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.topology import _keys
 from dhlb.topology.structure import subfaces
@@ -277,8 +278,7 @@ def connection_mass(geometry: EuclideanComplex, rank: int = 1, *, lumped: bool =
     >>> connection_mass(geo, 2).diagonal().tolist()
     [1.0, 1.0, 1.0, 1.0, 1.0, 1.0]
     """
-    if isinstance(rank, (bool, np.bool_)) or not isinstance(rank, (int, np.integer)) or rank < 1:
-        raise InvalidParameterError(f"rank must be an integer >= 1, got {rank!r}")
+    rank = check_int(rank, "rank", 1)
     M = geometry.mass_matrix(lumped=bool(lumped))
     if rank == 1:
         return sp.csr_matrix(M)

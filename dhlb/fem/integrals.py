@@ -69,6 +69,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._coerce import check_int
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.fem._expdd import expi_divided_difference as _dd
 from dhlb.fem._local_data import (
@@ -185,8 +186,7 @@ def expi_moment(phases: ArrayLike, powers: ArrayLike) -> np.ndarray:
 def _pair_integral(omega, idx, extra, dim):
     arr, n, batched = parse_omega(omega, dim)
     for v in idx:
-        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not 0 <= v <= n:
-            raise InvalidParameterError(f"local vertex index {v!r} is out of range 0..{n} for an {n}-simplex")
+        check_int(v, "a local vertex index", 0, n, why=f"the simplex has dimension {n}")
     p = np.zeros(n + 1, dtype=int)
     for v in extra:
         p[v] += 1

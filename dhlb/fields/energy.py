@@ -62,8 +62,9 @@ import scipy.sparse as sp
 
 from dhlb.errors import InvalidParameterError
 from dhlb.fem.assembly import bundle_matrices, mass_matrix
+from dhlb.mesh.coerce import as_tangent_bundle
 from dhlb.mesh.surface import SurfaceMesh
-from dhlb.mesh.tangent import TangentBundle, tangent_bundle
+from dhlb.mesh.tangent import TangentBundle
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -119,15 +120,8 @@ def boundary_form(tb: TangentBundle) -> sp.csr_matrix:
 
 
 def _tangent(V, F, n, reorient, components) -> TangentBundle:
-    if isinstance(V, TangentBundle):
-        if F is not None:
-            raise InvalidParameterError("pass either a TangentBundle or the arrays (V, F), not both")
-        if n is not None and int(n) != V.n:
-            return TangentBundle(V.mesh, int(n))
-        return V
-    if isinstance(V, SurfaceMesh):
-        return tangent_bundle(V, F, 1 if n is None else n)
-    return tangent_bundle(V, F, 1 if n is None else n, reorient=reorient, components=components)
+    """:func:`dhlb.mesh.as_tangent_bundle`, positional (kept for dhlb.fields.field and dhlb.fields.prescribed)."""
+    return as_tangent_bundle(V, F, n, reorient=reorient, components=components, caller="dhlb.fields")
 
 
 def energy_matrices(

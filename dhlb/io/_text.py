@@ -16,6 +16,7 @@ from typing import ParamSpec, TypeVar
 import numpy as np
 
 from dhlb.errors import InvalidSimplexError, MeshParseError, NonFiniteError
+from dhlb.mesh import arrays as _mesh_arrays
 
 __all__ = [
     "no_gc",
@@ -324,7 +325,7 @@ def prepare_write(V, F, min_corners: int = 1) -> tuple[np.ndarray, np.ndarray]:
     >>> prepare_write([[0, 0, 0], [1, 0, 0]], [[0, 2]])
     Traceback (most recent call last):
     ...
-    dhlb.errors.InvalidSimplexError: cell indices must lie in 0 .. 1 (the vertex rows), found 0 .. 2
+    dhlb.errors.InvalidSimplexError: cell 0 (0, 2) refers to vertex 2, outside the vertex array (rows 0 .. 1)
     """
     V = np.asarray(V, dtype=np.float64)
     F = np.asarray(F)
@@ -335,11 +336,7 @@ def prepare_write(V, F, min_corners: int = 1) -> tuple[np.ndarray, np.ndarray]:
         raise InvalidSimplexError(f"cell array must have shape (m, k) with k >= {min_corners}, got {F.shape}")
     if F.size and not np.issubdtype(F.dtype, np.integer):
         raise InvalidSimplexError(f"cell array must hold integers, got dtype {F.dtype}")
-    F = F.astype(np.int64)
-    if F.size and (F.min() < 0 or F.max() >= len(V)):
-        raise InvalidSimplexError(
-            f"cell indices must lie in 0 .. {len(V) - 1} (the vertex rows), found {F.min()} .. {F.max()}"
-        )
+    F = _mesh_arrays.check_cells(F, len(V), F.shape[1], "cell", points="the vertex array")
     return V, F
 
 

@@ -40,7 +40,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from dhlb._coerce import as_points, curve_list
 from dhlb.errors import MeshParseError, NonFiniteError, OutputError, ShapeError
+from dhlb.mesh.arrays import check_cells
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -74,19 +76,6 @@ def require_meshio():
 
 
 # ---------------------------------------------------------------------------- checks
-def _points(P, path) -> np.ndarray:
-    try:
-        X = np.asarray(P, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise ShapeError(f"{path}: the points must be an (N, 3) array of numbers ({exc})") from None
-    if X.ndim != 2 or X.shape[1] != 3:
-        raise ShapeError(f"{path}: the points must have shape (N, 3), got {X.shape}")
-    bad = ~np.isfinite(X).all(axis=1)
-    if np.any(bad):
-        raise NonFiniteError(f"{path}: point {int(np.argmax(bad))} is not finite ({X[np.argmax(bad)].tolist()})")
-    return X
-
-
 def _cells(C, k, n_points, what, path) -> np.ndarray:
     A = np.asarray(C)
     if A.size == 0:
@@ -95,11 +84,8 @@ def _cells(C, k, n_points, what, path) -> np.ndarray:
         raise ShapeError(f"{path}: the {what} must have shape (m, {k}), got {A.shape}")
     if not np.issubdtype(A.dtype, np.integer):
         raise ShapeError(f"{path}: the {what} must be integer vertex rows, got dtype {A.dtype}")
-    bad = ((A < 0) | (A >= n_points)).any(axis=1)
-    if np.any(bad):
-        r = int(np.argmax(bad))
-        raise ShapeError(f"{path}: {what[:-1]} {r} {A[r].tolist()} refers to a vertex outside 0 .. {n_points - 1}")
-    return A.astype(np.int64)
+    one = {"faces": "face", "tetrahedra": "tetrahedron"}[what]
+    return check_cells(A, n_points, k, f"{path}: {one}", points="the points", error=ShapeError)
 
 
 def _array(name, value, rows, kind, path) -> np.ndarray:
@@ -235,7 +221,7 @@ def write_vtu_surface(
     ([[0, 1, 2]], [[0.0, 1.0], [2.0, 0.0], [3.0, 0.0]])
     """
     where = os.fspath(path)
-    P = _points(V, where)
+    P = as_points(V, f"{where}: the points")
     T = _cells(F, 3, len(P), "faces", where)
     return _write_mesh(path, P, [("triangle", T)], _data(point_data, len(P), "point", where),
                        _data(cell_data, len(T), "cell", where), field_data, binary)
@@ -284,32 +270,10 @@ def write_vtu_volume(
     ((6, 4), 1.0)
     """
     where = os.fspath(path)
-    X = _points(P, where)
+    X = as_points(P, f"{where}: the points")
     C = _cells(T, 4, len(X), "tetrahedra", where)
     return _write_mesh(path, X, [("tetra", C)], _data(point_data, len(X), "point", where),
                        _data(cell_data, len(C), "cell", where), field_data, binary)
-
-
-def _curve_list(curves, path) -> list:
-    """``[(points (m, 3), closed)]`` from Filaments, Isolines-like objects, arrays or (points, closed) pairs."""
-    if isinstance(curves, np.ndarray) or not isinstance(curves, Sequence):
-        raise ShapeError(f"{path}: curves must be a list of (m, 3) arrays, (points, closed) pairs or Filaments")
-    out = []
-    for k, c in enumerate(curves):
-        if hasattr(c, "points") and hasattr(c, "closed"):
-            pts, closed = c.points, bool(c.closed)
-        elif isinstance(c, tuple) and len(c) == 2 and np.ndim(c[1]) == 0:
-            pts, closed = c[0], bool(c[1])
-        else:
-            pts, closed = c, False
-        X = np.asarray(pts, dtype=np.float64)
-        if X.ndim != 2 or X.shape[1] != 3:
-            raise ShapeError(f"{path}: curve {k} must have shape (m, 3), got {X.shape}")
-        bad = ~np.isfinite(X).all(axis=1)
-        if np.any(bad):
-            raise NonFiniteError(f"{path}: point {int(np.argmax(bad))} of curve {k} is not finite")
-        out.append((X, closed))
-    return out
 
 
 def _segments(curves):
@@ -405,7 +369,7 @@ def write_vtp_curves(path: str | os.PathLike[str], curves: Sequence[Any], *, bin
     ('7', '2', ['0', '1', '2', '3', '0', '4', '5', '6'])
     """
     where = os.fspath(path)
-    C = _curve_list(curves, where)
+    C = curve_list(curves, f"{where}: curves")
     if os.path.splitext(where)[1].lower() == ".vtp":
         text = _vtp_text(C)
 

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._coerce import curve_list
 from dhlb._files import atomic_write
 from dhlb.errors import MeshParseError
 
@@ -30,19 +31,6 @@ if TYPE_CHECKING:
     from collections.abc import Iterable, Sequence
 
 __all__ = ["read_polylines_obj", "read_uv_obj", "write_lines_obj", "write_polylines_obj", "write_polylines_ply"]
-
-
-def _curves(polylines) -> list[tuple[np.ndarray, bool]]:
-    """``(points, closed)`` pairs from Filament-like objects (``.points``, ``.closed``), pairs or open arrays."""
-    out = []
-    for c in polylines:
-        if hasattr(c, "points"):
-            out.append((np.asarray(c.points, dtype=float).reshape(-1, 3), bool(getattr(c, "closed", False))))
-        elif isinstance(c, tuple) and len(c) == 2 and np.ndim(c[1]) == 0:
-            out.append((np.asarray(c[0], dtype=float).reshape(-1, 3), bool(c[1])))
-        else:
-            out.append((np.asarray(c, dtype=float).reshape(-1, 3), False))
-    return out
 
 
 def write_lines_obj(path: str | os.PathLike[str], points, polylines: Iterable[Sequence[int]], *,
@@ -112,7 +100,7 @@ def write_polylines_obj(path: str | os.PathLike[str], polylines, *,
     ...     print(open(p).read().splitlines()[-1])
     l 1 2 3 1
     """
-    curves = _curves(polylines)
+    curves = curve_list(polylines, "polylines")
     points = np.concatenate([P for P, _ in curves]) if curves else np.zeros((0, 3))
     index, base = [], 0
     for P, closed in curves:
@@ -151,7 +139,7 @@ def write_polylines_ply(path: str | os.PathLike[str], polylines) -> str:
     ['0 1', '1 2']
     """
     verts, edges, base = [], [], 0
-    for k, (P, closed) in enumerate(_curves(polylines)):
+    for k, (P, closed) in enumerate(curve_list(polylines, "polylines")):
         m = P.shape[0]
         verts += [f"{x:.17g} {y:.17g} {z:.17g} {k}" for x, y, z in P]
         nxt = list(range(1, m)) + ([0] if closed and m > 2 else [])

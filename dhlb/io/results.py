@@ -164,8 +164,7 @@ def _field_ply(path: str, res: DirectionField, V=None, F=None) -> str:
     if V is None:
         V, F, D, used = mesh.points, mesh.faces, res.directions, np.ones(mesh.n_vertices, bool)
     else:
-        D, used = res.input_directions(), np.zeros(len(V), bool)
-        used[mesh.vertex_labels] = True
+        D, used = res.input_directions(), mesh.input_vertex_used
     props = {f"d{k}{c}": np.where(used, D[:, k, i], 0.0) for k in range(res.n) for i, c in enumerate("xyz")}
     write_ply(path, V, F, binary=True, vertex_properties=props)
     return path

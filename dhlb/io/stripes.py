@@ -45,7 +45,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import InvalidParameterError
+from dhlb._coerce import check_int
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -194,8 +194,7 @@ def write_stripes_obj(
     >>> os.path.basename(side), sum(s.startswith("vt ") for s in lines), lines[-1]
     ('square.json', 6, 'f 2/4 4/5 3/6')
     """
-    if isinstance(expand, bool) or not isinstance(expand, (int, np.integer)) or expand < 0:
-        raise InvalidParameterError(f"expand must be an integer >= 0, got {expand!r}")
+    expand = check_int(expand, "expand", 0)
     mesh = texture.mesh
     if expand:
         P, tri, u, face_of = _expanded(texture, int(expand))

@@ -24,6 +24,7 @@ from dhlb.errors import (
     ShapeError,
 )
 from dhlb.geometry.simplex import SimplexStack
+from dhlb.mesh.arrays import check_cells
 from dhlb.topology.complex import SimplicialComplex
 from dhlb.topology.manifold import interior_pairs, is_consistently_oriented, manifold_report
 
@@ -87,12 +88,7 @@ def parse(V, F) -> tuple[np.ndarray, np.ndarray]:
             r = int(np.argmax(huge))
             raise InvalidSimplexError(f"face {r} (vertices {T[r].tolist()}) refers to a vertex outside V "
                                       f"(rows 0 .. {len(P) - 1})")
-    T = T.astype(np.int64)
-    bad = np.any((T < 0) | (T >= len(P)), axis=1)
-    if np.any(bad):
-        r = int(np.argmax(bad))
-        raise InvalidSimplexError(f"{_face(T, r)} refers to a vertex outside V (rows 0 .. {len(P) - 1})")
-    return P, T
+    return P, check_cells(T.astype(np.int64), len(P), 3, "face")
 
 
 def check_faces(P, T) -> None:

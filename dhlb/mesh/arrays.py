@@ -14,13 +14,14 @@ from dhlb.errors import (
     RaggedInputError,
     UnreferencedVertexWarning,
 )
+from dhlb.mesh.compact import _renumber
 from dhlb.topology._input import parse_rows
 from dhlb.topology.complex import SimplicialComplex
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-__all__ = ["MeshComplex", "mesh_complex"]
+__all__ = ["MeshComplex", "mesh_complex", "check_cells"]
 
 
 class MeshComplex(NamedTuple):
@@ -56,6 +57,54 @@ class MeshComplex(NamedTuple):
     orientation: np.ndarray
 
 
+def check_cells(cells: np.ndarray, n_points: int, k: int, what: str, *, points: str = "V",
+                error: type[Exception] = InvalidSimplexError) -> np.ndarray:
+    """Check that every vertex index of the ``(m, k)`` integer array ``cells`` is a row of the points.
+
+    Parameters
+    ----------
+    cells : (m, k) int array
+        The cells (already an integer array of the right shape).
+    n_points : int
+        The number of points: valid indices are ``0 .. n_points - 1``.
+    k : int
+        The number of vertices per cell (the width of ``cells``; checked).
+    what : str
+        The name of one cell in messages (``"face"``, ``"tetrahedron"``, ``"out.vtu: face"``).
+    points : str, optional
+        The name of the points in messages.
+    error : type, optional
+        The exception raised (a :mod:`dhlb.errors` class; default :class:`InvalidSimplexError`).
+
+    Returns
+    -------
+    (m, k) int array
+        ``cells`` as int64.
+
+    Raises
+    ------
+    InvalidSimplexError
+        (or ``error``) ``cells`` is not ``(m, k)``, or a cell refers to a vertex outside
+        ``0 .. n_points - 1``; the message names the first such cell, its row and the vertex.
+
+    Examples
+    --------
+    >>> check_cells(np.array([[0, 1, 2], [1, 2, 3]]), 3, 3, "face")
+    Traceback (most recent call last):
+    ...
+    dhlb.errors.InvalidSimplexError: face 1 (1, 2, 3) refers to vertex 3, outside V (rows 0 .. 2)
+    """
+    A = np.asarray(cells)
+    if A.ndim != 2 or A.shape[1] != k:
+        raise error(f"the {what}s must have shape (m, {k}), got {A.shape}")
+    out = (A < 0) | (A >= n_points)
+    if out.any():
+        r = int(np.argmax(out.any(axis=1)))
+        raise error(f"{what} {r} {tuple(int(v) for v in A[r])} refers to vertex {int(A[r][out[r]][0])}, "
+                    f"outside {points} (rows 0 .. {n_points - 1})")
+    return A.astype(np.int64, copy=False)
+
+
 def _mesh(cells, V, k: int, what: str) -> MeshComplex:
     try:
         arr = parse_rows(cells, k, what=what)
@@ -78,24 +127,19 @@ def _mesh(cells, V, k: int, what: str) -> MeshComplex:
         bad = ~np.isfinite(pts).all(axis=1)
         if bad.any():
             raise NonFiniteError(f"vertex {int(np.argmax(bad))} has a NaN or infinite coordinate")
-        over = arr >= pts.shape[0]
-        if over.any():
-            r = int(np.argmax(over.any(axis=1)))
-            raise InvalidSimplexError(
-                f"{what} #{r} {tuple(int(v) for v in arr[r])} refers to vertex {int(arr[r][over[r]][0])}, "
-                f"but only {pts.shape[0]} vertices (0 .. {pts.shape[0] - 1}) were given"
-            )
+        check_cells(arr, pts.shape[0], k + 1, what)
     X = SimplicialComplex(arr)
     if pts is not None:
-        if X.n_vertices < pts.shape[0]:
-            unused = np.setdiff1d(np.arange(pts.shape[0]), X.vertex_labels)
+        kept, new = _renumber(pts.shape[0], arr)  # kept == X.vertex_labels
+        if kept.size < pts.shape[0]:
+            unused = np.flatnonzero(new < 0)
             warnings.warn(
                 f"{unused.size} vertices are used by no {what} and were dropped (first: {int(unused[0])}); "
                 "complex.vertex_labels maps the kept vertices to the input rows",
                 UnreferencedVertexWarning,
                 stacklevel=3,
             )
-        pts = pts[X.vertex_labels]
+        pts = pts[kept]
     return MeshComplex(X, pts, X.index(k, arr), SimplicialComplex.orientation_of(arr))
 
 

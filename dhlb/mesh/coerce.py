@@ -118,7 +118,7 @@ def as_tet_mesh(V: ArrayLike | TetMesh, T: ArrayLike | None = None, *, orientati
         Vertex positions, or a mesh made before.
     T : (m, 4) int array, optional
         Tetrahedra (rows of ``V``); None when ``V`` is a mesh.
-    orientation : {"fix", "check"}
+    orientation : {"fix", "require"}
         As for :func:`check_tet_mesh` (arrays only).
     caller : str
         The public function on whose behalf this runs (named in error messages).

@@ -15,6 +15,20 @@ if TYPE_CHECKING:
 __all__ = ["compact_mesh"]
 
 
+def _renumber(n: int, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(kept, new)``: the rows of ``0 .. n - 1`` that some cell uses (increasing), and the renumbering.
+
+    ``new[i]`` is the position of row ``i`` in ``kept`` (``-1`` for a row no cell uses), so that
+    ``kept[new[cells]] == cells``.
+    """
+    used = np.zeros(n, dtype=bool)
+    used[np.asarray(cells, dtype=np.int64).ravel()] = True
+    kept = np.flatnonzero(used).astype(np.int64)
+    new = np.full(n, -1, dtype=np.int64)
+    new[kept] = np.arange(kept.size, dtype=np.int64)
+    return kept, new
+
+
 def compact_mesh(V: ArrayLike, F: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Remove the vertices that no cell references and renumber the cells.
 
@@ -68,11 +82,9 @@ def compact_mesh(V: ArrayLike, F: ArrayLike) -> tuple[np.ndarray, np.ndarray, np
     if F.size and (F.min() < 0 or F.max() >= n):
         bad = int(np.flatnonzero(((F < 0) | (F >= n)).any(axis=1))[0])
         raise InvalidSimplexError(f"cell {bad} {tuple(F[bad].tolist())} refers to a vertex outside 0 .. {n - 1}")
-    used = np.zeros(n, dtype=bool)
-    used[F.ravel()] = True
-    kept = np.flatnonzero(used).astype(np.int64)
+    kept, new = _renumber(n, F)
     if kept.size < n:
-        dropped = np.flatnonzero(~used)
+        dropped = np.flatnonzero(new < 0)
         first = ", ".join(str(int(i)) for i in dropped[:5]) + (", ..." if dropped.size > 5 else "")
         warnings.warn(
             f"{dropped.size} of {n} vertices are used by no cell and were dropped (indices {first}); "
@@ -80,6 +92,4 @@ def compact_mesh(V: ArrayLike, F: ArrayLike) -> tuple[np.ndarray, np.ndarray, np
             UnreferencedVertexWarning,
             stacklevel=2,
         )
-    new = np.full(n, -1, dtype=np.int64)
-    new[kept] = np.arange(kept.size, dtype=np.int64)
     return V[kept], new[F], kept

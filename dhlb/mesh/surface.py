@@ -39,6 +39,7 @@ import numpy as np
 
 from dhlb.errors import DhlbWarning, InvalidParameterError, NonManifoldError, ShapeError, UnreferencedVertexWarning
 from dhlb.mesh import _surface_checks as checks
+from dhlb.mesh.compact import _renumber
 from dhlb.mesh.halfedge import Fans, halfedge_pairs, vertex_fans
 from dhlb.topology.complex import SimplicialComplex
 
@@ -355,7 +356,7 @@ def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, comp
             T, rows = T[keep], rows[keep]
             X = SimplicialComplex(T)
     checks.check_geometry(P, T, rows)
-    unused = np.nonzero(np.bincount(T0.ravel(), minlength=len(P)) == 0)[0]  # not counting dropped components
+    unused = np.flatnonzero(_renumber(len(P), T0)[1] < 0)  # not counting dropped components
     if unused.size:
         warnings.warn(f"{unused.size} vertices of V are used by no face and were dropped (first: "
                       f"{', '.join(str(int(v)) for v in unused[:5])}); mesh.vertex_labels maps compact "
@@ -367,9 +368,8 @@ def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, comp
         checks.check_manifold(X, T, rows)
         flip = checks.orient(X, T, rows, reorient)
         T = np.where(flip[:, None], T[:, [0, 2, 1]], T)
-    compact = np.full(len(P), -1, np.int64)
-    compact[X.vertex_labels] = np.arange(X.vertex_labels.size)
-    mesh = SurfaceMesh(np.ascontiguousarray(P[X.vertex_labels]), compact[T], X, rows, flip, len(P))
+    kept, compact = _renumber(len(P), T)  # kept == X.vertex_labels
+    mesh = SurfaceMesh(np.ascontiguousarray(P[kept]), compact[T], X, rows, flip, len(P))
     try:
         _ = mesh.fans  # one fan per vertex (cached: the tangent bundle uses it)
     except NonManifoldError:

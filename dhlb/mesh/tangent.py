@@ -41,12 +41,12 @@ Examples
 
 from __future__ import annotations
 
-import numbers
 from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._coerce import check_int
 from dhlb.bundles.hermitian import HermitianLineBundle
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.geometry.euclidean import EuclideanComplex
@@ -101,10 +101,9 @@ class TangentBundle:
     def __init__(self, mesh: SurfaceMesh, n: int = 1):
         if not isinstance(mesh, SurfaceMesh):
             raise TypeError(f"mesh must be a SurfaceMesh (see validate_surface), got {type(mesh).__name__}")
-        if isinstance(n, (bool, np.bool_)) or not isinstance(n, numbers.Integral) or n < 1:
-            raise InvalidParameterError(f"n (the number of directions) must be an integer >= 1, got {n!r}")
+        n = check_int(n, "n (the number of directions)", 1)
         self.mesh: SurfaceMesh = mesh
-        self.n = int(n)
+        self.n = n
 
     # ------------------------------------------------------------------ per corner / per face
     @property

@@ -25,28 +25,27 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
+from dhlb._coerce import as_vec3, check_int
 from dhlb.errors import (
     DegenerateSimplexError,
     InconsistentOrientationError,
     InvalidParameterError,
-    NonFiniteError,
     NonManifoldError,
     ResourceLimitError,
     ShapeError,
 )
 from dhlb.examples import cube_nd
-from dhlb.examples._util import check_int
 from dhlb.mesh.arrays import mesh_complex
 from dhlb.topology.complex import SimplicialComplex
-from dhlb.topology.manifold import interior_pairs, manifold_report
+from dhlb.topology.manifold import manifold_report
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
     from numpy.typing import ArrayLike
 
-__all__ = ["TetMesh", "signed_volumes", "check_tet_mesh", "box_tet_mesh", "ball_tet_mesh", "box_memory_estimate",
-           "check_box_memory"]
+__all__ = ["TetMesh", "signed_volumes", "tet_signs", "check_tet_complex", "check_tet_mesh", "box_tet_mesh",
+           "ball_tet_mesh", "box_memory_estimate", "check_box_memory"]
 
 DEFAULT_RTOL = 1e-10
 """A tetrahedron with ``|vol| <= rtol · L³`` (``L`` its longest edge) counts as degenerate."""
@@ -262,23 +261,121 @@ def _check_manifold(X: SimplicialComplex, index: np.ndarray, T_in: np.ndarray) -
     raise err
 
 
+_FACE_SIGN = np.array([1.0, -1.0, 1.0, -1.0])  # incidence of face i (opposite vertex i) of a sorted tet
+
+
+def _triangle_sides(X: SimplicialComplex, sgn: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per triangle of ``X``: the number of tetrahedra containing it, and whether two of them are on one side.
+
+    ``sgn`` is the orientation sign of each canonical (sorted) tetrahedron; neighbours induce opposite
+    orientations on their common triangle exactly when the sum of the induced signs is 0.
+    """
+    F3 = X.faces(3)
+    n2 = X.n_simplices(2)
+    cnt = np.bincount(F3.ravel(), minlength=n2)
+    side = np.bincount(F3.ravel(), weights=(sgn[:, None] * _FACE_SIGN).ravel(), minlength=n2)
+    return cnt, (cnt == 2) & (side != 0)
+
+
+def tet_signs(X: SimplicialComplex, P: ArrayLike) -> np.ndarray:
+    """Orientation sign of every canonical (sorted) tetrahedron of ``X`` placed at ``P``.
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+        A complex of dimension 3.
+    P : (X.n_vertices, 3) float array
+        Positions of the (compact) vertices of ``X``.
+
+    Returns
+    -------
+    (X.n_simplices(3),) float array
+        ``+1`` or ``-1``: the sign of the signed volume of ``X.simplices(3)[t]`` in sorted vertex order.
+
+    Raises
+    ------
+    DegenerateSimplexError
+        A tetrahedron has exactly zero volume (named by its vertex labels).
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1, 2, 3)])
+    >>> tet_signs(X, [[0, 0, 0], [0, 1, 0], [1, 0, 0], [0, 0, 1]]).tolist()
+    [-1.0]
+    """
+    T = X.simplices(3)
+    vol = signed_volumes(P, T)
+    if np.any(vol == 0):
+        t = int(np.argmax(vol == 0))
+        raise DegenerateSimplexError(f"the tetrahedron {tuple(int(v) for v in X.vertex_labels[T[t]])} has zero volume")
+    return np.sign(vol)
+
+
+def check_tet_complex(X: SimplicialComplex, P: ArrayLike, triangles: ArrayLike | None = None) -> np.ndarray:
+    """Check that the triangles of a tetrahedral complex at ``P`` do not fold; return :func:`tet_signs`.
+
+    Parameters
+    ----------
+    X : SimplicialComplex
+        A complex of dimension 3.
+    P : (X.n_vertices, 3) float array
+        Positions of the (compact) vertices of ``X``.
+    triangles : (k,) int array, optional
+        Rows of ``X.simplices(2)`` to check; all triangles if None.
+
+    Returns
+    -------
+    (X.n_simplices(3),) float array
+        The orientation sign of every canonical tetrahedron.
+
+    Raises
+    ------
+    DegenerateSimplexError
+        A tetrahedron has zero volume.
+    NonManifoldError
+        A checked triangle lies in more than two tetrahedra (named by its vertex labels).
+    InconsistentOrientationError
+        The two tetrahedra at a checked triangle lie on the same side of it (the mesh folds over).
+
+    Examples
+    --------
+    >>> from dhlb import SimplicialComplex
+    >>> X = SimplicialComplex([(0, 1, 2, 3), (0, 1, 2, 4)])
+    >>> check_tet_complex(X, [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [0, 0, -1]]).tolist()
+    [1.0, -1.0]
+    >>> try:
+    ...     check_tet_complex(X, [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [0, 0, 2]])
+    ... except InconsistentOrientationError as err:
+    ...     print(str(err)[:60])
+    the two tetrahedra at the triangle (0, 1, 2) lie on the same
+    """
+    sgn = tet_signs(X, P)
+    cnt, fold = _triangle_sides(X, sgn)
+    rows = np.arange(cnt.size) if triangles is None else np.asarray(triangles, dtype=np.int64)
+    name = lambda f: tuple(int(v) for v in X.vertex_labels[X.simplices(2)[f]])  # noqa: E731
+    if np.any(cnt[rows] > 2):
+        f = rows[np.argmax(cnt[rows] > 2)]
+        raise NonManifoldError(f"the triangle {name(f)} lies in {cnt[f]} tetrahedra; filaments need at most 2")
+    if np.any(fold[rows]):
+        f = rows[np.argmax(fold[rows])]
+        raise InconsistentOrientationError(f"the two tetrahedra at the triangle {name(f)} lie on the same side of it "
+                                           "(the mesh folds over); fix the mesh with dhlb.mesh.check_tet_mesh")
+    return sgn
+
+
 def _check_no_folds(X: SimplicialComplex, P: np.ndarray, index: np.ndarray, T_in: np.ndarray) -> None:
     """Neighbouring tetrahedra must induce opposite orientations on their common triangle."""
-    pairs, pos, faces, _ = interior_pairs(X)
-    if pairs.shape[0] == 0:
-        return
-    sgn = np.sign(signed_volumes(P, X.simplices(3)))  # orientation of the canonical (sorted) order
-    induced = sgn[pairs] * np.where(pos % 2 == 0, 1.0, -1.0)
-    bad = induced[:, 0] == induced[:, 1]
-    if np.any(bad):
-        e = int(np.argmax(bad))
+    _, fold = _triangle_sides(X, np.sign(signed_volumes(P, X.simplices(3))))
+    if np.any(fold):
+        f = int(np.argmax(fold))
         row_of = np.empty(index.size, np.int64)
         row_of[index] = np.arange(index.size)
-        a, b = (int(row_of[t]) for t in pairs[e])
-        tri = tuple(int(v) for v in X.vertex_labels[X.simplices(2)[faces[e]]])
+        a, b = (int(row_of[t]) for t in np.nonzero((X.faces(3) == f).any(axis=1))[0])
+        tri = tuple(int(v) for v in X.vertex_labels[X.simplices(2)[f]])
         err = InconsistentOrientationError(
             f"{_name_tet(a, T_in)} and {_name_tet(b, T_in)} lie on the same side of their common "
-            f"triangle {tri}: the mesh folds over there ({int(bad.sum())} such triangles). Remove or "
+            f"triangle {tri}: the mesh folds over there ({int(fold.sum())} such triangles). Remove or "
             "re-mesh the overlapping tetrahedra."
         )
         err.element = (a, b)
@@ -286,17 +383,6 @@ def _check_no_folds(X: SimplicialComplex, P: np.ndarray, index: np.ndarray, T_in
 
 
 # ---------------------------------------------------------------------------- generators
-def _vec3(value, name: str) -> np.ndarray:
-    arr = np.asarray(value, dtype=np.float64)
-    if arr.shape == ():
-        arr = np.full(3, float(arr))
-    if arr.shape != (3,):
-        raise ShapeError(f"{name} must be a number or 3 numbers, got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise NonFiniteError(f"{name} must be finite, got {arr.tolist()}")
-    return arr
-
-
 BOX_BYTES_PER_CELL = 7_000
 """Peak bytes per cell of :func:`box_tet_mesh` (measured 5.8 kB at 52³ cells, rounded up)."""
 VORTEX_BYTES_PER_CELL = 12_000
@@ -310,8 +396,7 @@ def _cells(m) -> tuple[int, int]:
     if len(ms) not in (1, 3):
         raise InvalidParameterError(f"m must be one integer or three, got {m!r}")
     for v in ms:
-        if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, np.integer)) or v < 1:
-            raise InvalidParameterError(f"the number of cells per axis must be an integer >= 1, got {m!r}")
+        check_int(v, "the number of cells per axis", 1)
     cells = int(ms[0]) ** 3 if len(ms) == 1 else int(ms[0]) * int(ms[1]) * int(ms[2])
     return m, cells
 
@@ -421,7 +506,8 @@ def box_tet_mesh(
     ((162, 4), -1.0, 8.0)
     """
     check_box_memory(m)
-    lo, hi = _vec3(lower, "lower"), _vec3(upper, "upper")
+    lo, hi = as_vec3(np.broadcast_to(lower, 3) if np.ndim(lower) == 0 else lower, "lower"), \
+        as_vec3(np.broadcast_to(upper, 3) if np.ndim(upper) == 0 else upper, "upper")
     if np.any(hi <= lo):
         raise InvalidParameterError(f"the box needs lower < upper on every axis, got lower={lo.tolist()}, "
                                     f"upper={hi.tolist()}")
@@ -482,7 +568,7 @@ def ball_tet_mesh(n: int = 4, radius: float = 1.0, center: ArrayLike = (0.0, 0.0
     >>> bool(np.allclose(np.linalg.norm(mesh.points[B], axis=1), 2.0))
     True
     """
-    c = _vec3(center, "center")
+    c = as_vec3(center, "center")
     R = float(radius) if np.isscalar(radius) else np.nan
     if not (np.isfinite(R) and R > 0):
         raise InvalidParameterError(f"radius must be a finite number > 0, got {radius!r}")

@@ -33,7 +33,9 @@ import warnings
 
 import numpy as np
 
-from dhlb.errors import InvalidParameterError, NonManifoldError, ShapeError, UnreferencedVertexWarning
+from dhlb._coerce import as_points, check_int
+from dhlb.errors import InvalidParameterError, NonManifoldError, UnreferencedVertexWarning
+from dhlb.mesh.compact import _renumber
 from dhlb.mesh.tet import TetMesh, check_tet_mesh
 
 __all__ = ["available", "backend_version", "tetrahedralize"]
@@ -120,9 +122,7 @@ def _scratch_directory():
 def _closed_surface(V, F) -> tuple[np.ndarray, np.ndarray]:
     from dhlb.mesh.arrays import mesh_complex
 
-    Vin = np.asarray(V, dtype=np.float64)
-    if Vin.ndim != 2 or Vin.shape[1] != 3:
-        raise ShapeError(f"V must have shape (n, 3), got {Vin.shape}")
+    Vin = as_points(V, "V", finite=False)  # finiteness: mesh_complex names the vertex
     with warnings.catch_warnings():  # vertices no triangle uses are dropped below, silently
         warnings.simplefilter("ignore", UnreferencedVertexWarning)
         mc = mesh_complex(Vin, F, dim=2)  # parses F, checks finiteness and ranges (names the row)
@@ -183,17 +183,14 @@ def tetrahedralize(V, F, *, edge_length=None, edge_length_fac: float = 0.05, eps
         raise InvalidParameterError(f"edge_length must be a finite number > 0, got {edge_length!r}")
     if not (np.isfinite(epsilon) and epsilon > 0):
         raise InvalidParameterError(f"epsilon must be a finite number > 0, got {epsilon!r}")
-    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 0:
-        raise InvalidParameterError(f"threads must be an integer >= 0, got {threads!r}")
+    threads = check_int(threads, "threads", 0)
     call, _ = _backend()
     with _scratch_directory():
         P, T = call(np.ascontiguousarray(Vs), np.ascontiguousarray(Fs, dtype=np.uint32), edge_length_fac,
                     0.0 if edge_length is None else edge_length, epsilon, optimize, threads)
     P = np.asarray(P, dtype=np.float64)
     T = np.asarray(T, dtype=np.int64)
-    used = np.zeros(P.shape[0], bool)
-    used[T.ravel()] = True
-    if not used.all():  # drop vertices of the background mesh that no tetrahedron uses
-        new = np.cumsum(used) - 1
-        P, T = P[used], new[T]
+    kept, new = _renumber(P.shape[0], T)
+    if kept.size < P.shape[0]:  # drop vertices of the background mesh that no tetrahedron uses
+        P, T = P[kept], new[T]
     return check_tet_mesh(P, T)

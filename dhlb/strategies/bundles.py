@@ -18,6 +18,7 @@ import numpy as np
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
+from dhlb._coerce import check_int
 from dhlb.errors import InvalidParameterError
 from dhlb.strategies.complexes import Known, closed_surfaces, simplicial_complexes
 from dhlb.topology.complex import SimplicialComplex
@@ -134,8 +135,7 @@ def cochains(X=None, k: int = 1, coefficients: str = "R", *, exact: bool = False
     """
     if coefficients not in _GROUPS:
         raise InvalidParameterError(f"coefficients must be one of {sorted(_GROUPS)}, got {coefficients!r}")
-    if isinstance(k, bool) or not isinstance(k, int) or k < 0:
-        raise InvalidParameterError(f"k must be a non-negative integer, got {k!r}")
+    k = check_int(k, "k", 0)
     Xs = _complex_strategy(X, simplicial_complexes(max_dim=3))
     return Xs.flatmap(lambda Y: _cochain(Y, k, coefficients, exact))
 
@@ -278,8 +278,7 @@ def hermitian_line_bundles(X=None, curvature: str = "any", degree: int | None = 
     if curvature not in ("any", "flat"):
         raise InvalidParameterError(f"curvature must be 'any' or 'flat', got {curvature!r}")
     if degree is not None:
-        if isinstance(degree, bool) or not isinstance(degree, (int, np.integer)):
-            raise InvalidParameterError(f"degree must be an integer or None, got {degree!r}")
+        degree = check_int(degree, "degree")
         if curvature == "flat" and degree != 0:
             raise InvalidParameterError(f"a flat bundle has degree 0, but degree={degree} was asked for")
     if degree is not None:
@@ -425,8 +424,8 @@ def vector_bundles(X=None, rank: int | None = None, field="C", *, metric: bool =
     >>> dual_of_dual()
     """
     f = _parse_field(field)
-    if rank is not None and (isinstance(rank, bool) or not isinstance(rank, (int, np.integer)) or rank < 1):
-        raise InvalidParameterError(f"rank must be a positive integer or None, got {rank!r}")
+    if rank is not None:
+        rank = check_int(rank, "rank", 1)
     if metric and isinstance(f, tuple):
         raise InvalidParameterError("metric=True needs field 'R' or 'C' (no inner products over GF(p))")
     default = st.one_of(closed_surfaces(max_moves=2), simplicial_complexes(max_dim=3)).map(_unwrap)

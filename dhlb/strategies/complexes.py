@@ -15,6 +15,7 @@ from functools import cached_property
 
 from hypothesis import strategies as st
 
+from dhlb._coerce import check_int
 from dhlb.errors import InvalidParameterError
 from dhlb.strategies import _seeds as sd
 from dhlb.topology.complex import SimplicialComplex
@@ -109,12 +110,6 @@ class Known:
 
 
 # ---------------------------------------------------------------------------- basic strategies
-def _check_int(name: str, value, low: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < low:
-        raise InvalidParameterError(f"{name} must be an integer >= {low}, got {value!r}")
-    return value
-
-
 @st.composite
 def relabelings(draw, simplices, max_label: int = 60):
     """The same complex with its vertices renamed by a random injective map into ``0 .. max_label``.
@@ -249,10 +244,10 @@ def simplicial_complexes(max_dim: int = 4, max_vertices: int = 8, min_simplices:
     ...     assert X.euler_characteristic == sum((-1) ** k * n for k, n in enumerate(X.counts))
     >>> euler_is_alternating_sum()
     """
-    _check_int("max_dim", max_dim, 0)
-    _check_int("max_vertices", max_vertices, 1)
-    _check_int("min_simplices", min_simplices, 1)
-    _check_int("max_simplices", max_simplices, 1)
+    check_int(max_dim, "max_dim", 0)
+    check_int(max_vertices, "max_vertices", 1)
+    check_int(min_simplices, "min_simplices", 1)
+    check_int(max_simplices, "max_simplices", 1)
     if max_simplices < min_simplices:
         raise InvalidParameterError(f"max_simplices ({max_simplices}) < min_simplices ({min_simplices})")
     return simplex_lists(max_vertices=max_vertices, max_dim=max_dim, min_size=min_simplices,
@@ -462,7 +457,7 @@ def closed_surfaces(orientable: bool | None = None, max_moves: int = 6, names=No
     ...     assert k.homology[1][1] == (2,)             # H_1 has Z/2 torsion
     >>> check()
     """
-    _check_int("max_moves", max_moves, 0)
+    check_int(max_moves, "max_moves", 0)
     seeds = _select(2, names, orientable, _legacy)
     label = 200 if _legacy else (lambda s: 3 * len({v for t in s for v in t}))
     return st.sampled_from(seeds).flatmap(
@@ -514,7 +509,7 @@ def closed_manifolds(dim: int, max_moves: int = 3, names=None, orientable: bool 
     """
     if isinstance(dim, bool) or dim not in (1, 2, 3, 4):
         raise InvalidParameterError(f"dim must be 1, 2, 3 or 4, got {dim!r}")
-    _check_int("max_moves", max_moves, 0)
+    check_int(max_moves, "max_moves", 0)
     seeds = _select(dim, names, orientable, _legacy)
     label = (lambda s: 10 * len(s)) if _legacy else (lambda s: 3 * len({v for t in s for v in t}))
     return st.sampled_from(seeds).flatmap(lambda s: _moved(s, max_moves, ("edge", "face"), label))
@@ -555,8 +550,8 @@ def balls(dim: int, max_moves: int = 4, *, _legacy: bool = False) -> st.SearchSt
     ...     assert k.complex.euler_characteristic == 1 and k.homology[0] == (1, ())
     >>> check()
     """
-    dim = _check_int("dim", dim, 1)
-    _check_int("max_moves", max_moves, 0)
+    dim = check_int(dim, "dim", 1)
+    check_int(max_moves, "max_moves", 0)
     hom = ((1, ()),) + ((0, ()),) * dim
     seeds = [_Seed(f"simplex({dim})", f"B^{dim}", lambda: sd.ball(dim), 1, True, hom),
              _Seed(f"kuhn({dim}-cube)", f"B^{dim}", lambda: sd.kuhn_cubes((1,) * dim), 1, True, hom),

@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 from hypothesis import strategies as st
 
+from dhlb._coerce import check_int
 from dhlb.errors import InvalidParameterError
 
 __all__ = ["surface_meshes"]
@@ -192,13 +193,11 @@ def surface_meshes(genus: int | None = None, min_faces: int = 1, max_faces: int 
     ...     assert validate_surface(V, F).euler_characteristic == 2 - 2 * g
     >>> genus_from_euler()
     """
-    for name, val in (("min_faces", min_faces), ("max_faces", max_faces)):
-        if isinstance(val, bool) or not isinstance(val, (int, np.integer)) or val < 0:
-            raise InvalidParameterError(f"{name} must be a non-negative integer, got {val!r}")
+    min_faces, max_faces = check_int(min_faces, "min_faces", 0), check_int(max_faces, "max_faces", 0)
     if max_faces < min_faces:
         raise InvalidParameterError(f"max_faces ({max_faces}) < min_faces ({min_faces})")
-    if genus is not None and (isinstance(genus, bool) or not isinstance(genus, (int, np.integer)) or genus < 0):
-        raise InvalidParameterError(f"genus must be a non-negative integer or None, got {genus!r}")
+    if genus is not None:
+        genus = check_int(genus, "genus", 0)
     genera = [int(genus)] if genus is not None else [0, 1, 2]
     genera = [g for g in genera if _options(g, int(min_faces), int(max_faces))]
     if not genera:

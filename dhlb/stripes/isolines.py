@@ -35,6 +35,7 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
+from dhlb._coerce import check_int
 from dhlb.errors import InvalidParameterError, NonFiniteError, ResourceLimitError, format_bytes
 
 if TYPE_CHECKING:
@@ -165,9 +166,7 @@ def isoline_cost(texture: StripeTexture, level: float = 0.0, *, refine: int = 8)
 
 
 def _check_refine(refine):
-    if isinstance(refine, (bool, np.bool_)) or not isinstance(refine, (int, np.integer)) or not 1 <= refine <= 64:
-        raise InvalidParameterError(f"refine must be an integer between 1 and 64, got {refine!r}")
-    return int(refine)
+    return check_int(refine, "refine", 1, 64)
 
 
 def _march(sub, levels, corners):

@@ -52,16 +52,17 @@ Examples
 
 from __future__ import annotations
 
-import numbers
 import warnings
 from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._coerce import check_int
 from dhlb.bundles.hermitian import HermitianLineBundle
 from dhlb.bundles.vector_bundle import VectorBundle
 from dhlb.errors import DhlbWarning, InvalidConnectionError, InvalidParameterError
+from dhlb.mesh.coerce import as_tangent_bundle
 from dhlb.mesh.surface import SurfaceMesh
 from dhlb.mesh.tangent import TangentBundle
 from dhlb.stripes._double_cover import DoubleCover
@@ -291,13 +292,12 @@ def stripe_form(
 
     Raises
     ------
-    TypeError
-        ``surface`` is neither a :class:`~dhlb.mesh.SurfaceMesh` nor a :class:`~dhlb.mesh.TangentBundle`.
     ShapeError, NonFiniteError
         Wrong shapes; NaN/inf directions or frequencies (naming the vertex).
     SectionZeroError
         A zero direction, or one normal to the surface (naming the vertex).
     InvalidParameterError
+        ``surface`` is neither a :class:`~dhlb.mesh.SurfaceMesh` nor a :class:`~dhlb.mesh.TangentBundle`;
         n not in {1, 2}; a non-positive frequency or spacing (naming the vertex); both or neither of
         ``frequency`` / ``spacing``; an unknown method.
 
@@ -318,15 +318,8 @@ def stripe_form(
     >>> ((form.omega / np.pi).round(6) + 0.0).tolist()    # ν ⟨e, X⟩ on the edges 01 02 12 13 23, ν = 2π/4
     [0.5, 0.0, -0.5, 0.0, 0.5]
     """
-    if isinstance(surface, TangentBundle):
-        tb = surface if surface.n == 1 else TangentBundle(surface.mesh, 1)
-    elif isinstance(surface, SurfaceMesh):
-        tb = TangentBundle(surface, 1)
-    else:
-        raise TypeError("surface must be a SurfaceMesh (dhlb.mesh.validate_surface) or a TangentBundle, "
-                        f"got {type(surface).__name__}")
-    if isinstance(n, (bool, np.bool_)) or not isinstance(n, numbers.Integral) or n not in (1, 2):
-        raise InvalidParameterError(f"n must be 1 (vector field) or 2 (line field), got {n!r}")
+    tb = as_tangent_bundle(surface, None, 1, caller="stripe_form")
+    n = check_int(n, "n", 1, 2, why="1 is a vector field, 2 a line field")
     if method not in ("intrinsic", "extrinsic"):
         raise InvalidParameterError(f"method must be 'intrinsic' or 'extrinsic', got {method!r}")
     if (frequency is None) == (spacing is None):

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dhlb._coerce import check_int
 from dhlb.errors import InvalidParameterError
 
 __all__ = ["SteppedTube", "stepped_tube"]
@@ -175,9 +176,7 @@ def stepped_tube(
     r = np.asarray(radii, dtype=float).reshape(-1)
     if r.size == 0 or not np.all(np.isfinite(r) & (r > 0)):
         raise InvalidParameterError(f"radii must be positive numbers, got {radii!r}")
-    for name, v, low, high in (("stripes", stripes, 1, 10_000), ("around", around, 8, 100_000)):
-        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not low <= v <= high:
-            raise InvalidParameterError(f"{name} must be an integer between {low} and {high}, got {v!r}")
+    stripes, around = check_int(stripes, "stripes", 1, 10_000), check_int(around, "around", 8, 100_000)
     for name, v in (("level_length", level_length), ("transition_length", transition_length)):
         if not (np.isfinite(v) and v > 0):
             raise InvalidParameterError(f"{name} must be a positive number, got {v!r}")
@@ -186,8 +185,7 @@ def stepped_tube(
     L = r.size * level_length + (r.size - 1) * transition_length
     if rows is None:
         rows = max(2, round(L / (2 * np.pi * float(r.mean()) / around)))
-    if isinstance(rows, bool) or not isinstance(rows, (int, np.integer)) or not 2 <= rows <= 100_000:
-        raise InvalidParameterError(f"rows must be an integer between 2 and 100000, got {rows!r}")
+    rows = check_int(rows, "rows", 2, 100_000)
     if (rows + 1) * around > 20_000_000:
         raise InvalidParameterError(f"rows × around = {(rows + 1) * around} vertices is too many (at most 2e7)")
     starts = np.arange(r.size) * (level_length + transition_length)

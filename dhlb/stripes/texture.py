@@ -40,6 +40,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._coerce import check_int
+from dhlb.bundles._sections import rotation_angles
 from dhlb.errors import InvalidParameterError, NonFiniteError, SectionZeroError, ShapeError
 
 if TYPE_CHECKING:
@@ -99,6 +101,22 @@ def larg(n: int | ArrayLike, bary: ArrayLike) -> np.ndarray:
     tau = np.clip(np.divide(tb - tmin, rho, out=np.zeros_like(rho), where=ok), 0.0, 1.0)
     val = TWO_PI / 3.0 * n * (c + tau)
     return np.where(ok | (n == 0), val, np.nan)
+
+
+def _spinning_rotation(omega: np.ndarray, psi_i: np.ndarray, psi_j: np.ndarray) -> np.ndarray:
+    """``ξ = −δ̂ = arg(ψ_j / (e^{iω} ψ_i)) ∈ (−π, π]`` per edge: the rotation form, tie rule of the conventions.
+
+    Computed by :func:`dhlb.bundles._sections.rotation_angles` on the conjugate pair, which makes it
+    bit-for-bit ``−δ̂`` with ``δ̂ = arg(e^{iω} ψ_i ψ̄_j) ∈ [−π, π)`` (tests/test_stripes_texture.py).
+
+    Examples
+    --------
+    >>> _spinning_rotation(np.zeros(2), np.array([1, 1]), np.array([1j, -1])).round(6).tolist()
+    [1.570796, 3.141593]
+    """
+    m = len(omega)
+    pairs = np.column_stack([np.conj(psi_j), np.conj(np.exp(1j * omega) * psi_i)]).ravel()
+    return rotation_angles(np.arange(2 * m).reshape(m, 2), pairs, np.ones(m))
 
 
 @dataclass(frozen=True)
@@ -187,8 +205,7 @@ class StripeTexture:
         E = self.mesh.complex.simplices(1)
         s = form.edge_sign
         pj = np.where(s > 0, psi[E[:, 1]], np.conj(psi[E[:, 1]]))
-        delta = np.angle(np.exp(1j * form.omega) * psi[E[:, 0]] * np.conj(pj))
-        self.spinning = form.omega - np.where(delta >= np.pi, -np.pi, delta)
+        self.spinning = form.omega + _spinning_rotation(form.omega, psi[E[:, 0]], pj)
         side = form.lift_halfedges(self.spinning)
         a0 = np.angle(psi[self.mesh.faces[:, 0]])
         walk = np.cumsum(np.column_stack([a0, side]), axis=1)  # α_i, α_j, α_k, α_l
@@ -277,8 +294,7 @@ class StripeTexture:
     # ------------------------------------------------------------------ subdivision
     def subdivision(self, refine: int = 8) -> Subdivision:
         """Sub-triangles with corner values on which α is linear (exactly, except inside zero faces)."""
-        if isinstance(refine, bool) or not isinstance(refine, (int, np.integer)) or refine < 1:
-            raise InvalidParameterError(f"refine must be an integer >= 1, got {refine!r}")
+        refine = check_int(refine, "refine", 1)
         eye = np.eye(3)
         mid = np.full(3, 1.0 / 3.0)
         parts = []

@@ -10,6 +10,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._coerce import as_points
+from dhlb.bundles._sections import rotation_angles
 from dhlb.errors import (
     InvalidParameterError,
     NonFiniteError,
@@ -35,10 +37,8 @@ def _check_inputs(bundle, section, points):
     if X.dim != 3:
         raise NonManifoldError("filaments are traced in tetrahedral meshes; the bundle's complex has "
                                f"dimension {X.dim}")
-    P = np.asarray(points, dtype=np.float64)
-    if P.shape != (X.n_vertices, 3):
-        raise ShapeError(f"points must have shape ({X.n_vertices}, 3) (one per vertex of the complex), got {P.shape}")
-    if not np.isfinite(P).all():
+    P = as_points(points, "points (one per vertex of the complex)", n=X.n_vertices, finite=False)
+    if not np.isfinite(P).all():  # named by vertex label, not by row
         v = int(np.argmax(~np.isfinite(P).all(axis=1)))
         raise NonFiniteError(f"the position of vertex {int(X.vertex_labels[v])} is not finite")
     z = np.asarray(section)
@@ -137,13 +137,10 @@ def face_zeros(
     if placement == "vertex":
         w = np.stack([zi, np.conj(r[fe[:, 2]]) * zj, np.conj(r[fe[:, 1]]) * zk], axis=1)
     else:
-        def xi(a, b, e):  # rotation form on the canonical edge a < b, tie rule +π
-            x = np.angle(b * np.conj(r[e] * a))
-            return np.where(x <= -np.pi, np.pi, x)
-
-        third = bundle.curvature[rows] / 3
-        t_ij = xi(zi, zj, fe[:, 2]) + third
-        t_jk = xi(zj, zk, fe[:, 0]) + third
+        E1 = X.simplices(1)
+        third = bundle.curvature[rows] / 3  # rotation form on the edges ij, jk (canonical, tie rule +π)
+        t_ij = rotation_angles(E1[fe[:, 2]], z, r[fe[:, 2]]) + third
+        t_jk = rotation_angles(E1[fe[:, 0]], z, r[fe[:, 0]]) + third
         w = np.stack([np.abs(zi), np.abs(zj) * np.exp(1j * t_ij), np.abs(zk) * np.exp(1j * (t_ij + t_jk))], axis=1)
     w = w / np.abs(w).max(axis=1, keepdims=True)
     lam = np.stack([np.imag(np.conj(w[:, 1]) * w[:, 2]), np.imag(np.conj(w[:, 2]) * w[:, 0]),

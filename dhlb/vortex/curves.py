@@ -16,8 +16,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
-from dhlb.examples._util import check_int
+from dhlb._coerce import as_vec3, check_int
+from dhlb.errors import InvalidParameterError
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -33,15 +33,6 @@ def _positive(value, name: str) -> float:
     if not (np.isfinite(v) and v > 0):
         raise InvalidParameterError(f"{name} must be a finite number > 0, got {value!r}")
     return v
-
-
-def _vec(value, name: str) -> np.ndarray:
-    a = np.asarray(value, dtype=np.float64)
-    if a.shape != (3,):
-        raise ShapeError(f"{name} must be 3 numbers, got shape {a.shape}")
-    if not np.isfinite(a).all():
-        raise NonFiniteError(f"{name} must be finite, got {a.tolist()}")
-    return a
 
 
 def vortex_ring(
@@ -82,7 +73,7 @@ def vortex_ring(
     [[2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [-2.0, 0.0, 0.0], [0.0, -2.0, 0.0]]
     """
     R = _positive(radius, "radius")
-    c, nrm = _vec(center, "center"), _vec(normal, "normal")
+    c, nrm = as_vec3(center, "center"), as_vec3(normal, "normal")
     n = check_int(n, "n", 3)
     length = np.linalg.norm(nrm)
     if length == 0:

@@ -63,12 +63,10 @@ from scipy.sparse.csgraph import connected_components
 
 from dhlb.errors import (
     CurvatureMismatchError,
-    DegenerateSimplexError,
     DhlbWarning,
-    InconsistentOrientationError,
     InvalidParameterError,
-    NonManifoldError,
 )
+from dhlb.mesh.tet import check_tet_complex
 from dhlb.vortex._face_zeros import _check_inputs, face_zeros
 
 if TYPE_CHECKING:
@@ -183,16 +181,6 @@ class FilamentSet:
 
 
 # ---------------------------------------------------------------------------- input checks
-def _tet_signs(X, P) -> np.ndarray:
-    T = X.simplices(3)
-    e = P[T[:, 1:]] - P[T[:, :1]]
-    vol = np.einsum("ij,ij->i", e[:, 0], np.cross(e[:, 1], e[:, 2]))
-    if np.any(vol == 0):
-        t = int(np.argmax(vol == 0))
-        raise DegenerateSimplexError(f"the tetrahedron {tuple(int(v) for v in X.vertex_labels[T[t]])} has zero volume")
-    return np.sign(vol)
-
-
 def _pair_ambiguous(flux_t, faces_t, start, face_pos):
     """(entry node, exit node) pairs in one tetrahedron, matching entries to exits by distance."""
     ins, outs = [], []
@@ -309,28 +297,17 @@ def extract_filaments(
     ind = index_form(bundle, z)
     ties = np.nonzero(rotation_form(bundle, z) == np.pi)[0]
     F3 = X.faces(3)
-    flux = _tet_signs(X, P)[:, None] * np.array([1, -1, 1, -1]) * ind[F3]
+    crossed = np.nonzero(ind)[0]
+    flux = check_tet_complex(X, P, crossed)[:, None] * np.array([1, -1, 1, -1]) * ind[F3]
     bad = flux.sum(axis=1) != 0
     if np.any(bad):
         t = int(np.argmax(bad))
         tet = tuple(int(v) for v in X.vertex_labels[X.simplices(3)[t]])
         raise CurvatureMismatchError(f"the index fluxes of the tetrahedron {tet} sum to {int(flux[t].sum())}, "
                                      "not 0: the bundle's curvature is not closed there")
-    crossed = np.nonzero(ind)[0]
     if crossed.size == 0:
         return FilamentSet((), ind, tie_edges=ties)
     n2 = X.n_simplices(2)
-    cnt = np.bincount(F3.ravel(), minlength=n2)
-    fsum = np.bincount(F3.ravel(), weights=flux.ravel(), minlength=n2)
-    name = lambda f: tuple(int(v) for v in X.vertex_labels[X.simplices(2)[f]])  # noqa: E731
-    if np.any(cnt[crossed] > 2):
-        f = crossed[np.argmax(cnt[crossed] > 2)]
-        raise NonManifoldError(f"the triangle {name(f)} lies in {cnt[f]} tetrahedra; filaments need at most 2")
-    badf = (cnt[crossed] == 2) & (fsum[crossed] != 0)
-    if np.any(badf):
-        f = crossed[np.argmax(badf)]
-        raise InconsistentOrientationError(f"the two tetrahedra at the triangle {name(f)} lie on the same side of it "
-                                           "(the mesh folds over); fix the mesh with dhlb.mesh.check_tet_mesh")
     pos, _, clamped, degenerate = face_zeros(bundle, z, P, crossed, placement=placement)
     mult = np.abs(ind[crossed])
     start = np.full(n2, -1, np.int64)

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._coerce import as_points, as_polyline
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 
 if TYPE_CHECKING:
@@ -41,24 +42,6 @@ if TYPE_CHECKING:
 __all__ = ["segment_velocity", "FilamentField", "uniform_flow", "superpose"]
 
 _CHUNK = 1 << 16  # point-segment pairs evaluated at once (~20 temporaries of 0.5 MB; fastest in a scan)
-
-
-def _points(x, name: str = "points") -> np.ndarray:
-    P = np.asarray(x, dtype=np.float64)
-    if P.ndim != 2 or P.shape[1] != 3:
-        raise ShapeError(f"{name} must have shape (m, 3), got {P.shape}")
-    return P
-
-
-def _polyline(curve, closed: bool, i: int) -> np.ndarray:
-    C = np.asarray(curve, dtype=np.float64)
-    if C.ndim != 2 or C.shape[1] != 3 or C.shape[0] < 2:
-        raise ShapeError(f"curve #{i} must be an (n, 3) array of n >= 2 points, got shape {C.shape}")
-    if not np.isfinite(C).all():
-        raise NonFiniteError(f"curve #{i} has a non-finite point (row {int(np.argmax(~np.isfinite(C).all(axis=1)))})")
-    if closed and np.array_equal(C[0], C[-1]):
-        C = C[:-1]
-    return C
 
 
 def _core_square(core_radius) -> float:
@@ -119,8 +102,8 @@ def segment_velocity(
     >>> (u * 2 * np.pi).round(6).tolist()            # Γ/(2π d) around the line
     [[0.0, 1.0, 0.0]]
     """
-    P = _points(x)
-    A, B = _points(q1, "q1"), _points(q2, "q2")
+    P = as_points(x, "points", finite=False)
+    A, B = as_points(q1, "q1", finite=False), as_points(q2, "q2", finite=False)
     if A.shape != B.shape:
         raise ShapeError(f"q1 and q2 must have the same shape, got {A.shape} and {B.shape}")
     a2 = _core_square(core_radius)
@@ -198,12 +181,12 @@ class FilamentField:
         a = float(core_radius)
         q1, q2, g = [], [], []
         for i, (C, c) in enumerate(zip(curves, cl)):
-            C = _polyline(C, bool(c), i)
+            C = as_polyline(C, f"curve #{i}", closed=bool(c))
             nxt = np.roll(C, -1, axis=0) if c else C[1:]
             q1.append(C[:nxt.shape[0]])
             q2.append(nxt)
             g.append(np.full(nxt.shape[0], G[i]))
-        self.curves = [_polyline(C, bool(c), i) for i, (C, c) in enumerate(zip(curves, cl))]
+        self.curves = [as_polyline(C, f"curve #{i}", closed=bool(c)) for i, (C, c) in enumerate(zip(curves, cl))]
         self.closed = cl.copy()
         self.circulation = G.copy()
         self.core_radius = a
@@ -245,7 +228,7 @@ def uniform_flow(u: ArrayLike) -> Callable[[ArrayLike], np.ndarray]:
         raise ShapeError(f"a uniform flow is one finite 3-vector, got {np.asarray(u).tolist()!r}")
 
     def field(x):
-        return np.broadcast_to(U, _points(x).shape).copy()
+        return np.broadcast_to(U, as_points(x, "points", finite=False).shape).copy()
 
     return field
 
@@ -285,7 +268,7 @@ def superpose(
         raise ShapeError(f"weights must be {len(fields)} finite numbers, got {weights!r}")
 
     def field(x):
-        P = _points(x)
+        P = as_points(x, "points", finite=False)
         out = np.zeros_like(P)
         for wk, f in zip(w, fields):
             out += wk * np.asarray(f(P), dtype=np.float64)

@@ -31,7 +31,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import CurveIntersectionError, InvalidParameterError, NonFiniteError, ShapeError
+from dhlb._coerce import as_points, as_polyline
+from dhlb.errors import CurveIntersectionError, InvalidParameterError
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -45,15 +46,8 @@ _CHUNK = 1 << 19
 
 
 def _curve(c, name: str, closed: bool = True) -> np.ndarray:
-    C = np.asarray(c, dtype=np.float64)
-    need = 3 if closed else 2
-    if C.ndim != 2 or C.shape[1] != 3 or C.shape[0] < need:
-        raise ShapeError(f"{name} must be an (n, 3) array of n >= {need} points, got shape {C.shape}")
-    if not np.isfinite(C).all():
-        raise NonFiniteError(f"{name} has a non-finite point (row {int(np.argmax(~np.isfinite(C).all(axis=1)))})")
-    if closed and np.array_equal(C[0], C[-1]):
-        C = C[:-1]
-    return C
+    """A closed polyline needs 3 points, an open one 2."""
+    return as_polyline(c, name, closed=closed, min_points=3 if closed else 2)
 
 
 def _segments(C: np.ndarray, closed: bool) -> tuple[np.ndarray, np.ndarray]:
@@ -138,9 +132,7 @@ def polyline_distance(x: ArrayLike, curve: ArrayLike, *, closed: bool = True) ->
     >>> polyline_distance([[0.5, 1.0, 0.0], [2.0, 0.0, 0.0]], [[0, 0, 0], [1.0, 0, 0]], closed=False).tolist()
     [1.0, 1.0]
     """
-    P = np.asarray(x, dtype=np.float64)
-    if P.ndim != 2 or P.shape[1] != 3:
-        raise ShapeError(f"x must have shape (m, 3), got {P.shape}")
+    P = as_points(x, "x", finite=False)
     C = _curve(curve, "curve", closed)
     A, B = _segments(C, closed)
     E = B - A

@@ -34,7 +34,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._coerce import as_points, check_int
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
+from dhlb.mesh.arrays import check_cells
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -78,8 +80,7 @@ def gauss_legendre(order: int) -> tuple[np.ndarray, np.ndarray]:
     >>> s.round(6).tolist(), w.tolist()
     ([0.211325, 0.788675], [0.5, 0.5])
     """
-    if isinstance(order, (bool, np.bool_)) or not isinstance(order, (int, np.integer)) or order < 1:
-        raise InvalidParameterError(f"the quadrature order must be an integer >= 1, got {order!r}")
+    order = check_int(order, "the quadrature order", 1)
     if order > MAX_ORDER:  # leggauss builds an order x order matrix: 60000 nodes would need 29 GB
         raise InvalidParameterError(f"the quadrature order must be at most {MAX_ORDER} (exact for polynomials of "
                                     f"degree {2 * MAX_ORDER - 1} along an edge), got {order}")
@@ -87,26 +88,12 @@ def gauss_legendre(order: int) -> tuple[np.ndarray, np.ndarray]:
     return (x + 1) / 2, w / 2
 
 
-def _as_points(points) -> np.ndarray:
-    P = np.asarray(points, dtype=np.float64)
-    if P.ndim != 2 or P.shape[1] != 3:
-        raise ShapeError(f"points must have shape (N, 3), got {P.shape}")
-    bad = ~np.isfinite(P).all(axis=1)
-    if np.any(bad):
-        v = int(np.argmax(bad))
-        raise NonFiniteError(f"the position of vertex {v} is not finite: {P[v].tolist()}")
-    return P
-
-
 def _as_edges(edges, N: int) -> np.ndarray:
     E = np.asarray(edges)
     if E.ndim != 2 or E.shape[1] != 2 or not np.issubdtype(E.dtype, np.integer):
         raise ShapeError(f"edges must be an integer array of shape (n_edges, 2), got {E.dtype} array of "
                          f"shape {E.shape}")
-    if E.size and (E.min() < 0 or E.max() >= N):
-        r = int(np.argmax((E < 0).any(axis=1) | (E >= N).any(axis=1)))
-        raise ShapeError(f"edge #{r} {tuple(int(v) for v in E[r])} refers to a vertex outside 0 .. {N - 1}")
-    return E.astype(np.int64)
+    return check_cells(E, N, 2, "edge", points="points", error=ShapeError)
 
 
 def _eval_field(velocity, x: np.ndarray) -> np.ndarray:
@@ -163,7 +150,7 @@ def edge_circulation(
     >>> edge_circulation([[0, 0, 0], [1, 2, 0]], [[0, 1]], uniform_flow([1.0, 1.0, 0.0])).round(12).tolist()
     [3.0]
     """
-    P = _as_points(points)
+    P = as_points(points, "points", item="vertex")
     E = _as_edges(edges, P.shape[0])
     e = P[E[:, 1]] - P[E[:, 0]]
     if callable(velocity):
@@ -255,7 +242,7 @@ def velocity_bundle(
     from dhlb.bundles import HermitianLineBundle
 
     h = _check_hbar(hbar)
-    P = _as_points(points)
+    P = as_points(points, "points", item="vertex")
     if P.shape[0] != X.n_vertices:
         raise ShapeError(f"points must have one row per vertex of the complex ({X.n_vertices}), got {P.shape[0]}")
     w = edge_circulation(P, X.simplices(1), velocity, order=order) / h
