@@ -186,7 +186,10 @@ def expi_moment(phases: ArrayLike, powers: ArrayLike) -> np.ndarray:
 def _pair_integral(omega, idx, extra, dim):
     arr, n, batched = parse_omega(omega, dim)
     for v in idx:
-        check_int(v, "a local vertex index", 0, n, why=f"index out of range for an {n}-simplex")
+        try:
+            check_int(v, "a local vertex index", 0, n)
+        except InvalidParameterError:
+            raise InvalidParameterError(f"local vertex index {v!r} is out of range 0..{n} for an {n}-simplex") from None
     p = np.zeros(n + 1, dtype=int)
     for v in extra:
         p[v] += 1
