@@ -187,7 +187,7 @@ def refuse_overwrite(
 
     Parameters
     ----------
-    output_paths, input_paths : iterable of path or None
+    output_paths, input_paths : iterable of (str or path-like or None)
         The files to be written and the files read.
     role : str
         How the message calls an input ("the input mesh", ...).

@@ -146,7 +146,7 @@ def dirichlet_matrix(bundle: HermitianLineBundle, geometry: EuclideanComplex) ->
 
     Returns
     -------
-    A : (n_vertices, n_vertices) complex scipy.sparse.csr_matrix
+    A : (X.n_vertices, X.n_vertices) complex scipy.sparse.csr_matrix
         Hermitian positive semidefinite, on the vertex-adjacency pattern of the complex.
 
     Raises
@@ -184,9 +184,9 @@ def bundle_matrices(
 
     Returns
     -------
-    A : (n_vertices, n_vertices) complex scipy.sparse.csr_matrix
+    A : (X.n_vertices, X.n_vertices) complex scipy.sparse.csr_matrix
         The Dirichlet matrix, as :func:`dirichlet_matrix`.
-    M : (n_vertices, n_vertices) complex scipy.sparse.csr_matrix
+    M : (X.n_vertices, X.n_vertices) complex scipy.sparse.csr_matrix
         The mass matrix, as :func:`mass_matrix`.
 
     Raises
@@ -218,7 +218,7 @@ def lumped_mass(geometry: EuclideanComplex) -> np.ndarray:
 
     Returns
     -------
-    (n_vertices,) float array
+    (X.n_vertices,) float array
         The lumped mass of each vertex (0 for a vertex of no n-simplex).
 
     Examples

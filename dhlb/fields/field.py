@@ -120,7 +120,7 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
     options : FieldOptions, optional
         Lumped mass, mesh repair (``reorient``, ``components``) and progress reporting
         (:class:`~dhlb.fields.FieldOptions`; default ``FieldOptions()``).
-    solver : SolverOptions or str, optional
+    solver : dhlb.linalg.SolverOptions or str, optional
         Backend and tolerance of the eigen solve or the aligned solve
         (:class:`~dhlb.linalg.SolverOptions`, or a backend name); the default tolerance
         :func:`dhlb.linalg.default_tol` scales with the mesh so that the singularities are those of a

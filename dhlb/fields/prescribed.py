@@ -263,7 +263,7 @@ def prescribed_field(V, F=None, n: int | None = None, singularities=None, *, hol
         uniform if cotan cannot realise the indices; ``res.weights`` says which was used.
     options : FieldOptions, optional
         Mesh repair (``reorient``, ``components``; :class:`~dhlb.fields.FieldOptions`).
-    solver : SolverOptions or str, optional
+    solver : dhlb.linalg.SolverOptions or str, optional
         The backend of :func:`dhlb.fem.solve` (:class:`~dhlb.linalg.SolverOptions`, or a backend name).
     **deprecated
         The keywords ``reorient``, ``components`` (→ ``options``) and ``backend`` (→ ``solver``) of

@@ -172,7 +172,7 @@ def vortex_to_vtu(result: Any, path: str | os.PathLike[str], velocity: Any = Non
     velocity : callable, (n, 3) array or None
         The velocity given to :func:`~dhlb.vortex.vortex_filaments`: a callable is evaluated at the
         mesh points, an array has one row per input vertex. The result does not keep it.
-    filaments : path, "auto" or None
+    filaments : str or path-like, "auto" or None
         Where to write the filaments: ``"auto"`` is ``STEM-filaments.vtp``, None writes none.
     binary : bool
 

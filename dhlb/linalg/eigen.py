@@ -201,7 +201,7 @@ def smallest_eigenpairs(A, M, k: int = 1, *, sigma=None, v0=None, psd: bool = Tr
         are returned, certified by inertia: SuperLU's ``L D Lᴴ`` pivots count the eigenvalues
         below the shift, and the shift is lowered (refactorizing) until ARPACK has found all of
         them.  Direct backends only (SuperLU is used for the inertia).
-    solver : SolverOptions or str, optional
+    solver : dhlb.linalg.SolverOptions or str, optional
         Backend, tolerance (default :func:`default_tol` ``(n)``), ``maxiter``, ``block_size``,
         ``factor_shift`` and ``seed`` (:class:`~dhlb.linalg.SolverOptions`); a string names the
         backend.  With one BLAS thread every backend is bitwise reproducible run to run for a given

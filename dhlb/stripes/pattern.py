@@ -225,7 +225,7 @@ def stripe_pattern(
     options : StripeOptions, optional
         Energy, orthogonal pattern, ω̂ method, mass, mesh repair, aliasing warning, progress and the
         section ψ (:class:`~dhlb.stripes.StripeOptions`, :class:`~dhlb.stripes.SectionOptions`).
-    solver : SolverOptions or str, optional
+    solver : dhlb.linalg.SolverOptions or str, optional
         Backend, tolerance (default 1e-10, the backward error of the eigenpair) and block size of
         :func:`dhlb.fem.smallest_eigenpairs` (:class:`~dhlb.linalg.SolverOptions`, or a backend name).
     **deprecated

@@ -189,7 +189,7 @@ def vortex_filaments(
     options : VortexOptions, optional
         Quadrature ``order``, zero ``placement`` and tet ``orientation`` handling
         (:class:`~dhlb.vortex.VortexOptions`).
-    solver : SolverOptions or str, optional
+    solver : dhlb.linalg.SolverOptions or str, optional
         Backend and tolerance (default :data:`DEFAULT_TOL`) of :func:`dhlb.fem.smallest_eigenpairs`
         (:class:`~dhlb.linalg.SolverOptions`, or a backend name).
     progress : bool
