@@ -25,7 +25,8 @@ __all__ = ["SECTIONS", "UNIT_RTOL", "SectionOptions", "StripeOptions"]
 SECTIONS = ("unit", "eigenvector", "power")
 """The kinds of section ψ a stripe pattern can use (:class:`SectionOptions`)."""
 UNIT_RTOL = 1e-3
-"""Default stall tolerance: stop when the unit energy changed by less than this (relative) in a step."""
+"""Default step tolerance of ``section="unit"``: stop when the iterate moved by less than this (relative,
+norm of diag(M): the RMS phase change in radians) in a step, and less than in the step before."""
 
 
 @dataclass(frozen=True)
@@ -45,13 +46,14 @@ class SectionOptions:
         * ``"power"``: the seed's Algorithm 9, ``iterations`` inverse power steps (default 20) from a
           uniformly random start (``seed``), for reproducing published figures.
     iterations : int, optional
-        ``"unit"``: the maximum number of steps (default 100; 0 = the normalized eigenvector);
+        ``"unit"``: the maximum number of steps (default 30; 0 = the normalized eigenvector);
         ``"power"``: the number of steps (default 20). At most 100000 (one back-solve each).
     seed : int or numpy Generator, optional
         Random start of ``"power"``; for ``"unit"`` the seed of the small phase perturbation of the
         start (default 0, deterministic).
     unit_tol : float
-        ``"unit"`` stops when the unit energy changed by less than this (relative) in one step.
+        ``"unit"`` stops when the iterate moved by less than this in one step (relative, in the norm of
+        ``diag(M)``: the RMS phase change in radians) and less than in the step before.
 
     Raises
     ------
