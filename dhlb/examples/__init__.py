@@ -10,6 +10,8 @@ whose triangulation, vertex labelling and source are stated in its docstring.
 * quotients of spheres: :func:`lens_space`, :func:`projective_space`
 * constructions: :func:`product` (shuffle triangulation), :func:`join`, :func:`cone`,
   :func:`suspension`
+* the one exception, arrays instead of a complex: :func:`fingerprint_pad` (vertex positions,
+  triangles and the core / delta singularities of a loop fingerprint, seed part 2, Fig. 5)
 * (deprecated) ``surface(F, V)``, ``tet_mesh(T, V)``, ``MeshComplex``: now
   :func:`dhlb.mesh.mesh_complex` ``(V, cells)``
 
@@ -22,6 +24,7 @@ Examples
 """
 
 from dhlb.examples.basic import ball, cone, join, simplex, sphere, suspension
+from dhlb.examples.fingerprint import fingerprint_pad
 from dhlb.examples.grids import cube_nd, torus_nd
 from dhlb.examples.products import product
 from dhlb.examples.quotients import lens_space, projective_space
@@ -44,6 +47,7 @@ __all__ = [
     "lens_space",
     "projective_space",
     "product",
+    "fingerprint_pad",
 ]
 
 
