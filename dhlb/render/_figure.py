@@ -24,7 +24,7 @@ import numpy as np
 
 from dhlb.errors import InvalidParameterError
 
-__all__ = ["Camera", "ConformalStyle", "FieldStyle", "FilamentStyle", "StripeStyle", "finish_figure"]
+__all__ = ["Camera", "ConformalStyle", "FieldStyle", "FilamentStyle", "StripeStyle", "finish_figure", "up_vector"]
 
 _CAMERA = ("view", "up", "size", "dpi")   # the keywords of dhlb 0.1 that moved into Camera
 
@@ -55,12 +55,20 @@ class _Replace:
 class Camera(_Replace):
     """An orthographic camera and the picture it takes.
 
+    By default it is **fitted** to what it shows (:meth:`fitted`, called by every renderer and by
+    the viewer): upright with ``+y`` up — the convention of OBJ, PLY and OFF files, of polyscope
+    and of libigl — looking at the model's side from slightly above: mostly along the thinner of
+    its two horizontal extents, a little along the longer one (a three-quarter view of an animal,
+    the length of a tube, the top of a flat patch). The picture frames the whole model.
+
     Parameters
     ----------
-    view : (3,) float
+    view : (3,) float, optional
         Direction from the scene toward the camera (the camera looks at the scene's centre).
-    up : (3,) float
-        The world direction shown upward (replaced by a perpendicular axis when parallel to ``view``).
+        Default: fitted to the points (see above).
+    up : (3,) float or {"x", "y", "z", "-x", "-y", "-z"}, optional
+        The world direction shown upward (default ``+y``; replaced by a perpendicular axis when
+        parallel to ``view``).
     size : (2,) int
         Width and height of the picture in pixels.
     dpi : int
@@ -69,7 +77,7 @@ class Camera(_Replace):
     Raises
     ------
     InvalidParameterError
-        ``view`` is not a finite nonzero 3D direction.
+        ``view`` or ``up`` is not a finite nonzero 3D direction (or an axis name).
 
     Examples
     --------
@@ -77,18 +85,61 @@ class Camera(_Replace):
     Traceback (most recent call last):
     ...
     dhlb.errors.InvalidParameterError: view must be a nonzero 3D direction (camera position ...), got (0, 0, 0)
+    >>> import numpy as np
+    >>> box = np.array([[0, 0, 0], [1, 0, 0], [0, 0.5, 0], [0, 0, 3.0]])   # long along z, thin along y
+    >>> Camera().fitted(box).view                                          # from +x, above, a bit along z
+    (0.8, 0.6, 0.32)
     """
 
-    view: tuple[float, float, float] = (1.0, -1.6, 1.0)
-    up: tuple[float, float, float] = (0.0, 0.0, 1.0)
+    view: tuple[float, float, float] | None = None
+    up: tuple[float, float, float] | str | None = None
     size: tuple[int, int] = (800, 800)
     dpi: int = 100
 
     def __post_init__(self) -> None:
-        w = np.asarray(self.view, float).reshape(-1)
-        if w.shape != (3,) or not np.all(np.isfinite(w)) or not np.any(w):
-            raise InvalidParameterError("view must be a nonzero 3D direction (camera position relative to the mesh), "
-                                        f"got {self.view!r}")
+        if self.view is not None:
+            w = np.asarray(self.view, float).reshape(-1)
+            if w.shape != (3,) or not np.all(np.isfinite(w)) or not np.any(w):
+                raise InvalidParameterError("view must be a nonzero 3D direction (camera position relative to the "
+                                            f"mesh), got {self.view!r}")
+        if self.up is not None:
+            up_vector(self.up)
+
+    def fitted(self, points) -> Camera:
+        """A copy with ``view`` and ``up`` chosen for ``points`` where they are None.
+
+        Parameters
+        ----------
+        points : (k, 3) float array
+            What the picture shows (mesh vertices, curve points).
+
+        Returns
+        -------
+        Camera
+            ``up`` as given or ``+y``; ``view`` as given, or ``0.8 a + 0.32 b + 0.6 up`` with ``a``
+            the thinner and ``b`` the longer of the two bounding-box axes perpendicular to ``up``
+            (for a tilted ``up``: the principal axes of the points in its orthogonal plane).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> Camera(up="z").fitted(np.eye(3)).up
+        (0.0, 0.0, 1.0)
+        """
+        up = up_vector("y" if self.up is None else self.up)
+        if self.view is not None:
+            return dataclasses.replace(self, up=tuple(up.tolist()))
+        P = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+        P = P[np.all(np.isfinite(P), axis=1)]
+        # the two horizontal axes: the coordinate axes perpendicular to a coordinate ``up``, else a basis
+        axes = [np.eye(3)[i] for i in range(3) if abs(up[i]) < 1e-12]
+        if len(axes) != 2:
+            a = np.cross(up, [1.0, 0.0, 0.0] if abs(up[0]) < 0.9 else [0.0, 1.0, 0.0])
+            axes = [a / np.linalg.norm(a), np.cross(up, a / np.linalg.norm(a))]
+        extent = [float(np.ptp(P @ e)) if len(P) else 0.0 for e in axes]
+        thin, long = (axes[0], axes[1]) if extent[0] <= extent[1] else (axes[1], axes[0])
+        view = 0.8 * thin + 0.32 * long + 0.6 * up
+        return dataclasses.replace(self, view=tuple(float(v) for v in np.round(view, 12)), up=tuple(up.tolist()))
 
     def frame(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The orthonormal frame of the camera: screen right, screen up, toward the camera.
@@ -102,8 +153,10 @@ class Camera(_Replace):
         >>> [v.tolist() for v in Camera(view=(0, 0, 5), up=(0, 0, 1)).frame()]   # up ∥ view: y is up
         [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
         """
+        if self.view is None:
+            raise InvalidParameterError("this camera has no view direction yet: call camera.fitted(points) first")
         w = _unit(np.asarray(self.view, float).reshape(-1))
-        u = np.asarray(self.up, float).reshape(-1)
+        u = up_vector("y" if self.up is None else self.up)
         if u.shape != (3,) or np.linalg.norm(np.cross(u, w)) < 1e-6 * np.linalg.norm(u):
             u = np.array([0.0, 1.0, 0.0]) if abs(w[1]) < 0.9 else np.array([1.0, 0.0, 0.0])
         right = _unit(np.cross(u, w))
@@ -222,6 +275,42 @@ class ConformalStyle(_Replace):
 
     colormap: str = "viridis"
     background: Any = "white"
+
+
+_AXES = {"x": 0, "y": 1, "z": 2}
+
+
+def up_vector(up) -> np.ndarray:
+    """The unit up direction of an axis name (``"y"``, ``"-z"``, ...) or a 3-vector.
+
+    Parameters
+    ----------
+    up : str or (3,) float array
+
+    Returns
+    -------
+    (3,) float array
+
+    Raises
+    ------
+    InvalidParameterError
+        Neither an axis name nor a finite nonzero 3-vector.
+
+    Examples
+    --------
+    >>> up_vector("-z").tolist(), up_vector((0, 2, 0)).tolist()
+    ([-0.0, -0.0, -1.0], [0.0, 1.0, 0.0])
+    """
+    if isinstance(up, str):
+        name = up.strip().lower()
+        sign, axis = (-1.0, name[1:]) if name.startswith("-") else (1.0, name.lstrip("+"))
+        if axis not in _AXES:
+            raise InvalidParameterError(f"up must be one of x, y, z, -x, -y, -z or a 3D direction, got {up!r}")
+        return sign * np.eye(3)[_AXES[axis]]
+    u = np.asarray(up, dtype=np.float64).reshape(-1)
+    if u.shape != (3,) or not np.all(np.isfinite(u)) or not np.any(u):
+        raise InvalidParameterError(f"up must be one of x, y, z, -x, -y, -z or a nonzero 3D direction, got {up!r}")
+    return u / np.linalg.norm(u)
 
 
 def _matplotlib():

@@ -28,7 +28,7 @@ if TYPE_CHECKING:
 
 __all__ = ["CONFORMAL_CAMERA", "boundary_distortion", "render_conformal_png"]
 
-CONFORMAL_CAMERA = Camera(view=(1.0, -1.6, 0.9), size=(1200, 600))
+CONFORMAL_CAMERA = Camera(size=(1200, 600))
 """The default camera of :func:`render_conformal_png` (two panels side by side)."""
 
 
@@ -94,10 +94,10 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
     from matplotlib import colormaps
     from matplotlib.colors import Normalize
 
-    right, upv, w = camera.frame()
     size, dpi = camera.size, camera.dpi
     F = np.asarray(faces, dtype=np.int64)
     B, A = np.asarray(before, float), np.asarray(after, float)
+    right, upv, w = camera.fitted(B).frame()
     U, _, Vt = np.linalg.svd((A - A.mean(0)).T @ (B - B.mean(0)))   # f is defined up to a rigid motion:
     D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])          # show it best aligned with the input
     after = (A - A.mean(0)) @ U @ D @ Vt + B.mean(0)

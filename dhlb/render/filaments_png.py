@@ -28,8 +28,8 @@ if TYPE_CHECKING:
 
 __all__ = ["FILAMENT_CAMERA", "render_filaments_png"]
 
-FILAMENT_CAMERA = Camera(view=(1.0, -1.6, 0.9))
-"""The default camera of :func:`render_filaments_png`."""
+FILAMENT_CAMERA = Camera()
+"""The default camera of :func:`render_filaments_png` (fitted to the domain, :meth:`Camera.fitted`)."""
 _FILAMENT_STYLE = ("line_width", "fill", "outline_color", "background")
 
 _COLORS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2", "#7f7f7f",
@@ -134,7 +134,6 @@ def render_filaments_png(
     from matplotlib.colors import to_rgba
 
     curves = _curves(filaments)
-    right, upv, w = camera.frame()
     pts = [P for P, _ in curves]
     P = Ft = None
     if V is not None or F is not None:
@@ -153,6 +152,7 @@ def render_filaments_png(
         Ft = Ft.astype(np.int64)
         pts = pts + [P[np.unique(Ft)]]
     allp = np.concatenate(pts) if pts else np.zeros((1, 3))
+    right, upv, w = camera.fitted(allp).frame()
     c = 0.5 * (allp.min(axis=0) + allp.max(axis=0))
 
     def proj(X):

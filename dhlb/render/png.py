@@ -128,7 +128,7 @@ def render_field_png(
                                            ("style", style, FieldStyle(), _FIELD_STYLE))
     Figure, FigureCanvasAgg, PolyCollection = _matplotlib()
     P, T, D, S = _check(V, F, directions, singularities)
-    right, upv, w = camera.frame()
+    right, upv, w = camera.fitted(P).frame()
     size, dpi, background, ambient = camera.size, camera.dpi, style.background, style.ambient
     glyph_length, glyph_width, glyph_color = style.glyph_length, style.glyph_width, style.glyph_color
     face_color, max_glyphs, dot_radius = style.face_color, style.max_glyphs, style.dot_radius

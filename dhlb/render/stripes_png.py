@@ -126,7 +126,7 @@ def render_stripes_png(
         raise InvalidParameterError(f"k must be an integer >= 1, got {k!r}")
     k = int(k)
     P, F = mesh.points, mesh.faces
-    right, upv, w = camera.frame()
+    right, upv, w = camera.fitted(P).frame()
     c = P.mean(axis=0)
     fn_ = _unit(np.cross(P[F[:, 1]] - P[F[:, 0]], P[F[:, 2]] - P[F[:, 0]]))
     facing = fn_ @ w

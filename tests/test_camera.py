@@ -1,0 +1,60 @@
+"""The default camera (issue 29): upright (+y up, the OBJ/PLY/OFF convention), from above, framing the
+whole model, the same rule for every renderer."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from dhlb.errors import InvalidParameterError
+from dhlb.io import example_path, read_surface
+from dhlb.render import Camera
+from dhlb.render._figure import up_vector
+
+
+def test_spot_is_seen_upright_from_above_and_from_its_side():
+    V, _ = read_surface(example_path("spot.obj"))
+    cam = Camera().fitted(V)
+    _, up, toward = cam.frame()
+    assert np.allclose(up @ [0, 1, 0], np.cos(np.arcsin(toward[1])))   # the screen's up is the world's +y, tilted
+    assert toward[1] > 0.4                                              # from above: no view of the belly
+    ext = np.ptp(V, axis=0)
+    thin = 0 if ext[0] < ext[2] else 2
+    assert abs(toward[thin]) > abs(toward[2 - thin])                    # mostly across the thinner side
+
+
+@pytest.mark.parametrize("up,axis", [("z", 2), ("-x", 0), ((0, 0, 3), 2)])
+def test_up_may_be_chosen(up, axis):
+    P = np.random.default_rng(0).normal(size=(50, 3))
+    cam = Camera(up=up).fitted(P)
+    _, screen_up, toward = cam.frame()
+    u = up_vector(up)
+    assert u[axis] != 0 and toward @ u > 0.5 and screen_up @ u > 0.5
+
+
+def test_an_explicit_view_is_kept_and_bad_directions_are_named():
+    assert Camera(view=(0, 0, 1)).fitted(np.eye(3)).view == (0, 0, 1)
+    with pytest.raises(InvalidParameterError, match="up must be one of"):
+        Camera(up="w")
+    with pytest.raises(InvalidParameterError, match="up must be one of"):
+        Camera(up=(0, 0, 0))
+    with pytest.raises(InvalidParameterError, match="fitted"):
+        Camera().frame()
+
+
+def test_field_png_frames_the_whole_model(tmp_path):
+    from PIL import Image  # matplotlib depends on pillow
+
+    from dhlb.fields import direction_field
+    from dhlb.render import render_field_png
+
+    V, F = read_surface(example_path("spot.obj"))
+    fld = direction_field(V, F, n=1)
+    path = render_field_png(tmp_path / "spot.png", fld.mesh.points, fld.mesh.faces, fld.directions,
+                            camera=Camera(size=(200, 200)))
+    img = np.asarray(Image.open(path).convert("L"))
+    ink = img < 250
+    assert ink.mean() > 0.2                                             # the model fills the picture ...
+    assert not (ink[0].any() or ink[-1].any() or ink[:, 0].any() or ink[:, -1].any())   # ... and is not clipped
+    rows = np.nonzero(ink.any(axis=1))[0]
+    assert rows[0] < 0.15 * img.shape[0] and rows[-1] > 0.85 * img.shape[0]          # centred, not a third empty
