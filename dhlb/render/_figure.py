@@ -277,6 +277,13 @@ class ConformalStyle(_Replace):
     background: Any = "white"
 
 
+POSITIVE = (0.85, 0.12, 0.10)
+"""Colour of singularities and zeros of positive index, in every picture and in the viewer."""
+NEGATIVE = (0.10, 0.25, 0.85)
+"""Colour of negative index."""
+BRANCH = (0.10, 0.65, 0.25)
+"""Colour of the branch points of a stripe pattern."""
+
 _AXES = {"x": 0, "y": 1, "z": 2}
 
 

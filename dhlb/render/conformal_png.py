@@ -26,7 +26,7 @@ if TYPE_CHECKING:
 
     from numpy.typing import ArrayLike
 
-__all__ = ["CONFORMAL_CAMERA", "boundary_distortion", "render_conformal_png"]
+__all__ = ["CONFORMAL_CAMERA", "boundary_distortion", "distortion_range", "render_conformal_png"]
 
 CONFORMAL_CAMERA = Camera(size=(1200, 600))
 """The default camera of :func:`render_conformal_png` (two panels side by side)."""
@@ -36,6 +36,9 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
                          distortion_faces: ArrayLike, *, camera: Camera | None = None,
                          style: ConformalStyle | None = None, title: str | None = None, **deprecated: Any) -> str:
     r"""Two panels, the boundary surface before and after, each triangle coloured by the distortion of its tet.
+
+    The colour bar runs from 1 (conformal) to the 98th percentile of the distortion; the few
+    triangles above it have the top colour (the bar's arrow says so).
 
     The deformed mesh is shown after the rigid motion that best aligns it with the input (the map is
     defined up to one).
@@ -102,13 +105,13 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
     D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])          # show it best aligned with the input
     after = (A - A.mean(0)) @ U @ D @ Vt + B.mean(0)
     d = np.asarray(distortion_faces, dtype=float)
-    hi = max(float(np.nanmax(d)) if d.size else 1.0, 1.0 + 1e-6)
-    norm = Normalize(1.0, hi)
+    norm = Normalize(*distortion_range(d))
+    hi = norm.vmax
     cmap = colormaps[style.colormap]
     fig = Figure(figsize=(size[0] / dpi, size[1] / dpi), dpi=dpi, facecolor=style.background)
     FigureCanvasAgg(fig)
     for k, (V, name) in enumerate(((np.asarray(before, float), "before"), (np.asarray(after, float), "after"))):
-        ax = fig.add_axes([k / 2, 0.0, 0.5, 0.92])
+        ax = fig.add_axes([k / 2, 0.1, 0.5, 0.82])
         ax.set_axis_off()
         xy = np.c_[V @ right, V @ upv]
         depth = V[F].mean(axis=1) @ w
@@ -126,9 +129,41 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
         ax.set_ylim(mid[1] - half, mid[1] + half)
         ax.set_aspect("equal")
         ax.set_title(name, fontsize=10)
+    from matplotlib.cm import ScalarMappable
+
+    bar = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), cax=fig.add_axes([0.3, 0.05, 0.4, 0.025]),
+                       orientation="horizontal", extend="max" if d.size and float(np.nanmax(d)) > hi else "neither")
+    bar.set_label("distortion of the tet (1 = conformal)", fontsize=9)
+    bar.ax.tick_params(labelsize=8)
     if title:
         fig.suptitle(title, fontsize=10)
     return write_png(fig, path, dpi, style.background)
+
+
+def distortion_range(distortion: ArrayLike) -> tuple[float, float]:
+    """The colour range of a distortion picture: 1 (conformal) to the 98th percentile.
+
+    One bad tet must not make the rest one colour: the top 2 % saturate instead.
+
+    Parameters
+    ----------
+    distortion : (m,) float array
+
+    Returns
+    -------
+    low, high : float
+        ``1.0`` and the 98th percentile (at least ``1 + 1e-6``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> d = np.r_[np.linspace(1.0, 1.1, 99), 2.9]       # one outlier
+    >>> round(distortion_range(d)[1], 3)
+    1.098
+    """
+    d = np.asarray(distortion, dtype=float).reshape(-1)
+    d = d[np.isfinite(d)]
+    return 1.0, max(float(np.percentile(d, 98)) if d.size else 1.0, 1.0 + 1e-6)
 
 
 def boundary_distortion(result) -> tuple[np.ndarray, np.ndarray]:

@@ -3,8 +3,9 @@
 The mesh is drawn with an orthographic camera looking from ``view`` toward the mesh centre,
 Lambert-shaded with a light near the camera. Faces pointing away from the camera are culled
 on closed meshes (on meshes with boundary both sides are shown). Faces, direction glyphs (short
-segments from each vertex along each of its n directions) and singularities (dots: red for
-positive index, blue for negative) are depth-sorted together and drawn back to front in one
+segments from each vertex along each of its n directions, with an arrowhead when n = 1) and
+singularities (dots: red for positive index, blue for negative) are depth-sorted together and
+drawn back to front in one
 ``PolyCollection`` (painter's algorithm), so glyphs and dots on the far side are hidden.
 """
 
@@ -17,7 +18,7 @@ import numpy as np
 
 from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import InvalidSimplexError, NonFiniteError, ShapeError
-from dhlb.render._figure import _CAMERA, Camera, FieldStyle, _matplotlib, _unit, finish_figure
+from dhlb.render._figure import _CAMERA, NEGATIVE, POSITIVE, Camera, FieldStyle, _matplotlib, _unit, finish_figure
 
 if TYPE_CHECKING:
     from typing import Any
@@ -169,6 +170,16 @@ def render_field_png(
         zs.append(depth[vv] + 0.8 * mean_edge)
         colors.append(np.zeros((vv.size, 4)))
         edgecols.append(np.tile(to_rgba(glyph_color), (vv.size, 1)))
+        if D.shape[1] == 1:                    # n = 1: a vector, not a line: an arrowhead shows which way
+            along = b - xy[vv]
+            length = np.linalg.norm(along, axis=1, keepdims=True)
+            along = along / np.where(length > 0, length, 1.0)
+            across = np.stack([-along[:, 1], along[:, 0]], axis=1)
+            h = 0.35 * ell
+            tris.append(np.stack([b, b - h * along + 0.45 * h * across, b - h * along - 0.45 * h * across], axis=1))
+            zs.append(depth[vv] + 0.8 * mean_edge)
+            colors.append(np.tile(to_rgba(glyph_color), (vv.size, 1)))
+            edgecols.append(np.tile(to_rgba(glyph_color), (vv.size, 1)))
     extent = float(np.ptp(xy, axis=0).max()) or 1.0
     if S is not None and len(S[0]):
         pts, idx = S
@@ -180,7 +191,7 @@ def render_field_png(
         pxy = np.stack([q @ right, q @ upv], axis=1)
         tris.append((pxy[:, None, None, :] + fan[None]).reshape(-1, 3, 2))
         zs.append(np.repeat(q @ w + 2.5 * rad + mean_edge, 10))
-        dc = np.repeat(np.where((idx > 0)[:, None], to_rgba("#d62728"), to_rgba("#1f4fd6")), 10, axis=0)
+        dc = np.repeat(np.where((idx > 0)[:, None], to_rgba(POSITIVE), to_rgba(NEGATIVE)), 10, axis=0)
         colors.append(dc)
         edgecols.append(dc)
     order = np.argsort(np.concatenate(zs), kind="stable")

@@ -17,7 +17,17 @@ import numpy as np
 
 from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import InvalidParameterError
-from dhlb.render._figure import _CAMERA, Camera, StripeStyle, _matplotlib, _unit, finish_figure
+from dhlb.render._figure import (
+    _CAMERA,
+    BRANCH,
+    NEGATIVE,
+    POSITIVE,
+    Camera,
+    StripeStyle,
+    _matplotlib,
+    _unit,
+    finish_figure,
+)
 
 if TYPE_CHECKING:
     import os
@@ -167,7 +177,7 @@ def render_stripes_png(
         pxy = np.stack([pts @ right, pts @ upv], axis=1)
         polys.append((pxy[:, None, None, :] + fan[None]).reshape(-1, 3, 2))
         zs.append(np.repeat(pts @ w + mean_edge, 10))
-        palette = {1.0: (0.84, 0.15, 0.16, 1.0), -1.0: (0.12, 0.31, 0.84, 1.0), 0.0: (0.10, 0.65, 0.25, 1.0)}
+        palette = {1.0: (*POSITIVE, 1.0), -1.0: (*NEGATIVE, 1.0), 0.0: (*BRANCH, 1.0)}
         rgba.append(np.repeat(np.array([palette[float(x)] for x in kind]).reshape(-1, 4), 10, axis=0))
     order = np.argsort(np.concatenate(zs), kind="stable")
     polys = np.concatenate(polys)[order]

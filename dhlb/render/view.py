@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from dhlb.errors import InvalidParameterError, OutputError, ShapeError, ViewerUnavailableError
+from dhlb.render._figure import BRANCH, NEGATIVE, POSITIVE  # one colour per kind of point, PNGs and viewer
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -50,12 +51,6 @@ __all__ = [
 VIEW_EXTRA = 'polyscope is not installed: pip install "dhlb[view]" (or: pip install polyscope)'
 """The message of the ``ImportError`` raised when polyscope is missing."""
 
-POSITIVE = (0.85, 0.12, 0.10)
-"""Colour of singularities and zeros of positive index (as in the PNG pictures)."""
-NEGATIVE = (0.10, 0.25, 0.85)
-"""Colour of negative index."""
-BRANCH = (0.95, 0.65, 0.05)
-"""Colour of the branch points of a stripe pattern."""
 
 
 # ---------------------------------------------------------------------------- the scene

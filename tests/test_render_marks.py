@@ -1,0 +1,48 @@
+"""What the pictures say (issue 29): n = 1 fields as arrows, one colour per kind of point, a colour
+legend with a robust range on the distortion pictures."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from dhlb.render import Camera, FieldStyle, render_field_png
+from dhlb.render._figure import BRANCH, NEGATIVE, POSITIVE
+
+PIL = pytest.importorskip("PIL.Image")
+
+
+def _ink(path):
+    return np.asarray(PIL.open(path).convert("L")) < 128
+
+
+def test_an_n1_glyph_has_a_head_at_its_tip(tmp_path):
+    V = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0.5, 0.5, 0]], float)
+    F = np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]])
+    D = np.zeros((5, 1, 3))
+    D[4, 0] = (1, 0, 0)                                               # one arrow, at the centre, along +x
+    path = render_field_png(tmp_path / "a.png", V, F, D, camera=Camera(view=(0, 0, 1), up=(0, 1, 0), size=(400, 400)),
+                            style=FieldStyle(glyph_length=0.4, face_color=(1, 1, 1), ambient=1.0))
+    ink = _ink(path)
+    cols = np.nonzero(ink.any(axis=0))[0]
+    base, tip = ink[:, cols[0]:cols[0] + 20].sum(), ink[:, cols[-1] - 20:cols[-1] + 1].sum()
+    assert tip > 4 * base, (tip, base)                                # the head is at the +x end
+
+
+def test_one_colour_per_kind_of_point_in_pictures_and_viewer():
+    from dhlb.render import view
+
+    assert view.POSITIVE == POSITIVE and view.NEGATIVE == NEGATIVE and view.BRANCH == BRANCH
+
+
+def test_distortion_colours_have_a_legend_and_ignore_one_outlier(tmp_path):
+    from dhlb.render.conformal_png import distortion_range, render_conformal_png
+
+    d = np.r_[np.linspace(1.0, 1.2, 199), 2.9]
+    assert distortion_range(d)[1] < 1.25                              # the outlier saturates, the rest is resolved
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1.0]])
+    F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    path = render_conformal_png(tmp_path / "c.png", V, 1.1 * V, F, np.array([1.0, 1.1, 1.2, 2.9]),
+                                camera=Camera(size=(600, 300)))
+    img = np.asarray(PIL.open(path).convert("L"))
+    assert (img[-int(0.09 * img.shape[0]):] < 200).sum() > 200        # the colour bar and its labels
