@@ -125,3 +125,13 @@ def test_bad_input():
         imag([1.0, 2.0])
     with pytest.raises(ShapeError):
         from_c2([1j])
+
+
+@given(st.floats(1e-3, 1e3), st.integers(0, 3))
+def test_log_of_a_real_quaternion_inverts_exp_also_for_negative_reals(r, k):
+    # issue 27's audit: qlog(−r) dropped the π (qexp(qlog(−1)) was +1); it is log r + iπ, as for complex numbers
+    q = np.zeros(4)
+    q[0] = -r if k % 2 else r
+    assert close(qexp(qlog(q)), q, 10)
+    if k % 2:
+        assert np.isclose(qlog(q)[1], np.pi)

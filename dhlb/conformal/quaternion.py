@@ -262,8 +262,9 @@ def qlog(q: ArrayLike) -> np.ndarray:
     Returns
     -------
     (..., 4) float array
-        Their principal logarithms, ``qexp(qlog(q)) = q`` — except for a negative real ``q``
-        (``v = 0``, ``θ = π``, no direction), whose logarithm is returned as ``log|q|``.
+        Their principal logarithms, ``qexp(qlog(q)) = q``. A negative real ``q`` (``v = 0``,
+        ``θ = π``) has a logarithm ``log|q| + π u`` for every unit imaginary ``u``; the one returned
+        is ``u = i``, as for complex numbers (``log(−1) = iπ``, with ``w + x i`` the complex plane).
 
     Raises
     ------
@@ -275,6 +276,8 @@ def qlog(q: ArrayLike) -> np.ndarray:
     >>> import numpy as np
     >>> bool(np.allclose(qlog(qexp([0.3, 0.1, -0.2, 0.4])), [0.3, 0.1, -0.2, 0.4]))
     True
+    >>> (qlog([-2.0, 0, 0, 0]) - [np.log(2), np.pi, 0, 0]).round(12).tolist()
+    [0.0, 0.0, 0.0, 0.0]
     """
     q = np.asarray(q, dtype=np.float64)
     n = qnorm(q)
@@ -284,7 +287,9 @@ def qlog(q: ArrayLike) -> np.ndarray:
     s = np.linalg.norm(v, axis=-1)
     theta = np.arctan2(s, q[..., 0])
     scale = np.where(s > 0, theta / np.where(s > 0, s, 1.0), 1.0 / n)
-    return np.concatenate([np.log(n)[..., None], scale[..., None] * v], axis=-1)
+    out = np.concatenate([np.log(n)[..., None], scale[..., None] * v], axis=-1)
+    out[..., 1] += np.where((s == 0) & (q[..., 0] < 0), np.pi, 0.0)   # log(−r) = log r + iπ
+    return out
 
 
 def to_c2(q: ArrayLike) -> np.ndarray:
