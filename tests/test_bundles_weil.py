@@ -185,3 +185,11 @@ def test_nonflat_family_on_torus_degree_two():
     assert L.degree() == 2 and np.array_equal(L.curvature, Om)
     assert np.allclose(wrap_angle(P.coordinates(L)[0] - theta), 0, atol=1e-9)
     assert L.is_isomorphic(P.bundle(theta)) and not L.is_isomorphic(P.bundle(-theta + 0.5))
+
+
+def test_a_complex_without_triangles_has_no_2_cycles():
+    # issue 27's audit: integer_cycle_basis raised IndexError below dimension 2
+    from dhlb.topology import SimplicialComplex
+
+    for X in (SimplicialComplex([(0, 1), (1, 2), (2, 0)]), SimplicialComplex([(0,), (1,)])):
+        assert integer_cycle_basis(X).shape == (0, 0)

@@ -329,3 +329,15 @@ def test_non_manifold_mesh_is_named():
     T = np.array([[0, 1, 2, 3], [0, 4, 5, 6]])  # two tetrahedra touching at vertex 0 only
     with pytest.raises(NonManifoldError, match="vertex"):
         vortex_filaments(V, T, np.zeros((7, 3)), 1.0)
+
+
+@pytest.mark.parametrize("kw", [{"circulation": [1.0, 2.0, 3.0]}, {"closed": [True, False, True]},
+                                {"circulation": [[1.0, 2.0]]}])
+def test_filament_field_names_a_per_curve_list_of_the_wrong_length(kw):
+    # issue 27's audit: numpy's broadcast ValueError escaped
+    from dhlb.errors import ShapeError
+    from dhlb.vortex.flows import FilamentField
+
+    square = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
+    with pytest.raises(ShapeError, match="one per curve"):
+        FilamentField([square, square], **kw)

@@ -44,7 +44,7 @@ def integer_cycle_basis(X: ComplexLike) -> sp.csc_matrix:
     Parameters
     ----------
     X : SimplicialComplex
-        A complex of dimension >= 2.
+        A complex (of dimension < 2 it has no 2-cycles: the result is ``(0, 0)``).
 
     Returns
     -------
@@ -61,6 +61,8 @@ def integer_cycle_basis(X: ComplexLike) -> sp.csc_matrix:
     >>> integer_cycle_basis(torus()).shape, integer_cycle_basis(projective_plane()).shape
     ((14, 1), (10, 0))
     """
+    if X.dim < 2:
+        return sp.csc_matrix((0, 0), dtype=np.int64)       # no triangles: no 2-cycles
     S = surface_cycles(X)
     if S is not None:
         return S.basis()

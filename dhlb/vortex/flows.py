@@ -148,7 +148,8 @@ class FilamentField:
     Raises
     ------
     ShapeError
-        No curves, or a curve that is not an ``(n, 3)`` array of ``n >= 2`` points.
+        No curves, a curve that is not an ``(n, 3)`` array of ``n >= 2`` points, or a
+        ``circulation`` / ``closed`` sequence whose length is not the number of curves.
     NonFiniteError
         A circulation or a curve point is NaN or infinite.
     InvalidParameterError
@@ -173,20 +174,22 @@ class FilamentField:
         if not curves:
             raise ShapeError("give at least one curve")
         k = len(curves)
-        G = np.broadcast_to(np.asarray(circulation, dtype=np.float64), (k,))
-        cl = np.broadcast_to(np.asarray(closed, dtype=bool), (k,))
+        G, cl = np.asarray(circulation, dtype=np.float64), np.asarray(closed, dtype=bool)
+        for name, value in (("circulation", G), ("closed", cl)):
+            if value.ndim > 1 or (value.ndim == 1 and value.size != k):
+                raise ShapeError(f"{name} must be one value or one per curve ({k}), got shape {value.shape}")
+        G, cl = np.broadcast_to(G, (k,)), np.broadcast_to(cl, (k,))
         if not np.isfinite(G).all():
             raise NonFiniteError(f"circulations must be finite, got {G.tolist()}")
         _core_square(core_radius)
         a = float(core_radius)
+        self.curves = [as_polyline(C, f"curve #{i}", closed=bool(c)) for i, (C, c) in enumerate(zip(curves, cl))]
         q1, q2, g = [], [], []
-        for i, (C, c) in enumerate(zip(curves, cl)):
-            C = as_polyline(C, f"curve #{i}", closed=bool(c))
+        for C, c, gamma in zip(self.curves, cl, G):
             nxt = np.roll(C, -1, axis=0) if c else C[1:]
             q1.append(C[:nxt.shape[0]])
             q2.append(nxt)
-            g.append(np.full(nxt.shape[0], G[i]))
-        self.curves = [as_polyline(C, f"curve #{i}", closed=bool(c)) for i, (C, c) in enumerate(zip(curves, cl))]
+            g.append(np.full(nxt.shape[0], gamma))
         self.closed = cl.copy()
         self.circulation = G.copy()
         self.core_radius = a
