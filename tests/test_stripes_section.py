@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dhlb.errors import InvalidParameterError, ResourceLimitError
+from dhlb.errors import InvalidParameterError, NonFiniteError, ResourceLimitError
 from dhlb.fields import direction_field
 from dhlb.io import example_path, read_surface
 from dhlb.stripes import SectionOptions, StripeOptions, isolines, stripe_pattern
@@ -259,3 +259,16 @@ def test_isolines_refuse_a_frequency_beyond_the_memory_budget_before_allocating(
     isolines(ok.texture, max_bytes=1e5)                                  # the advertised range does fit
     with pytest.raises(InvalidParameterError, match="refine"):
         isolines(res.texture, refine=1000)
+
+
+@pytest.mark.parametrize("tol", [-1.0, float("nan"), "x"])
+def test_isolines_check_tol_before_the_work(tol, monkeypatch):
+    # issue 27's audit: a bad tol was reported only after marching the whole subdivision
+    import importlib
+
+    iso = importlib.import_module("dhlb.stripes.isolines")         # the module (the package exports the function)
+    tube = stepped_tube((1.0,), stripes=4, around=16)
+    res = quiet(stripe_pattern, tube.points, tube.faces, tube.directions, frequency=1.0)
+    monkeypatch.setattr(iso, "_march", lambda *a: pytest.fail("marched before checking tol"))
+    with pytest.raises((InvalidParameterError, NonFiniteError), match="tol"):
+        iso.isolines(res.texture, tol=tol)

@@ -35,7 +35,7 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from dhlb._coerce import check_int
+from dhlb._coerce import check_int, check_real
 from dhlb.errors import InvalidParameterError, NonFiniteError, ResourceLimitError, format_bytes
 
 if TYPE_CHECKING:
@@ -324,6 +324,8 @@ def isolines(texture: StripeTexture, level: float = 0.0, *, refine: int = 8, tol
     (1, [0.5, 0.5, 0.5])
     """
     refine = _check_refine(refine)
+    if tol is not None:
+        tol = check_real(tol, "tol", low=0.0)            # before the work, not after it
     c, levels = _levels(texture, level)
     budget = float(MAX_BYTES if max_bytes is None else max_bytes)
     if not budget > 0:
@@ -344,9 +346,7 @@ def isolines(texture: StripeTexture, level: float = 0.0, *, refine: int = 8, tol
     P = np.einsum("pc,pcd->pd", bary, mesh.points[mesh.faces[faces]])
     E = mesh.complex.simplices(1)
     mean_edge = float(np.mean(np.linalg.norm(mesh.points[E[:, 1]] - mesh.points[E[:, 0]], axis=1)))
-    tol = 1e-10 * mean_edge if tol is None else float(tol)
-    if not tol >= 0:
-        raise InvalidParameterError(f"tol must be >= 0, got {tol!r}")
+    tol = 1e-10 * mean_edge if tol is None else tol
     n = len(P)
     if n:
         pairs = cKDTree(P).query_pairs(tol, output_type="ndarray")
