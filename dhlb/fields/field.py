@@ -55,6 +55,26 @@ _NAMED = ("curvature", "min-curvature", "boundary", "boundary-normal")
 def guidance_for(tb: TangentBundle, align) -> Guidance:
     """The guidance field named by ``align`` (see :func:`direction_field`) on ``tb``.
 
+    Parameters
+    ----------
+    tb : TangentBundle
+        The tangent bundle (power n) of the mesh.
+    align : {"curvature", "min-curvature", "boundary", "boundary-normal"}, Guidance or array
+        A named guidance, a ready :class:`~dhlb.fields.Guidance`, or user vectors / values per vertex
+        (:func:`~dhlb.fields.user_guidance`).
+
+    Returns
+    -------
+    Guidance
+        The guidance field on ``tb``.
+
+    Raises
+    ------
+    ShapeError
+        A :class:`~dhlb.fields.Guidance` with another number of values than ``tb`` has vertices.
+    InvalidParameterError
+        An unknown name.
+
     Examples
     --------
     >>> from dhlb.mesh import tangent_bundle

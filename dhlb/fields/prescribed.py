@@ -105,6 +105,13 @@ def locate_faces(mesh, points) -> tuple[np.ndarray, np.ndarray]:
     faces : (k,) int64, rows of ``mesh.faces``
     distance : (k,) float64
 
+    Raises
+    ------
+    ShapeError
+        ``points`` is not ``(k, 3)``.
+    NonFiniteError
+        A point is NaN or infinite.
+
     Examples
     --------
     >>> from dhlb.mesh import validate_surface

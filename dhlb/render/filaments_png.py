@@ -111,6 +111,15 @@ def render_filaments_png(
     str
         The path written.
 
+    Raises
+    ------
+    ShapeError
+        A filament is not an ``(m, 3)`` array of points; ``V`` is not ``(N, 3)``; only one of ``V`` and ``F``.
+    NonFiniteError
+        A filament point or a vertex is NaN or infinite.
+    InvalidSimplexError
+        ``F`` is not a non-empty ``(b, 3)`` integer array of rows of ``V``.
+
     Examples
     --------
     >>> import os, tempfile

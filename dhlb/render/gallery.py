@@ -30,7 +30,25 @@ def write_gallery(
     """Write ``path`` (an HTML file) showing ``pictures`` = [(file, caption), ...] or [(file, caption, link), ...].
 
     Picture files are referenced relative to the page's directory (they must lie beside it or
-    below); ``table`` is an optional list of rows (the first row is the header).
+    below).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The HTML file (written atomically).
+    title : str
+        The page's title and heading.
+    pictures : sequence of tuple
+        ``(file, caption)`` or ``(file, caption, link)`` per picture.
+    table : sequence of sequence, optional
+        Rows of a table above the pictures (the first row is the header).
+    intro : str, optional
+        A paragraph under the heading.
+
+    Returns
+    -------
+    str
+        The path written.
 
     Examples
     --------

@@ -108,6 +108,11 @@ def render_stripes_png(
     str
         The path written.
 
+    Raises
+    ------
+    InvalidParameterError
+        ``k`` is not an integer >= 1.
+
     Examples
     --------
     >>> import os, tempfile, numpy as np

@@ -89,10 +89,24 @@ def filament_linking_numbers(
 ) -> tuple[np.ndarray, np.ndarray, float]:
     """Gauss linking numbers among the closed filaments.
 
-    Returns ``(L, index, defect)``: the symmetric integer matrix, the positions of the closed
-    filaments in ``filaments``, and the largest distance of a Gauss integral from its integer.
     A defect above ``atol`` (two filaments touching inside an ambiguous tetrahedron) is reported
     as a :class:`~dhlb.errors.DhlbWarning` naming the pair; the integral is rounded anyway.
+
+    Parameters
+    ----------
+    filaments : sequence of Filament
+        The filaments (open ones and those of fewer than 3 points are skipped).
+    atol : float, optional
+        The largest distance of a Gauss integral from an integer that passes without a warning.
+
+    Returns
+    -------
+    L : (k, k) int64 array
+        The symmetric matrix of linking numbers of the ``k`` closed filaments (zero diagonal).
+    index : (k,) int64 array
+        Their positions in ``filaments``.
+    defect : float
+        The largest distance of a Gauss integral from its integer.
 
     Examples
     --------
