@@ -1,27 +1,21 @@
 """``dhlb conformal``: outputs (.mesh, .vtk, .json, .png), charges and u files, exit codes.
 
-The parser is built here from :func:`dhlb.cli.conformal.register` (the command is registered
-in :mod:`dhlb.commands` by the lead engineer).
+Runs through :func:`dhlb.cli.main`, so parse-time value checks count as the exit code 2 they give.
 """
 
 from __future__ import annotations
 
-import argparse
 import json
 
 import numpy as np
 
-from dhlb.cli import conformal
-from dhlb.cli._common import run_command
+from dhlb.cli import main
 from dhlb.io import read_volume, write_volume
 from dhlb.mesh import ball_tet_mesh, box_tet_mesh
 
 
 def dhlb_conformal(argv, capsys):
-    parser = argparse.ArgumentParser(prog="dhlb")
-    sub = parser.add_subparsers(dest="command")
-    conformal.register(sub)
-    code = run_command(parser.parse_args(["conformal", *argv]))
+    code = main(["conformal", *argv])  # parse-time checks exit 2 too (issue 28)
     out, err = capsys.readouterr()
     return code, out, err
 

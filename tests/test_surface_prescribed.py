@@ -79,7 +79,12 @@ def test_flat_cylinder_zero_holonomy_gives_a_parallel_field():
     assert np.max(np.ptp(cosines, axis=0)) < 1e-12               # parallel: the same at every vertex
 
 
+N_FIXED = 42  # the vertices of icosphere(1): rows 0..41 of every finer icosphere, at the same positions
+
+
 def _rotation_error(level, weights="cotan"):
+    """``h`` and the angle errors of the rotation field: max over far vertices, RMS over far vertices, max
+    over the far vertices of icosphere(1) (a point set that is the same on every level)."""
     V, F = icosphere(level)
     V, F = np.asarray(V), np.asarray(F)
     C = V[F].mean(axis=1)
@@ -97,16 +102,25 @@ def _rotation_error(level, weights="cotan"):
     d = res.directions[far, 0]
     ang = np.arctan2(np.sum(np.cross(rot, d) * N[far], axis=1), np.sum(rot * d, axis=1))
     ang = np.angle(np.exp(1j * (ang - np.angle(np.exp(1j * ang).mean()))))   # up to one global rotation
+    err = np.abs(ang)
     h = np.linalg.norm(P[res.mesh.faces[:, 0]] - P[res.mesh.faces[:, 1]], axis=1).mean()
-    return h, float(np.max(np.abs(ang)))
+    at_fixed = err[np.flatnonzero(res.mesh.vertex_labels[far] < N_FIXED)]
+    assert at_fixed.size >= 30
+    return h, float(err.max()), float(np.sqrt(np.mean(err ** 2))), float(at_fixed.max())
 
 
 def test_sphere_two_antipodal_plus_one_is_the_rotation_field():
-    hs, errs = zip(*[_rotation_error(level) for level in (2, 3, 4, 5)])
-    rates = np.diff(np.log(errs)) / np.diff(np.log(hs))
-    # measured: errors 4.5e-2, 2.2e-2, 1.0e-2, 5.6e-3, rate ≈ 1: the singularities are resolved to a face,
-    # an O(h) offset of the rotation centre
-    assert errs[-1] < 1e-2 and np.all(rates > 0.8), (errs, rates)
+    hs, errs, rms, fixed = map(np.array, zip(*[_rotation_error(level) for level in (2, 3, 4, 5)]))
+
+    def rates(e):
+        return np.diff(np.log(e)) / np.diff(np.log(hs))
+
+    # first order, away from the singular faces (docs/fields.md, "Prescribed singularities", measured table):
+    # the error at the same points (rates 1.34, 1.14, 1.10) and its RMS (1.11, 1.05, 1.00) hold rate >= 0.9.
+    # The max over the far vertices (0.3 from the axis) is attained at that moving cut-off, where the error
+    # is the h/ρ tail of the singular faces; its rates oscillate (1.06, 1.10, 0.88) around 1.
+    assert np.all(rates(fixed) >= 0.9) and np.all(rates(rms) >= 0.9), (fixed, rates(fixed), rms, rates(rms))
+    assert errs[-1] < 1e-2 and np.all(rates(errs) > 0.8), (errs, rates(errs))
 
 
 def _weighted_codifferential(res):

@@ -16,8 +16,8 @@ import warnings
 from dhlb.errors import DhlbError, MeshParseError
 
 __all__ = ["UsageError", "add_command", "common_options", "run_command", "write_output", "resolve_input",
-           "finite_float", "int_in_range", "nonempty_text", "check_outputs", "input_paths", "usage_from",
-           "report_table"]
+           "finite_float", "int_in_range", "number_tuple", "nonempty_text", "PIXEL_SIZE", "check_outputs",
+           "input_paths", "usage_from", "report_table"]
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
 
@@ -32,7 +32,7 @@ def finite_float(low: float | None = None, high: float | None = None, *, low_ope
     """An argparse ``type`` for a finite float in ``[low, high]`` (``low_open``/``high_open``: exclusive).
 
     NaN, ±inf, ``1e400`` (overflows to inf) and non-numbers are usage errors (exit 2) naming the
-    value and the allowed range.
+    option, the value and the allowed range. Its attribute ``bounds`` is ``(low, high, low_open, high_open)``.
 
     Examples
     --------
@@ -72,11 +72,14 @@ def finite_float(low: float | None = None, high: float | None = None, *, low_ope
         return value
 
     convert.__name__ = "finite number"
+    convert.bounds = (low, high, low_open, high_open)  # read by the tests that walk every option
     return convert
 
 
 def int_in_range(low: int, high: int):
     """An argparse ``type`` for an integer in ``[low, high]`` (usage error otherwise, naming the range).
+
+    Its attribute ``bounds`` is ``(low, high)``.
 
     Examples
     --------
@@ -105,6 +108,44 @@ def int_in_range(low: int, high: int):
         return value
 
     convert.__name__ = "integer"
+    convert.bounds = (low, high)  # read by the tests that walk every option
+    return convert
+
+
+PIXEL_SIZE = int_in_range(16, 8192)
+"""The argparse ``type`` of every ``--size PX`` option (a square picture of PX pixels)."""
+
+
+def number_tuple(names: str):
+    """An argparse ``type`` for comma-separated finite numbers, one per name in ``names`` (``"X,Y,Z"``).
+
+    Returns a tuple of floats; a wrong count, a non-number, NaN or infinity is a usage error (exit 2).
+    Its attribute ``count`` is the number of values.
+
+    Examples
+    --------
+    >>> point = number_tuple("X,Y,Z")
+    >>> point("1, -1.6,1")
+    (1.0, -1.6, 1.0)
+    >>> point("1,nan,0")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: '1,nan,0' is not three finite numbers X,Y,Z
+    """
+    count = len(names.split(","))
+    spelled = {1: "one", 2: "two", 3: "three", 4: "four"}.get(count, str(count))
+
+    def convert(text: str) -> tuple:
+        try:
+            values = tuple(float(t) for t in text.split(","))
+        except ValueError:
+            values = ()
+        if len(values) != count or not all(math.isfinite(v) for v in values):
+            raise argparse.ArgumentTypeError(f"{text!r} is not {spelled} finite numbers {names}")
+        return values
+
+    convert.__name__ = names
+    convert.count = count
     return convert
 
 

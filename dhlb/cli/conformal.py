@@ -11,11 +11,19 @@ import warnings
 
 import numpy as np
 
-from dhlb.cli._common import UsageError, add_command, check_outputs, report_table, resolve_input
+from dhlb.cli._common import (
+    UsageError,
+    add_command,
+    check_outputs,
+    int_in_range,
+    number_tuple,
+    report_table,
+    resolve_input,
+)
 from dhlb.errors import DhlbWarning
 from dhlb.render.conformal_png import boundary_distortion, render_conformal_png
 
-__all__ = ["NAME", "SUMMARY", "boundary_distortion", "format_report", "parse_charge", "register",
+__all__ = ["NAME", "SUMMARY", "boundary_distortion", "format_report", "register",
            "render_conformal_png", "run"]
 
 NAME = "conformal"
@@ -46,32 +54,15 @@ def register(subparsers) -> None:
     """Add the ``conformal`` parser to ``subparsers``."""
     p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
     p.add_argument("mesh", nargs="?", metavar="TETMESH", help="tetrahedral mesh file (.mesh .msh .vtk)")
-    p.add_argument("--ball", type=int, metavar="N", help="use the unit ball (dhlb.mesh.ball_tet_mesh(N)) instead")
+    p.add_argument("--ball", type=int_in_range(1, 100_000), metavar="N",
+                   help="use the unit ball (dhlb.mesh.ball_tet_mesh(N)) instead")
     p.add_argument("--format", dest="fmt", metavar="FMT", help="mesh format if the extension does not say it")
-    p.add_argument("--charge", action="append", default=[], metavar="X,Y,Z,Q",
+    p.add_argument("--charge", action="append", default=[], type=number_tuple("X,Y,Z,Q"), metavar="X,Y,Z,Q",
                    help="a point charge at (X, Y, Z) with charge Q (repeatable)")
     p.add_argument("--u", dest="u_file", metavar="FILE.npy", help="one value of u per mesh vertex")
     p.add_argument("--backend", metavar="B", help="linear-algebra backend (default: dhlb's)")
     p.add_argument("--no-png", action="store_true", help="with -o: do not render the PNG picture")
     p.set_defaults(func=run)
-
-
-def parse_charge(text: str) -> list[float]:
-    """``"x,y,z,q"`` → four floats (raises :class:`UsageError` otherwise).
-
-    Examples
-    --------
-    >>> parse_charge("0, 0, 2.5, -1")
-    [0.0, 0.0, 2.5, -1.0]
-    """
-    parts = text.replace(" ", "").split(",")
-    try:
-        vals = [float(t) for t in parts]
-    except ValueError:
-        vals = []
-    if len(vals) != 4 or not np.all(np.isfinite(vals)):
-        raise UsageError(f"--charge needs four finite numbers x,y,z,q, got {text!r}")
-    return vals
 
 
 def _mesh(args):
@@ -81,8 +72,6 @@ def _mesh(args):
         raise UsageError("give either TETMESH or --ball N, not both")
     if args.mesh is None:
         n = 6 if args.ball is None else args.ball
-        if n < 1:
-            raise UsageError(f"--ball needs N >= 1, got {n}")
         m = ball_tet_mesh(n)
         return m, m.points.shape[0], f"ball {n}"
     from dhlb.io import read_volume
@@ -108,7 +97,7 @@ def _factor(args, mesh, n_rows):
             raise UsageError(f"{args.u_file}: not a readable .npy array ({exc})") from None
         return arr, f"{args.u_file} (per vertex)"
     if args.charge:
-        C = [parse_charge(c) for c in args.charge]
+        C = [list(c) for c in args.charge]
     else:
         P = mesh.points
         lo, hi = P.min(0), P.max(0)

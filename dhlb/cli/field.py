@@ -9,6 +9,7 @@ direction glyphs, singularities red (+) / blue (−)).
 
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import sys
@@ -16,11 +17,13 @@ import time
 
 import numpy as np
 
-from dhlb.cli._common import UsageError, add_command, resolve_input, write_output
+from dhlb.cli._common import UsageError, add_command, finite_float, int_in_range, resolve_input, write_output
 
-__all__ = ["NAME", "SUMMARY", "read_alignment", "read_singularities", "register", "run", "write_field"]
+__all__ = ["NAME", "SUMMARY", "read_alignment", "parse_singularity", "register", "run", "write_field"]
 
 NAME = "field"
+MAX_N = 1000
+"""The largest symmetry ``--n`` accepted."""
 SUMMARY = "smoothest or aligned n-direction field of a triangle mesh, its singularities and a picture"
 
 _DESCRIPTION = """\
@@ -54,13 +57,15 @@ def register(subparsers) -> None:
     """Add the ``field`` parser to ``subparsers``."""
     p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
     p.add_argument("mesh", metavar="MESH", help="triangle mesh file (.obj, .off, .ply)")
-    p.add_argument("--n", type=int, default=1, help="symmetry: 1 vector, 2 line, 4 cross field (default 1)")
-    p.add_argument("--s", type=float, default=0.0, help="energy parameter in [-1, 1] (default 0, Dirichlet)")
+    p.add_argument("--n", type=int_in_range(1, MAX_N), default=1,
+                   help=f"symmetry: 1 vector, 2 line, 4 cross field, ... up to {MAX_N} (default 1)")
+    p.add_argument("--s", type=finite_float(-1, 1), default=0.0,
+                   help="energy parameter in [-1, 1] (default 0, Dirichlet)")
     p.add_argument("--align", metavar="WHAT",
                    help=f"alignment: {', '.join(_ALIGN)}, or a .npy file of (k, 3) vectors or complex (k,) values")
     p.add_argument("--lambda", dest="lam", type=float, default=0.0,
                    help="lambda_t of the aligned problem, below the smallest eigenvalue (default 0)")
-    p.add_argument("--singularity", action="append", metavar="FACE:K | x,y,z:K",
+    p.add_argument("--singularity", action="append", type=parse_singularity, metavar="FACE:K | x,y,z:K",
                    help="prescribe index K/n at a face (row of the file) or at the face nearest to a point; "
                         "repeatable; the result has exactly these singularities (write --singularity=-1,0,0:1 "
                         "when x is negative)")
@@ -92,38 +97,39 @@ def read_alignment(value):
     return arr
 
 
-def read_singularities(values):
-    """The ``singularities`` of :func:`dhlb.fields.prescribed_field` for ``--singularity`` values.
+def parse_singularity(text: str) -> tuple:
+    """One ``--singularity`` value ``FACE:K`` or ``x,y,z:K`` as a key and index of :func:`dhlb.fields.prescribed_field`.
+
+    An argparse ``type``: a malformed value, a negative face or a non-finite coordinate is a usage
+    error (exit 2) naming the option; a face past the mesh is refused by the library (exit 1).
 
     Examples
     --------
-    >>> read_singularities(["3:1", "0.5,0,1:-1"])
-    [(3, 1), ((0.5, 0.0, 1.0), -1)]
+    >>> parse_singularity("3:1"), parse_singularity("0.5,0,1:-1")
+    ((3, 1), ((0.5, 0.0, 1.0), -1))
+    >>> parse_singularity("nan,0,0:1")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: 'nan,0,0:1': the location must be a face number or three finite coordinates x,y,z
     """
-    out = []
-    for value in values or []:
-        where, sep, k = value.rpartition(":")
-        try:
-            index = int(k)
-        except ValueError:
-            raise UsageError(f"--singularity {value!r}: the index K after ':' must be an integer") from None
-        if not sep or not where:
-            raise UsageError(f"--singularity {value!r}: expected FACE:K or x,y,z:K")
-        parts = where.split(",")
-        try:
-            if len(parts) == 1:
-                out.append((int(parts[0]), index))
-            elif len(parts) == 3:
-                p = tuple(float(c) for c in parts)
-                if not all(np.isfinite(p)):
-                    raise ValueError
-                out.append((p, index))
-            else:
-                raise ValueError
-        except ValueError:
-            raise UsageError(f"--singularity {value!r}: the location must be a face number or three finite "
-                             "coordinates x,y,z") from None
-    return out
+    where, sep, k = text.rpartition(":")
+    try:
+        index = int(k)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: the index K after ':' must be an integer") from None
+    if not sep or not where:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected FACE:K or x,y,z:K")
+    parts = where.split(",")
+    try:
+        if len(parts) == 1 and int(parts[0]) >= 0:
+            return int(parts[0]), index
+        if len(parts) == 3:
+            p = tuple(float(c) for c in parts)
+            if all(np.isfinite(p)):
+                return p, index
+    except ValueError:
+        pass
+    raise argparse.ArgumentTypeError(f"{text!r}: the location must be a face number or three finite coordinates x,y,z")
 
 
 def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
@@ -187,7 +193,7 @@ def run(args) -> int:
     t0 = time.perf_counter()
     fmt = resolve_input(args.mesh, args.fmt)  # every surface read_surface reads (also via meshio); see below
     align = read_alignment(args.align)
-    sing = read_singularities(args.singularity)
+    sing = args.singularity or []
     if args.singularity and (align is not None or args.s != 0.0):
         raise UsageError("--singularity prescribes the field; it does not combine with --align or --s")
     V, F = read_surface(args.mesh, fmt)

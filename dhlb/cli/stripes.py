@@ -7,7 +7,7 @@ import os
 
 import numpy as np
 
-from dhlb.cli._common import UsageError, add_command, resolve_input
+from dhlb.cli._common import PIXEL_SIZE, UsageError, add_command, finite_float, int_in_range, resolve_input
 
 __all__ = ["NAME", "SUMMARY", "register", "run", "output_paths"]
 
@@ -52,8 +52,10 @@ def register(subparsers) -> None:
     p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
     p.add_argument("file", metavar="MESH", help="triangle surface mesh (.obj .off .ply ...)")
     size = p.add_mutually_exclusive_group(required=True)
-    size.add_argument("--frequency", type=float, metavar="F", help="stripes per unit length (period 1/F)")
-    size.add_argument("--spacing", type=float, metavar="S", help="period in mean edge lengths (scale free)")
+    size.add_argument("--frequency", type=finite_float(0, low_open=True), metavar="F",
+                      help="stripes per unit length (period 1/F)")
+    size.add_argument("--spacing", type=finite_float(0, low_open=True), metavar="S",
+                      help="period in mean edge lengths (scale free)")
     p.add_argument("--field", default="smoothest", metavar="FIELD",
                    help="smoothest (default), curvature, or a FILE of per-vertex 3D vectors")
     p.add_argument("--n", type=int, choices=(1, 2), default=None, help="1: oriented directions, 2: lines")
@@ -62,16 +64,16 @@ def register(subparsers) -> None:
     p.add_argument("--section", choices=("unit", "eigenvector", "power"), default="unit",
                    help="unit (default): unit-modulus section after the eigenvector, keeps the spacing; "
                         "eigenvector: the relaxed eigenvector; power: the seed's Algorithm 9")
-    p.add_argument("--iterations", type=int, default=None, metavar="K",
+    p.add_argument("--iterations", type=int_in_range(0, MAX_ITERATIONS), default=None, metavar="K",
                    help="unit: maximum number of steps (default 100); power: number of steps (default 20)")
-    p.add_argument("--seed", type=int, default=None, help="random start of --section power")
+    p.add_argument("--seed", type=int_in_range(0, 2**63 - 1), default=None, help="random start of --section power")
     p.add_argument("--backend", default=None, metavar="B", help="factorization backend (default superlu)")
     p.add_argument("--orthogonal", action="store_true", help="also the pattern of the field turned by 90 degrees")
     p.add_argument("--format", dest="fmt", metavar="FMT", help="mesh format if the extension does not say it")
     p.add_argument("--no-png", action="store_true", help="do not render the PNG")
     p.add_argument("--no-isolines", action="store_true", help="do not write the isolines")
     p.add_argument("--level", type=float, default=0.0, help="isoline level c of alpha = c (mod 2pi), default 0")
-    p.add_argument("--size", type=int, default=800, metavar="PX", help="PNG size in pixels (default 800)")
+    p.add_argument("--size", type=PIXEL_SIZE, default=800, metavar="PX", help="PNG size in pixels (default 800)")
     p.set_defaults(func=run)
 
 
@@ -101,16 +103,15 @@ def _directions(args, V, F, n):
     return X
 
 
+MAX_ITERATIONS = 100_000
+"""The most ``--iterations`` accepted."""
 MAX_BYTES = 1_000_000_000
 """Memory budget of one ``dhlb stripes`` run's outputs (isolines, PNG), checked before the work."""
 _PNG_BYTES_PER_PIXEL = 40
-_SIZE_RANGE = (16, 8192)
 
 
 def _check_size(size):
-    low, high = _SIZE_RANGE
-    if not low <= size <= high:
-        raise UsageError(f"--size must be between {low} and {high} pixels, got {size}")
+    low = PIXEL_SIZE.bounds[0]
     est = size * size * _PNG_BYTES_PER_PIXEL
     if est > MAX_BYTES:
         from dhlb.errors import ResourceLimitError
@@ -206,17 +207,9 @@ def _all_outputs(paths, args) -> list:
 
 
 def _check_args(args) -> None:
-    for name in ("frequency", "spacing"):
-        v = getattr(args, name)
-        if v is not None and not (np.isfinite(v) and v > 0):
-            raise UsageError(f"--{name} must be a positive number, got {v}")
-    if not np.isfinite(args.level):
-        raise UsageError(f"--level must be a finite number, got {args.level}")
-    if args.iterations is not None:
-        low = 1 if args.section == "power" else 0
-        if not low <= args.iterations <= 100_000:
-            raise UsageError(f"--iterations must be between {low} and 100000 for --section {args.section}, "
-                             f"got {args.iterations}")
+    """The checks that involve two options (each value alone is checked by its argparse type)."""
+    if args.iterations == 0 and args.section == "power":
+        raise UsageError(f"--iterations must be between 1 and {MAX_ITERATIONS} for --section power, got 0")
     if not args.no_png:
         _check_size(args.size)
 

@@ -16,7 +16,7 @@ import os
 
 import numpy as np
 
-from dhlb.cli._common import UsageError, add_command
+from dhlb.cli._common import PIXEL_SIZE, UsageError, add_command, number_tuple
 from dhlb.io.polylines import read_polylines_obj, read_uv_obj
 
 __all__ = ["NAME", "SUMMARY", "register", "run", "scene_from_outputs", "read_uv_obj", "read_polylines_obj"]
@@ -49,8 +49,9 @@ def register(subparsers) -> None:
     p.add_argument("base", metavar="OUT", help="output base of dhlb field / stripes / vortex")
     p.add_argument("--screenshot", metavar="FILE.png", help="render headless to this PNG instead of a window")
     p.add_argument("--back", action="store_true", help="with --screenshot: also FILE-back.png from the other side")
-    p.add_argument("--size", type=int, default=800, metavar="PX", help="picture size in pixels (default 800)")
-    p.add_argument("--view", default="1,-1.6,1", metavar="X,Y,Z", help="camera direction (default 1,-1.6,1)")
+    p.add_argument("--size", type=PIXEL_SIZE, default=800, metavar="PX", help="picture size in pixels (default 800)")
+    p.add_argument("--view", type=number_tuple("X,Y,Z"), default="1,-1.6,1", metavar="X,Y,Z",
+                   help="camera direction (default 1,-1.6,1)")
     p.add_argument("--no-isolines", action="store_true", help="stripes: do not draw the isolines")
     p.set_defaults(func=run)
 
@@ -144,12 +145,7 @@ def run(args) -> int:
     from dhlb.errors import InvalidParameterError
     from dhlb.render.view import ViewerUnavailableError, show
 
-    try:
-        view = tuple(float(x) for x in args.view.split(","))
-        if len(view) != 3:
-            raise ValueError
-    except ValueError:
-        raise UsageError(f"--view must be three numbers X,Y,Z, got {args.view!r}") from None
+    view = args.view
     if args.back and not args.screenshot:
         raise UsageError("--back needs --screenshot FILE.png")
     if args.screenshot and not args.screenshot.lower().endswith(".png"):

@@ -133,8 +133,6 @@ def _mesh(args):
         raise UsageError("give either TETMESH or --box N, not both")
     if args.mesh is None:
         n = 12 if args.box is None else args.box
-        if n < 1:
-            raise UsageError(f"--box needs N >= 1, got {n}")
         try:  # the whole run's memory, estimated before any work
             check_box_memory(n, per_cell=VORTEX_BYTES_PER_CELL, name="--box")
         except ResourceLimitError as exc:

@@ -192,7 +192,7 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
     t0 = time.perf_counter()
     s = check_s(s)
     lam = _check_lam(lam)
-    faces = np.shape(F)[0] if F is not None else getattr(getattr(V, "mesh", V), "n_faces", 0)
+    faces = len(F) if F is not None else getattr(getattr(V, "mesh", V), "n_faces", 0)
     bar = progress_bar(3, "direction field", progress=progress, estimate_seconds=1.4e-5 * faces, unit="phase")
     if n is None:
         n = V.n if isinstance(V, TangentBundle) else 1

@@ -24,7 +24,7 @@ from dhlb.errors import (
     ShapeError,
 )
 from dhlb.geometry.simplex import SimplexStack
-from dhlb.mesh.arrays import check_cells
+from dhlb.mesh.arrays import check_cells, check_row_lengths
 from dhlb.topology.complex import SimplicialComplex
 from dhlb.topology.manifold import interior_pairs, is_consistently_oriented, manifold_report
 
@@ -37,9 +37,11 @@ def _face(F, r) -> str:
 
 def _array(values, name: str) -> np.ndarray:
     """``np.asarray(values)`` with ragged rows and non-numeric entries as typed errors."""
+    if name == "F":
+        check_row_lengths(values, 3, "face", name="F")
     try:
         arr = np.asarray(values)
-    except (ValueError, TypeError):  # numpy >= 1.24: ragged nested sequences
+    except (ValueError, TypeError):  # numpy >= 1.24: ragged nested sequences (of V; or deeper in F)
         raise RaggedInputError(f"{name} has rows of different lengths; every row of {name} needs "
                                f"{3 if name == 'F' else '2 or 3'} entries") from None
     if arr.dtype == object:

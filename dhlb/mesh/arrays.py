@@ -21,7 +21,7 @@ from dhlb.topology.complex import SimplicialComplex
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-__all__ = ["MeshComplex", "mesh_complex", "check_cells"]
+__all__ = ["MeshComplex", "mesh_complex", "check_cells", "check_row_lengths"]
 
 
 class MeshComplex(NamedTuple):
@@ -105,16 +105,73 @@ def check_cells(cells: np.ndarray, n_points: int, k: int, what: str, *, points: 
     return A.astype(np.int64, copy=False)
 
 
+def check_row_lengths(cells, k: int | None, what: str, *, name: str | None = None) -> None:
+    """Refuse rows of ``cells`` of different lengths: the error names the first row not of length ``k``.
+
+    A numpy array (not of dtype object) has rows of one length and passes unchecked, as does a list of
+    rows all of one length (a wrong width is a shape error for the caller to report). A list of rows of
+    different lengths, which numpy cannot turn into an array, is refused here with a message that says
+    which row is off.
+
+    Parameters
+    ----------
+    cells : sequence of sequences of int
+        The cells as given by the user (a list of lists, a numpy array, ...).
+    k : int or None
+        The number of vertices every cell needs; None: that of the first row.
+    what : str
+        The name of one cell in messages (``"face"``, ``"tetrahedron"``).
+    name : str, optional
+        The name of the cell array, prefixed to the message (``"F"``, ``"T"``).
+
+    Raises
+    ------
+    RaggedInputError
+        Rows of different lengths; the message names the first row whose length is not ``k`` (or, for
+        ``k=None`` or when no row has length ``k``, not that of the first row) and the length needed.
+        An entry that is not a sequence counts as a row of length 1.
+
+    Examples
+    --------
+    >>> check_row_lengths([[0, 1, 2], [0, 2, 3]], 3, "face")
+    >>> check_row_lengths([[0, 1, 2], [0, 2, 3, 4]], 3, "face", name="F")
+    Traceback (most recent call last):
+    ...
+    dhlb.errors.RaggedInputError: F: face 1 has 4 vertex indices (0, 2, 3, 4), a face needs 3
+    """
+    if isinstance(cells, np.ndarray) and cells.dtype != object:
+        return
+    try:
+        rows = list(cells)
+    except TypeError:
+        return  # not a sequence of rows: the caller's shape check names it
+    lengths = [len(r) if hasattr(r, "__len__") and not isinstance(r, (str, bytes)) else 1 for r in rows]
+    if len(set(lengths)) <= 1:
+        return
+    want = k if k is not None and k in lengths else lengths[0]
+    r = next(i for i, n in enumerate(lengths) if n != want)
+    shown = rows[r] if hasattr(rows[r], "__len__") and not isinstance(rows[r], (str, bytes)) else [rows[r]]
+    try:
+        shown = tuple(int(v) for v in shown)
+    except (TypeError, ValueError):
+        shown = tuple(shown)
+    prefix = f"{name}: " if name else ""
+    raise RaggedInputError(f"{prefix}{what} {r} has {lengths[r]} vertex {'index' if lengths[r] == 1 else 'indices'} "
+                           f"{shown}, a {what} needs {want}")
+
+
 def _mesh(cells, V, k: int, what: str) -> MeshComplex:
+    check_row_lengths(cells, k + 1, what)
+    whats = _PLURAL.get(what, what + "s")
     try:
         arr = parse_rows(cells, k, what=what)
     except InvalidSimplexError as err:
-        raise type(err)(f"{what}s must be an integer array of shape (m, {k + 1}): {err}") from None
+        raise type(err)(f"{whats} must be an integer array of shape (m, {k + 1}): {err}") from None
     if arr.shape[0] == 0:
-        raise EmptyComplexError(f"no {what}s given: pass an integer array of shape (m, {k + 1}) with m >= 1")
+        raise EmptyComplexError(f"no {whats} given: pass an integer array of shape (m, {k + 1}) with m >= 1")
     if arr.ndim != 2 or arr.shape[1] != k + 1:
         raise InvalidSimplexError(
-            f"{what}s must be a non-empty integer array of shape (m, {k + 1}), got shape {arr.shape}"
+            f"{whats} must be a non-empty integer array of shape (m, {k + 1}), got shape {arr.shape}"
         )
     pts = None
     if V is not None:
@@ -193,11 +250,13 @@ def mesh_complex(V: ArrayLike | None, cells: ArrayLike, dim: int | None = None) 
     if dim is None:
         try:
             shape = np.shape(cells)
-        except ValueError:  # ragged rows: parse_rows names the offending row below
-            shape = ()
+        except ValueError:  # ragged rows: the width of the first row, check_row_lengths names the odd row
+            shape = np.shape(next(iter(cells)))
+            shape = (0, shape[0]) if len(shape) == 1 else ()
         dim = shape[1] - 1 if len(shape) == 2 and shape[1] >= 2 else 2
     what = _CELL_NAMES.get(dim, f"{dim}-simplex")
     return _mesh(cells, V, dim, what)
 
 
 _CELL_NAMES = {1: "edge", 2: "triangle", 3: "tetrahedron"}
+_PLURAL = {"tetrahedron": "tetrahedra"}

@@ -25,17 +25,16 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from dhlb._coerce import as_vec3, check_int
+from dhlb._coerce import as_points, as_vec3, check_int
 from dhlb.errors import (
     DegenerateSimplexError,
     InconsistentOrientationError,
     InvalidParameterError,
     NonManifoldError,
     ResourceLimitError,
-    ShapeError,
 )
 from dhlb.examples import cube_nd
-from dhlb.mesh.arrays import mesh_complex
+from dhlb.mesh.arrays import check_row_lengths, mesh_complex
 from dhlb.topology.complex import SimplicialComplex
 from dhlb.topology.manifold import manifold_report
 
@@ -195,9 +194,8 @@ def check_tet_mesh(V: ArrayLike, T: ArrayLike, *, orientation: str = "fix", rtol
         raise InvalidParameterError(f"orientation must be 'fix' or 'require', got {orientation!r}")
     if not (np.isscalar(rtol) and np.isfinite(rtol) and rtol >= 0):
         raise InvalidParameterError(f"rtol must be a finite number >= 0, got {rtol!r}")
-    Vin = np.asarray(V, dtype=np.float64) if not isinstance(V, np.ndarray) else V
-    if Vin.ndim != 2 or Vin.shape[1] != 3:
-        raise ShapeError(f"V must be an array of 3-D points of shape (n, 3), got shape {np.shape(Vin)}")
+    Vin = as_points(V, "V", finite=False)  # mesh_complex names a non-finite vertex that is used
+    check_row_lengths(T, 4, "tetrahedron", name="T")
     mc = mesh_complex(Vin, T, dim=3)  # parses T, checks finiteness and index range, drops unused vertices
     X, P = mc.complex, mc.points
     T_in = np.asarray(T).astype(np.int64)

@@ -272,7 +272,7 @@ def vortex_filaments(
 
     timings = {}
     t0 = t = time.perf_counter()
-    n_tets = V.tets.shape[0] if isinstance(V, TetMesh) else int(np.shape(T)[0]) if T is not None else 0
+    n_tets = V.tets.shape[0] if isinstance(V, TetMesh) else len(T) if T is not None else 0
     bar = progress_bar(5, "vortex filaments", progress=progress, estimate_seconds=4e-5 * n_tets, unit="phase")
     if isinstance(V, TetMesh):
         if T is not None:
