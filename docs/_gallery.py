@@ -34,11 +34,6 @@ SPOT_VIEW = Camera(view=(1.0, 0.6, 0.4), up=(0.0, 1.0, 0.0), size=SIZE)
 SADDLE_VIEW = Camera(view=(0.3, -1.0, 1.2), up=(0.0, 0.0, 1.0), size=SIZE)
 
 
-def back(view: Camera) -> Camera:
-    """The view from the other side: the camera direction negated, the same up vector."""
-    return view.replace(view=tuple(-float(c) for c in view.view))
-
-
 def shrink(path: str) -> None:
     """Re-save the PNG with a 256-colour palette (median cut, no dithering): about a third of the size."""
     from PIL import Image  # a dependency of matplotlib, which the renderer needs anyway
@@ -57,7 +52,7 @@ def picture(name: str, mesh: str, view: Camera, **kw) -> dict:
                             res.singularities, camera=view)
     shrink(path)
     shrink(render_field_png(os.path.join(OUT, f"{name}-back.png"), m.points, m.faces, res.directions,
-                            res.singularities, camera=back(view)))
+                            res.singularities, camera=view.behind(m.points)))
     nbytes = os.path.getsize(path)
     if nbytes > MAX_BYTES:
         raise SystemExit(f"{path}: {nbytes} bytes > {MAX_BYTES}")
@@ -86,7 +81,7 @@ def stripes(name: str, view: Camera, *, n: int, spacing: float, **field_kw) -> N
     res = stripe_pattern(V, F, field, spacing=spacing)
     path = render_stripes_png(os.path.join(OUT, f"{name}.png"), res.texture, camera=view)
     shrink(path)
-    shrink(render_stripes_png(os.path.join(OUT, f"{name}-back.png"), res.texture, camera=back(view)))
+    shrink(render_stripes_png(os.path.join(OUT, f"{name}-back.png"), res.texture, camera=view.behind(res.mesh.points)))
     info = res.to_json()
     print(f"{os.path.basename(path):28s} {os.path.getsize(path):7d} B  {len(info['zero_faces'])} zero faces, "
           f"{len(info['branch_faces'])} branch faces  {time.perf_counter() - t0:5.1f} s")
@@ -109,7 +104,7 @@ def tube_stripes(section: str) -> list:
                               style=marked)
     shrink(path)
     shrink(render_stripes_png(os.path.join(OUT, f"stripes-tube-{section}-back.png"), res.texture,
-                              camera=back(tube_view), style=marked))
+                              camera=tube_view.behind(res.mesh.points), style=marked))
     print(f"{os.path.basename(path):28s} {os.path.getsize(path):7d} B  stripes per level {counts} "
           f"(want {tube.stripes_per_level.astype(int).tolist()}), {res.zero_faces.size} zeros, "
           f"unit energy {res.unit_energy:.3g} (λ₁ = {res.eigenvalue:.3g})  {time.perf_counter() - t0:5.1f} s")
@@ -156,7 +151,7 @@ def filaments(name: str, kind: str) -> None:
                                 res.mesh.boundary_faces, camera=camera)
     shrink(path)
     shrink(render_filaments_png(os.path.join(OUT, f"{name}-back.png"), res.filaments, res.mesh.points,
-                                res.mesh.boundary_faces, camera=back(camera)))
+                                res.mesh.boundary_faces, camera=camera.behind(res.mesh.points)))
     print(f"{os.path.basename(path):28s} {os.path.getsize(path):7d} B  {len(res.filaments)} filaments  "
           f"{time.perf_counter() - t0:5.1f} s")
 

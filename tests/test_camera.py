@@ -58,3 +58,12 @@ def test_field_png_frames_the_whole_model(tmp_path):
     assert not (ink[0].any() or ink[-1].any() or ink[:, 0].any() or ink[:, -1].any())   # ... and is not clipped
     rows = np.nonzero(ink.any(axis=1))[0]
     assert rows[0] < 0.15 * img.shape[0] and rows[-1] > 0.85 * img.shape[0]          # centred, not a third empty
+
+
+def test_the_back_view_walks_around_the_model_and_stays_above():
+    V, _ = read_surface(example_path("spot.obj"))
+    front = Camera().fitted(V)
+    back = Camera().behind(V)
+    f, b = np.array(front.view), np.array(back.view)
+    assert np.isclose(f[1], b[1]) and b[1] > 0                            # the same height, still from above
+    assert np.allclose(f[[0, 2]], -b[[0, 2]])                             # the other side

@@ -20,11 +20,6 @@ __all__ = ["fields", "aligned", "boundary", "stripes", "vortex", "write_field_np
 _SPOT_VIEW = Camera(view=(1.0, 0.6, 0.4), up=(0.0, 1.0, 0.0), size=(600, 600))
 
 
-def _back(camera: Camera) -> Camera:
-    """The view from the other side (camera direction negated): every result is shown front and back."""
-    return camera.replace(view=tuple(-float(c) for c in camera.view))
-
-
 def _back_path(png: str) -> str:
     return png[:-4] + "-back.png"
 
@@ -88,7 +83,7 @@ def _field(out, progress, name, V, F, mesh_name, caption, view, **kw):
         png = render_field_png(os.path.join(out, f"{name}.png"), m.points, m.faces, res.directions,
                                res.singularities, title=caption, camera=view)
         render_field_png(_back_path(png), m.points, m.faces, res.directions, res.singularities,
-                         title=caption + " (back)", camera=_back(view))
+                         title=caption + " (back)", camera=view.behind(m.points))
         write_field_npz(os.path.join(out, f"{name}.npz"), res)  # the layout of dhlb field
         return res, png, time.perf_counter() - t0
 
@@ -142,7 +137,8 @@ def stripes(out, progress, *, backend=None) -> list[dict]:
         field = direction_field(V, F, n=2, solver=backend)
         res = stripe_pattern(V, F, field, spacing=6.0, solver=backend)
         png = render_stripes_png(os.path.join(out, "stripes.png"), res.texture, title=caption, camera=_SPOT_VIEW)
-        render_stripes_png(_back_path(png), res.texture, title=caption + " (back)", camera=_back(_SPOT_VIEW))
+        render_stripes_png(_back_path(png), res.texture, title=caption + " (back)",
+                           camera=_SPOT_VIEW.behind(res.mesh.points))
         write_stripes_obj(os.path.join(out, "stripes.obj"), res.texture)
         return res, png, time.perf_counter() - t0
 
@@ -176,7 +172,7 @@ def vortex(out, progress, *, backend=None) -> list[dict]:
             png = render_filaments_png(os.path.join(out, f"{name}.png"), res.filaments, res.mesh.points,
                                        res.mesh.boundary_faces, title=caption)
             render_filaments_png(_back_path(png), res.filaments, res.mesh.points, res.mesh.boundary_faces,
-                                 title=caption + " (back)", camera=_back(FILAMENT_CAMERA))
+                                 title=caption + " (back)", camera=FILAMENT_CAMERA.behind(res.mesh.points))
             return res, png, time.perf_counter() - t0
 
         res, png, sec = progress.run(caption, work)
@@ -215,7 +211,7 @@ def conformal(out, progress, *, backend=None) -> list[dict]:
             png = render_conformal_png(os.path.join(out, f"{name}.png"), mesh.points, res.points, F, dF,
                                        title=caption)
             render_conformal_png(_back_path(png), mesh.points, res.points, F, dF, title=caption + " (back)",
-                                 camera=_back(CONFORMAL_CAMERA))
+                                 camera=CONFORMAL_CAMERA.behind(mesh.points))
             return res, png, time.perf_counter() - t0
 
         res, png, sec = progress.run(caption, work)

@@ -141,6 +141,33 @@ class Camera(_Replace):
         view = 0.8 * thin + 0.32 * long + 0.6 * up
         return dataclasses.replace(self, view=tuple(float(v) for v in np.round(view, 12)), up=tuple(up.tolist()))
 
+    def behind(self, points) -> Camera:
+        """The same camera walked around the model to its other side (turned by 180° about ``up``).
+
+        The height above the model is kept (a view from above stays one), unlike negating ``view``.
+
+        Parameters
+        ----------
+        points : (k, 3) float array
+            What the picture shows (used when the view is still to be fitted).
+
+        Returns
+        -------
+        Camera
+            With ``view`` reflected in ``up``: ``2 (view · up) up − view`` (``−view`` when ``view ∥ up``).
+
+        Examples
+        --------
+        >>> Camera(view=(1.0, 0.5, 0.0), up="y").behind(None).view
+        (-1.0, 0.5, 0.0)
+        """
+        cam = self.fitted(points)
+        v, u = np.asarray(cam.view, dtype=np.float64), up_vector(cam.up)
+        back = 2.0 * (v @ u) * u - v
+        if np.linalg.norm(np.cross(v, u)) < 1e-9 * np.linalg.norm(v):
+            back = -v
+        return dataclasses.replace(cam, view=tuple(float(x) for x in back))
+
     def frame(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The orthonormal frame of the camera: screen right, screen up, toward the camera.
 
