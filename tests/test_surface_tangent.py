@@ -239,3 +239,15 @@ def test_fans_refuse_a_vertex_with_two_fans():
     FF = np.vstack([F, F2[:, ::-1]])
     with pytest.raises(NonManifoldError, match="vertex 0"):
         vertex_fans(FF, 23, np.ones(FF.shape))
+
+
+@pytest.mark.parametrize("n", [2.5, "3", True, 0])
+def test_a_tangent_bundle_is_not_silently_given_another_n(n):
+    # issue 27's audit: energy_matrices(tb, n=2.5) truncated n to 2
+    from dhlb.errors import InvalidParameterError
+    from dhlb.fields import energy_matrices
+    from dhlb.mesh import tangent_bundle
+
+    tb = tangent_bundle([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.3]], [[0, 1, 2], [1, 3, 2]], n=4)
+    with pytest.raises(InvalidParameterError, match="n"):
+        energy_matrices(tb, n=n)

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from dhlb._coerce import check_int
 from dhlb.errors import InvalidParameterError
 from dhlb.mesh.surface import SurfaceMesh, validate_surface
 from dhlb.mesh.tangent import TangentBundle, tangent_bundle
@@ -103,7 +104,7 @@ def as_tangent_bundle(V: ArrayLike | SurfaceMesh | TangentBundle, F: ArrayLike |
     if isinstance(V, TangentBundle):
         if F is not None:
             raise _both("TangentBundle", "F", caller)
-        return V if n is None or int(n) == V.n else TangentBundle(V.mesh, int(n))
+        return V if n is None or (check_int(n, "n (the number of directions)", 1) == V.n) else TangentBundle(V.mesh, n)
     mesh = as_surface(V, F, reorient=reorient, components=components, caller=caller)
     return tangent_bundle(mesh, None, 1 if n is None else n)
 
