@@ -22,7 +22,7 @@ Examples
 (27, 98, 120, 48)
 """
 
-from dhlb.mesh.arrays import MeshComplex, mesh_complex
+from dhlb.mesh.arrays import MeshComplex, mesh_arrays, mesh_complex
 from dhlb.mesh.coerce import as_surface, as_tangent_bundle, as_tet_mesh
 from dhlb.mesh.compact import compact_mesh
 from dhlb.mesh.surface import SurfaceMesh, validate_surface
@@ -32,6 +32,6 @@ from dhlb.mesh.tet import TetMesh, ball_tet_mesh, box_tet_mesh, check_tet_mesh, 
 __all__ = [
     "SurfaceMesh", "validate_surface", "TangentBundle", "tangent_bundle",
     "TetMesh", "check_tet_mesh", "box_tet_mesh", "ball_tet_mesh", "signed_volumes",
-    "MeshComplex", "mesh_complex", "compact_mesh",
+    "MeshComplex", "mesh_complex", "mesh_arrays", "compact_mesh",
     "as_surface", "as_tangent_bundle", "as_tet_mesh",
 ]

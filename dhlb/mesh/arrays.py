@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
+from dhlb._coerce import as_points
 from dhlb.errors import (
     EmptyComplexError,
     InvalidSimplexError,
@@ -21,7 +22,7 @@ from dhlb.topology.complex import SimplicialComplex
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-__all__ = ["MeshComplex", "mesh_complex", "check_cells", "check_row_lengths"]
+__all__ = ["MeshComplex", "mesh_complex", "mesh_arrays", "check_cells", "check_row_lengths"]
 
 
 class MeshComplex(NamedTuple):
@@ -158,6 +159,57 @@ def check_row_lengths(cells, k: int | None, what: str, *, name: str | None = Non
     prefix = f"{name}: " if name else ""
     raise RaggedInputError(f"{prefix}{what} {r} has {lengths[r]} vertex {'index' if lengths[r] == 1 else 'indices'} "
                            f"{shown}, a {what} needs {want}")
+
+
+def mesh_arrays(V: ArrayLike, cells: ArrayLike, k: int, what: str = "face", *,
+                name: str = "F") -> tuple[np.ndarray, np.ndarray]:
+    """``(V, cells)`` checked as plain arrays, for drawing and writing: no complex, no manifold checks.
+
+    Parameters
+    ----------
+    V : (n, 3) float array
+        Vertex positions.
+    cells : (m, k) int array
+        Cells as rows of ``V`` (a list of lists is accepted).
+    k : int
+        Vertices per cell (3: triangles, 4: tetrahedra).
+    what : str, optional
+        The name of one cell in messages.
+    name : str, optional
+        The name of ``cells`` in messages.
+
+    Returns
+    -------
+    V : (n, 3) float64 array
+    cells : (m, k) int64 array
+
+    Raises
+    ------
+    ShapeError
+        ``V`` is not ``(n, 3)`` numbers.
+    NonFiniteError
+        A vertex has a NaN or infinite coordinate (the message names it).
+    RaggedInputError
+        Rows of ``cells`` of different lengths (the message names the first one off).
+    InvalidSimplexError
+        ``cells`` is empty, not integer ``(m, k)``, or refers to a vertex outside ``V`` (named).
+
+    Examples
+    --------
+    >>> V, F = mesh_arrays([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], 3)
+    >>> V.dtype, F.dtype, F.shape
+    (dtype('float64'), dtype('int64'), (1, 3))
+    >>> mesh_arrays([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 3]], 3)
+    Traceback (most recent call last):
+    ...
+    dhlb.errors.InvalidSimplexError: face 0 (0, 1, 3) refers to vertex 3, outside V (rows 0 .. 2)
+    """
+    P = as_points(V, "V", item="vertex")
+    check_row_lengths(cells, k, what, name=name)
+    arr = parse_rows(cells, k - 1, what=what)
+    if arr.shape[0] == 0:
+        raise InvalidSimplexError(f"{name} is empty: give at least one {what} (an integer array of shape (m, {k}))")
+    return P, check_cells(arr, P.shape[0], k, what)
 
 
 def _mesh(cells, V, k: int, what: str) -> MeshComplex:

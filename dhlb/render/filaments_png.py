@@ -15,8 +15,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._coerce import curve_list
 from dhlb._deprecation import fold_deprecated_kwargs
-from dhlb.errors import InvalidSimplexError, NonFiniteError, ShapeError
+from dhlb.errors import ShapeError
+from dhlb.mesh.arrays import mesh_arrays
 from dhlb.render._figure import _CAMERA, Camera, FilamentStyle, _matplotlib, _unit, finish_figure
 
 if TYPE_CHECKING:
@@ -37,16 +39,9 @@ _COLORS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8
 
 
 def _curves(filaments):
-    out = []
-    for i, f in enumerate(filaments):
-        pts, closed = (f.points, f.closed) if hasattr(f, "points") else (f, True)
-        P = np.asarray(pts, dtype=float)
-        if P.ndim != 2 or P.shape[1] != 3:
-            raise ShapeError(f"filament #{i} must be an (m, 3) array of points, got shape {P.shape}")
-        if not np.all(np.isfinite(P)):
-            raise NonFiniteError(f"filament #{i} has a non-finite point (row {int(np.argmax(~np.isfinite(P).all(1)))})")
-        out.append((P, bool(closed)))
-    return out
+    """``curve_list`` with plain arrays taken as closed (as documented for the picture)."""
+    items = filaments if isinstance(filaments, np.ndarray) else list(filaments)
+    return curve_list([f if hasattr(f, "points") or isinstance(f, tuple) else (f, True) for f in items], "filaments")
 
 
 def _outline_edges(V, F, w):
@@ -148,17 +143,7 @@ def render_filaments_png(
     if V is not None or F is not None:
         if V is None or F is None:
             raise ShapeError("give both V and F for the domain outline (or neither)")
-        P = np.asarray(V, dtype=float)
-        Ft = np.asarray(F)
-        if P.ndim != 2 or P.shape[1] != 3:
-            raise ShapeError(f"V must have shape (n, 3), got {P.shape}")
-        if not np.all(np.isfinite(P)):
-            raise NonFiniteError(f"vertex {int(np.argmax(~np.isfinite(P).all(1)))} has a NaN or infinite coordinate")
-        if Ft.ndim != 2 or Ft.shape[1] != 3 or not np.issubdtype(Ft.dtype, np.integer) or Ft.shape[0] == 0:
-            raise InvalidSimplexError(f"F must be a non-empty integer array of shape (b, 3), got {Ft.shape} {Ft.dtype}")
-        if Ft.min() < 0 or Ft.max() >= P.shape[0]:
-            raise InvalidSimplexError(f"F refers to vertices outside V (rows 0 .. {P.shape[0] - 1})")
-        Ft = Ft.astype(np.int64)
+        P, Ft = mesh_arrays(V, F, 3)
         pts = pts + [P[np.unique(Ft)]]
     allp = np.concatenate(pts) if pts else np.zeros((1, 3))
     right, upv, w = camera.fitted(allp).frame()

@@ -17,7 +17,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhlb._deprecation import fold_deprecated_kwargs
-from dhlb.errors import InvalidSimplexError, NonFiniteError, ShapeError
+from dhlb.errors import NonFiniteError, ShapeError
+from dhlb.mesh.arrays import mesh_arrays
 from dhlb.render._figure import _CAMERA, NEGATIVE, POSITIVE, Camera, FieldStyle, _matplotlib, _unit, finish_figure
 
 if TYPE_CHECKING:
@@ -32,16 +33,7 @@ _FIELD_STYLE = ("glyph_length", "glyph_width", "glyph_color", "face_color", "amb
 
 
 def _check(V, F, directions, singularities):
-    P = np.asarray(V, dtype=float)
-    if P.ndim != 2 or P.shape[1] != 3:
-        raise ShapeError(f"V must have shape (n, 3), got {P.shape}")
-    if not np.all(np.isfinite(P)):
-        raise NonFiniteError(f"vertex {int(np.argmax(~np.isfinite(P).all(1)))} has a NaN or infinite coordinate")
-    T = np.asarray(F)
-    if T.ndim != 2 or T.shape[1] != 3 or T.shape[0] == 0 or not np.issubdtype(T.dtype, np.integer):
-        raise InvalidSimplexError(f"F must be a non-empty integer array of shape (m, 3), got {T.shape} {T.dtype}")
-    if T.min() < 0 or T.max() >= len(P):
-        raise InvalidSimplexError(f"F refers to vertices outside V (rows 0 .. {len(P) - 1})")
+    P, T = mesh_arrays(V, F, 3)
     D = None
     if directions is not None:
         D = np.asarray(directions, float)
@@ -62,7 +54,7 @@ def _check(V, F, directions, singularities):
         if not np.all(np.isfinite(pts)):
             raise NonFiniteError("a singularity position is not finite")
         S = (pts, idx)
-    return P, T.astype(np.int64), D, S
+    return P, T, D, S
 
 
 def render_field_png(
