@@ -24,7 +24,7 @@ __all__ = ["ConformalResult"]
 class ConformalResult(Result):
     """What :func:`conformal_deformation` computed.
 
-    Attributes
+    Parameters
     ----------
     points : (N, 3) float64
         The deformed vertices ``f`` (compact vertex order of ``mesh.complex``; equal to the input

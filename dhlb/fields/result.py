@@ -19,22 +19,40 @@ __all__ = ["DirectionField", "PrescribedField"]
 class DirectionField(Result):
     """An n-direction field on a triangle mesh (compact vertex order of ``mesh``).
 
-    Attributes
+    Made by :func:`~dhlb.fields.direction_field`; every parameter is kept as the attribute of the
+    same name.
+
+    Parameters
     ----------
-    n, s, lam : the symmetry, the energy parameter and λ_t of the aligned problem
-    tangent : TangentBundle (``.mesh``, ``.frames``, ``.bundle``)
-    u : (N,) complex, power representation in the vertex frames, ``uᴴ M u = 1``
-    directions : (N, n, 3) unit 3D directions (zero rows where ``u = 0``)
-    indices : FieldIndices (per face, mesh orientation; Poincaré–Hopf terms; singularities)
-    energy : float, ``uᴴ A_s u`` (twice the energy E_s of the M-normalized field)
-    eigenvalue : float or None, smallest eigenvalue (the largest over components); None if aligned
-    t : float or None, ``(1 + ‖ũ‖_M)⁻¹`` of the aligned problem (Eq. 6.6)
+    n : int
+        The symmetry (number of directions).
+    s : float
+        The energy parameter (−1 anti-holomorphic, 0 Dirichlet, +1 holomorphic).
+    lam : float
+        λ_t of the aligned problem (0 for the smoothest field).
+    tangent : TangentBundle
+        The tangent bundle (``.mesh``, ``.frames``, ``.bundle``).
+    u : (N,) complex array
+        The power representation in the vertex frames, ``uᴴ M u = 1``.
+    directions : (N, n, 3) float array
+        Unit 3D directions (zero rows where ``u = 0``).
+    indices : FieldIndices
+        Per face, in the mesh orientation; the Poincaré–Hopf terms; the singularities.
+    energy : float
+        ``uᴴ A_s u`` (twice the energy E_s of the M-normalized field).
+    eigenvalue : float or None
+        The smallest eigenvalue (the largest over components); None if aligned.
+    t : float or None
+        ``(1 + ‖ũ‖_M)⁻¹`` of the aligned problem (Eq. 6.6).
     guidance : Guidance or None
-    component_eigenvalues : tuple of float, one per connected component (smoothest field)
+        The alignment data.
+    component_eigenvalues : tuple of float
+        One per connected component (smoothest field).
     solver : dict
         What the eigensolver reported: backend, iterations, residual, converged, factorizations,
         solves and note.
-    timings : dict, seconds per phase (setup, solve, indices, total)
+    timings : dict
+        Seconds per phase (setup, solve, indices, total).
 
     Examples
     --------
@@ -146,17 +164,28 @@ class DirectionField(Result):
 class PrescribedField(DirectionField):
     """A :class:`DirectionField` with prescribed singularities (:func:`dhlb.fields.prescribed_field`).
 
-    Attributes
+    Parameters
     ----------
-    prescribed : (m,) int64, the prescribed index per face of ``mesh.faces`` (mesh orientation)
-    delta : (n_1,) float64, the connection change δ per canonical edge of ``mesh.complex``
-    delta_norm : float, ``sqrt(δᵀ W δ)`` in the norm of ``weights``
-    weights : str, ``"cotan"`` (Hodge star ⋆₁) or ``"uniform"`` (plain ℓ²)
-    edge_weights : (n_1,) float64, the weights W of the norm δ is minimal in (after any reweighting)
-    generators : (q, n_1) sparse int, the generators of H₁ (fundamental cycles, rows)
-    holonomy : (q,) float64, the rotation θ_c of the field relative to parallel transport along each
-    admissible_holonomy : (q,) float64, the admissible θ_c are these plus 2πZ
-    flatness_defect : float, largest closing error of the tree transport (round-off)
+    n, s, lam, tangent, u, directions, indices, energy, eigenvalue, t, guidance, component_eigenvalues, solver, timings
+        As in :class:`DirectionField`.
+    prescribed : (m,) int64 array
+        The prescribed index per face of ``mesh.faces`` (mesh orientation).
+    delta : (n_1,) float64 array
+        The connection change δ per canonical edge of ``mesh.complex``.
+    delta_norm : float
+        ``sqrt(δᵀ W δ)`` in the norm of ``weights``.
+    weights : str
+        ``"cotan"`` (Hodge star ⋆₁) or ``"uniform"`` (plain ℓ²).
+    edge_weights : (n_1,) float64 array
+        The weights W of the norm δ is minimal in (after any reweighting).
+    generators : (q, n_1) sparse int matrix
+        The generators of H₁ (fundamental cycles, rows).
+    holonomy : (q,) float64 array
+        The rotation θ_c of the field relative to parallel transport along each generator.
+    admissible_holonomy : (q,) float64 array
+        The admissible θ_c are these plus 2πZ.
+    flatness_defect : float
+        The largest closing error of the tree transport (round-off).
 
     Examples
     --------

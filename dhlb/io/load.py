@@ -27,7 +27,7 @@ _KIND_OF_DIM = {0: "points", 1: "curve", 2: "surface", 3: "volume"}
 class MeshData:
     """What :func:`load` read from a file.
 
-    Attributes
+    Parameters
     ----------
     path : str
         The file.

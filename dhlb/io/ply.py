@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import MeshParseError, ShapeError
+from dhlb.errors import InvalidParameterError, MeshParseError, ShapeError
 from dhlb.io._ply_body import _Element, _Prop, ascii_element, binary_element
 from dhlb.io._text import (
     check_cells,
@@ -90,6 +90,11 @@ def _parse_header(data: bytes, path: str):
 @no_gc
 def read_ply(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
     """Read a PLY triangle mesh (ASCII or binary, either byte order, any extra properties).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file.
 
     Returns
     -------
@@ -188,12 +193,28 @@ def write_ply(
 
     Parameters
     ----------
-    vertex_properties : dict of name -> (n,) float array, optional
-        Extra ``double`` vertex properties (e.g. direction components), written after ``x y z``.
+    path : str or path-like
+        The file (written atomically).
+    V : (n, 3) float array
+        Vertex positions.
+    F : (m, k) int array
+        Faces (rows of ``V``), ``3 <= k <= 255`` corners.
     binary : bool
         Binary body instead of ASCII.
     byteorder : {'<', '>'}
         Little or big endian (binary only).
+    vertex_properties : dict of name -> (n,) float array, optional
+        Extra ``double`` vertex properties (e.g. direction components), written after ``x y z``.
+
+    Raises
+    ------
+    ShapeError, NonFiniteError, InvalidSimplexError
+        Bad ``V`` or ``F`` (see :func:`dhlb.io.write_surface`); a vertex property that is not a new
+        identifier with one value per vertex.
+    MeshParseError
+        Faces of more than 255 corners.
+    InvalidParameterError
+        ``byteorder`` is not ``'<'`` or ``'>'``.
 
     Examples
     --------
@@ -209,7 +230,7 @@ def write_ply(
     if F.shape[1] > 255:
         raise MeshParseError(f"faces with {F.shape[1]} corners do not fit a uchar list length", os.fspath(path))
     if byteorder not in ("<", ">"):
-        raise ValueError(f"byteorder must be '<' or '>', got {byteorder!r}")
+        raise InvalidParameterError(f"byteorder must be '<' or '>', got {byteorder!r}")
     fmt = "ascii" if not binary else ("binary_little_endian" if byteorder == "<" else "binary_big_endian")
     extra = {str(k): np.asarray(a, dtype=np.float64) for k, a in (vertex_properties or {}).items()}
     for k, a in extra.items():

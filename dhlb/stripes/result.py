@@ -29,7 +29,7 @@ __all__ = ["StripePattern"]
 class StripePattern(Result):
     """Result of :func:`stripe_pattern`.
 
-    Attributes
+    Parameters
     ----------
     form : StripeForm
         Directions, frequencies, ω̂, the signs ``s_ij``, branch triangles, the bundles.

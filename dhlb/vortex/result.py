@@ -26,7 +26,7 @@ __all__ = ["VortexResult"]
 class VortexResult(Result):
     """What :func:`vortex_filaments` found.
 
-    Attributes
+    Parameters
     ----------
     filaments : list of Filament
         Oriented polylines (``.points`` (m, 3), ``.closed``, ``.faces``): closed loops, and chains
