@@ -5,7 +5,10 @@ coloured point sets, curve networks), built from a result by :func:`scene_of` (d
 the n directions as vector quantities and the singularities coloured by index, red + / blue −;
 stripe patterns: the per-corner texture coordinate ``u = α/2π`` as a parameterization quantity and
 the isolines as a curve network; vortex results: the filaments as curve networks inside the
-translucent boundary of the domain) or by hand. :func:`show` hands it to polyscope: a window, or
+translucent boundary of the domain; conformal deformations: the deformed boundary coloured by the
+distortion of its tetrahedra) or by hand. :func:`scene_of` is the one scene builder: a result in
+memory and the same result read back from its files (:func:`dhlb.io.read_result`) give the same
+scene. :func:`show` hands it to polyscope: a window, or
 with ``screenshot=FILE.png`` a picture rendered without any display through EGL
 (``polyscope.set_allow_headless_backends(True)``, ``polyscope.init("openGL3_egl")``).
 
@@ -71,6 +74,7 @@ class SceneMesh:
     corner_uv: np.ndarray | None = None
     color: tuple = (0.78, 0.80, 0.86)
     transparency: float = 1.0
+    shown_scalar: str | None = None
 
 
 @dataclass
@@ -121,8 +125,12 @@ class Scene:
 
     def add_mesh(self, name: str, V: ArrayLike, F: ArrayLike, *, vectors: dict | None = None,
                  scalars: dict | None = None, corner_uv: ArrayLike | None = None,
-                 color: Sequence[float] = (0.78, 0.80, 0.86), transparency: float = 1.0) -> None:
-        """Add a triangle mesh: ``vectors``, ``scalars`` per vertex; ``corner_uv`` (m, 3) or (m, 3, 2) per corner."""
+                 color: Sequence[float] = (0.78, 0.80, 0.86), transparency: float = 1.0,
+                 shown_scalar: str | None = None) -> None:
+        """Add a triangle mesh with ``vectors`` per vertex, ``scalars`` per vertex or face, ``corner_uv`` per corner.
+
+        ``corner_uv`` is (m, 3) or (m, 3, 2); ``shown_scalar`` names the scalar drawn (none by default).
+        """
         P = np.asarray(V, dtype=np.float64)
         T = np.asarray(F, dtype=np.int64)
         if P.ndim != 2 or P.shape[1] != 3 or T.ndim != 2 or T.shape[1] != 3:
@@ -149,7 +157,9 @@ class Scene:
             if uv.shape != T.shape + (2,):
                 raise ShapeError(f"mesh {name!r}: corner_uv must have shape {T.shape} or {T.shape + (2,)}, "
                                  f"got {np.shape(corner_uv)}")
-        self.meshes.append(SceneMesh(name, P, T, vec, sca, uv, tuple(color), float(transparency)))
+        if shown_scalar is not None and shown_scalar not in sca:
+            raise ShapeError(f"mesh {name!r}: shown_scalar {shown_scalar!r} is not one of its scalars")
+        self.meshes.append(SceneMesh(name, P, T, vec, sca, uv, tuple(color), float(transparency), shown_scalar))
 
     def add_points(self, name: str, P: ArrayLike, colors: ArrayLike, *, radius: float = 0.01) -> None:
         """Add points ``(k, 3)`` with one RGB colour each (or one for all); radius relative to the scene."""
@@ -242,18 +252,36 @@ _CURVE_COLORS = [(0.85, 0.12, 0.10), (0.10, 0.35, 0.85), (0.10, 0.60, 0.25), (0.
 def _vortex_scene(res) -> Scene:
     s = Scene(title=f"{len(res.filaments)} filaments")
     mesh = res.mesh
-    s.add_mesh("domain", mesh.points, mesh.boundary_faces, transparency=0.25)
+    if mesh is not None:  # a result read back from curves alone has no domain
+        s.add_mesh("domain", mesh.points, mesh.boundary_faces, transparency=0.25)
     for k, f in enumerate(res.filaments):
         s.add_curves(f"filament {k}", [f], color=_CURVE_COLORS[k % len(_CURVE_COLORS)], radius=0.006)
     return s
 
 
+def _conformal_scene(res) -> Scene:
+    from dhlb.render.conformal_png import boundary_distortion
+
+    s = Scene(title=f"λ₁ = {res.eigenvalue:.3g}")
+    if res.distortion is None:  # read back without its input mesh: the deformed boundary alone
+        s.add_mesh("deformed", res.points, res.mesh.boundary_faces)
+        return s
+    F, dF = boundary_distortion(res)
+    s.add_mesh("deformed", res.points, F, scalars={"distortion": dF}, shown_scalar="distortion")
+    return s
+
+
 def scene_of(result: Any, *, isolines: bool = True) -> Scene:
-    """The :class:`Scene` of a direction field, stripe pattern or vortex result (a Scene is returned as is).
+    """The :class:`Scene` of a result (a Scene is returned as is): the one scene builder of dhlb.
+
+    A result read back from its files (:func:`dhlb.io.read_result`) has the attributes used here,
+    so it gives the scene of the result that was written.
 
     Parameters
     ----------
-    result : DirectionField, StripePattern, VortexResult or Scene
+    result : object
+        A DirectionField, StripePattern, VortexResult, ConformalResult, a result of
+        :func:`dhlb.io.read_result`, or a Scene.
     isolines : bool
         Stripe patterns: trace the isolines α = 0 (mod 2π) as a curve network.
 
@@ -278,12 +306,15 @@ def scene_of(result: Any, *, isolines: bool = True) -> Scene:
         return result
     if all(hasattr(result, a) for a in ("directions", "singularities", "face_index")):
         return _field_scene(result)
-    if all(hasattr(result, a) for a in ("texture", "psi", "form")):
+    if all(hasattr(result, a) for a in ("texture", "mesh", "n")):
         return _stripes_scene(result, isolines)
-    if all(hasattr(result, a) for a in ("filaments", "psi", "mesh")):
+    if all(hasattr(result, a) for a in ("filaments", "mesh")):
         return _vortex_scene(result)
+    if all(hasattr(result, a) for a in ("points", "distortion", "mesh", "eigenvalue")):
+        return _conformal_scene(result)
     raise InvalidParameterError(f"cannot show a {type(result).__name__}: give a direction field, a stripe pattern, "
-                                "a vortex result or a dhlb.render.view.Scene")
+                                "a vortex or conformal result (or one read back by dhlb.io.read_result) or a "
+                                "dhlb.render.view.Scene")
 
 
 # ---------------------------------------------------------------------------- polyscope
@@ -365,7 +396,7 @@ def _register(ps, scene: Scene) -> None:
                                    radius=0.0012, color=(0.1, 0.1, 0.1))
         for k, v in m.scalars.items():
             sm.add_scalar_quantity(k, v, defined_on="vertices" if len(v) == len(m.points) else "faces",
-                                   enabled=False, cmap="coolwarm")
+                                   enabled=k == m.shown_scalar, cmap="coolwarm")
         if m.corner_uv is not None:
             sm.add_parameterization_quantity("stripes", m.corner_uv.reshape(-1, 2), defined_on="corners",
                                              coords_type="unit", viz_style="checker", checker_size=0.25,
@@ -385,7 +416,7 @@ def show(result: Any, *, screenshot: str | os.PathLike[str] | None = None,
 
     Parameters
     ----------
-    result : DirectionField, StripePattern, VortexResult or Scene
+    result : a result of the applications or of :func:`dhlb.io.read_result`, or Scene
         See :func:`scene_of`.
     screenshot : path, optional
         Render to this PNG without a window (EGL, no display needed) and return its path.
