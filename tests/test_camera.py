@@ -67,3 +67,35 @@ def test_the_back_view_walks_around_the_model_and_stays_above():
     f, b = np.array(front.view), np.array(back.view)
     assert np.isclose(f[1], b[1]) and b[1] > 0                            # the same height, still from above
     assert np.allclose(f[[0, 2]], -b[[0, 2]])                             # the other side
+
+
+def test_the_viewer_looks_from_where_the_pictures_do():
+    from dhlb.render.view import Scene, camera_for
+
+    V, F = read_surface(example_path("spot.obj"))
+    s = Scene()
+    s.add_mesh("spot", V, F)
+    position, target, up = camera_for(s)
+    d = (position - target) / np.linalg.norm(position - target)
+    lo, hi = V.min(axis=0), V.max(axis=0)
+    fitted = np.array(Camera().fitted(np.vstack([lo, hi])).view)
+    assert np.allclose(d, fitted / np.linalg.norm(fitted)) and np.allclose(up, [0, 1, 0])
+
+
+@pytest.mark.parametrize("view", [None, (1.0, -1.6, 1.0), (0.0, 0.0, 1.0)])
+def test_the_viewer_does_not_clip_a_box(view):
+    # issue 29: the vortex box was clipped at the frame edges (the camera sat 2.4 half-diagonals away)
+    from dhlb.render.view import FIELD_OF_VIEW, Scene, camera_for
+
+    corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
+    s = Scene()
+    s.add_points("box", corners, (0, 0, 0))
+    p, c, u = camera_for(s, view)
+    f = (c - p) / np.linalg.norm(c - p)
+    right = np.cross(f, u)
+    right /= np.linalg.norm(right)
+    screen_up = np.cross(right, f)
+    t = np.tan(np.radians(FIELD_OF_VIEW / 2))
+    depth = (corners - p) @ f
+    x, y = (corners - p) @ right / (depth * t), (corners - p) @ screen_up / (depth * t)
+    assert np.all(np.abs(x) < 1) and np.all(np.abs(y) < 1), (x, y)

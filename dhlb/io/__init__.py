@@ -5,6 +5,9 @@ text raises :class:`~dhlb.errors.MeshParseError` naming the file and line, NaN/i
 raise :class:`~dhlb.errors.NonFiniteError` naming the vertex. Unreferenced vertices are kept;
 :func:`compact_mesh` drops them.
 
+:func:`read_result` reads back what the commands and the results' ``save`` wrote (see
+:mod:`dhlb.io.results`; imported on first use, since it brings the applications' result types).
+
 Examples
 --------
 >>> from dhlb.io import load, example_path
@@ -57,4 +60,13 @@ __all__ = [
     "refuse_overwrite",
     "format_of",
     "FORMATS",
+    "read_result",
 ]
+
+
+def __getattr__(name: str):
+    if name == "read_result":  # lazily: dhlb.io.results imports the result types of every application
+        from dhlb.io.results import read_result
+
+        return read_result
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -32,6 +32,9 @@ __all__ = [
     "format_number_rows",
     "prepare_write",
     "normalize_cells",
+    "OUTPUT_EXTENSIONS",
+    "output_stem",
+    "read_json",
 ]
 
 _P = ParamSpec("_P")
@@ -370,3 +373,49 @@ def normalize_cells(V, cells, dims=(0, 1, 2, 3)) -> tuple[np.ndarray, dict[int, 
     if not items:
         V, _ = prepare_write(V, np.zeros((0, 1), np.int64))
     return V, blocks
+
+
+OUTPUT_EXTENSIONS = (".npz", ".ply", ".obj", ".json", ".mesh", ".msh", ".vtk", ".vtu", ".png")
+"""Extensions of the files the commands write for an output base (dropped by :func:`output_stem`)."""
+
+
+def output_stem(path) -> str:
+    """``path`` without an extension of :data:`OUTPUT_EXTENSIONS` (an output base stays as it is).
+
+    Examples
+    --------
+    >>> output_stem("out/spot.npz"), output_stem("out/field-n4-s+0"), output_stem("a.b")
+    ('out/spot', 'out/field-n4-s+0', 'a.b')
+    """
+    out = os.fspath(path)
+    stem, ext = os.path.splitext(out)
+    return stem if ext.lower() in OUTPUT_EXTENSIONS else out
+
+
+def read_json(path) -> dict:
+    """The JSON object in the file ``path``.
+
+    Raises
+    ------
+    MeshParseError
+        The file is not readable JSON, or holds no JSON object (names the file).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = os.path.join(d, "a.json")
+    ...     _ = open(p, "w").write('{"n": 2}')
+    ...     read_json(p)
+    {'n': 2}
+    """
+    import json
+
+    try:
+        with open(path, encoding="utf-8") as fh:
+            data = json.load(fh)
+    except (OSError, ValueError) as exc:
+        raise MeshParseError(f"not readable JSON ({exc})", os.fspath(path)) from None
+    if not isinstance(data, dict):
+        raise MeshParseError(f"holds a {type(data).__name__}, not a JSON object", os.fspath(path))
+    return data

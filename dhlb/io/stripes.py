@@ -1,4 +1,4 @@
-"""Writing stripe patterns: OBJ with per-corner texture coordinates and a JSON sidecar.
+"""Stripe patterns as files: OBJ with per-corner texture coordinates and a JSON sidecar; :func:`read_stripes`.
 
 **OBJ** (``write_stripes_obj``): the mesh vertices (compact order, ``v``), one texture coordinate
 per face corner ``vt u 0`` with ``u = α'/2π`` (:attr:`StripeTexture.corner_alpha`, the linear
@@ -46,13 +46,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhlb._coerce import check_int
+from dhlb._result import Result
+from dhlb.stripes.texture import StripeTexture
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from dhlb.stripes.texture import StripeTexture
-
-__all__ = ["stripes_sidecar", "write_stripes_obj"]
+__all__ = ["LoadedStripes", "read_stripes", "stripes_sidecar", "write_stripes_obj"]
 
 TWO_PI = 2.0 * np.pi
 
@@ -82,8 +82,9 @@ def stripes_sidecar(
     -------
     dict
         ``format``, ``version``, ``obj``, ``n``, ``n_vertices``, ``n_faces``, ``vertex_labels``,
-        ``face_rows``, ``interpolation`` (how to draw the pattern), ``zeros`` (faces, index, points)
-        and ``branch`` (faces, ``u_m``, ``u_l``, points); lists and numbers only.
+        ``face_rows``, ``frequency`` (min, max, mean), ``interpolation`` (how to draw the pattern),
+        ``zeros`` (faces, index, points) and ``branch`` (faces, ``u_m``, ``u_l``, points); lists and
+        numbers only.
 
     Examples
     --------
@@ -110,6 +111,8 @@ def stripes_sidecar(
         "n_faces": int(mesh.n_faces),
         "vertex_labels": mesh.vertex_labels.tolist(),
         "face_rows": mesh.face_rows.tolist(),
+        "frequency": {"min": float(np.min(texture.form.frequency)), "max": float(np.max(texture.form.frequency)),
+                      "mean": float(np.mean(texture.form.frequency))},
         "interpolation": _INTERPOLATION,
         "zeros": {"faces": zf.tolist(), "index": texture.zero_index[zf].tolist(),
                   "points": texture.zero_points.tolist()},
@@ -217,3 +220,159 @@ def write_stripes_obj(
         data["expanded"] = int(expand)
         _write_text(side, json.dumps(data))
     return out, side
+
+
+# ---------------------------------------------------------------------------- reading back
+class _FileForm:
+    """What a texture read from a file knows of its stripe form: ``mesh``, ``n`` and the frequency range."""
+
+    def __init__(self, mesh, n: int, frequency: np.ndarray):
+        self.mesh, self.n, self.frequency = mesh, n, frequency
+
+
+class _FileTexture(StripeTexture):
+    """A :class:`~dhlb.stripes.StripeTexture` rebuilt from its OBJ and sidecar (no section ψ, no spinning form).
+
+    Evaluation, subdivision, isolines, zero and branch points work as on the texture that was written.
+    """
+
+    def __init__(self, form: _FileForm, corner_alpha, zero_index, branch_faces, branch_alpha):
+        self.form, self.mesh, self.psi, self.spinning = form, form.mesh, None, None
+        m = self.mesh.n_faces
+        self.corner_alpha = np.asarray(corner_alpha, np.float64).reshape(m, 3)
+        self.zero_index = np.asarray(zero_index, np.int64)
+        self.branch_faces = np.asarray(branch_faces, np.int64)
+        self.branch_alpha = np.asarray(branch_alpha, np.float64).reshape(-1, 2)
+        self.is_branch = np.zeros(m, bool)
+        self.is_branch[self.branch_faces] = True
+        self.winding_defect = 0.0
+        self._branch_row = np.full(m, -1, np.int64)
+        self._branch_row[self.branch_faces] = np.arange(self.branch_faces.size)
+        for a in (self.zero_index, self.corner_alpha, self.branch_faces, self.branch_alpha, self.is_branch):
+            a.setflags(write=False)
+
+
+class LoadedStripes(Result):
+    """A stripe pattern read back by :func:`read_stripes`: the texture, without the section and the form.
+
+    It draws as the :class:`~dhlb.stripes.StripePattern` that was written (:func:`dhlb.render.view.scene_of`,
+    :func:`dhlb.render.registry.picture`, :meth:`show`).
+
+    Parameters
+    ----------
+    texture : StripeTexture
+        The per-corner α, zero indices and branch data (kept as ``texture``).
+    summary : dict
+        The sidecar (kept as ``summary``; :meth:`to_json` returns it).
+
+    Attributes
+    ----------
+    mesh : SurfaceMesh
+        The mesh of the OBJ.
+    n : int
+        1 for a vector field, 2 for a line field.
+    """
+
+    def __init__(self, texture: StripeTexture, summary: dict):
+        self.texture, self.summary = texture, summary
+        self.mesh, self.n = texture.mesh, int(texture.form.n)
+
+    corner_alpha = property(lambda self: self.texture.corner_alpha, doc="(m, 3) α per face corner.")
+    zero_faces = property(lambda self: self.texture.zero_faces, doc="Faces containing a zero.")
+    zero_index = property(lambda self: self.texture.zero_index, doc="(m,) index of every face.")
+    branch_faces = property(lambda self: self.texture.branch_faces, doc="Branch triangles.")
+
+    def to_json(self) -> dict:
+        """The sidecar the pattern was read with.
+
+        Returns
+        -------
+        dict
+        """
+        return dict(self.summary)
+
+    def summary_rows(self) -> list[tuple[str, object]]:
+        """The headline numbers, as ``(label, value)`` pairs.
+
+        Returns
+        -------
+        list of (str, object)
+        """
+        return [("n", self.n), ("vertices, faces", f"{self.mesh.n_vertices}, {self.mesh.n_faces}"),
+                ("zeros (index sum)", f"{self.zero_faces.size} ({int(self.zero_index.sum())})"),
+                ("branch faces", self.branch_faces.size)]
+
+    def __repr__(self) -> str:
+        return (f"LoadedStripes(n={self.n}, zeros={self.zero_faces.size}, branch_faces={self.branch_faces.size}, "
+                f"{self.mesh!r})")
+
+
+def read_stripes(path: str | os.PathLike[str]) -> LoadedStripes:
+    """Read back a stripe pattern: ``OUT.obj`` (:func:`write_stripes_obj`, ``dhlb stripes``) and its sidecar.
+
+    Parameters
+    ----------
+    path : str or path-like
+        ``OUT.obj``, ``OUT.json`` or the output base ``OUT``.
+
+    Returns
+    -------
+    LoadedStripes
+        Its ``texture`` evaluates as the texture that was written (α to the last bits of the file).
+
+    Raises
+    ------
+    MeshParseError
+        A file is missing or unreadable, the sidecar is not a dhlb-stripes sidecar or does not fit the
+        OBJ, or the OBJ was written with ``expand`` >= 1 (the subdivision, not the mesh).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from dhlb.fields import direction_field
+    >>> from dhlb.io import example_path, read_surface
+    >>> from dhlb.stripes import stripe_pattern
+    >>> V, F = read_surface(example_path("torus.obj"))
+    >>> res = stripe_pattern(V, F, direction_field(V, F, n=2), spacing=4.0)
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     _ = write_stripes_obj(os.path.join(d, "s.obj"), res.texture)
+    ...     back = read_stripes(os.path.join(d, "s"))
+    >>> back.n, bool(np.allclose(back.texture.evaluate([0, 5], [[0.2, 0.3, 0.5]] * 2), res.evaluate([0, 5],
+    ...                                                         [[0.2, 0.3, 0.5]] * 2), rtol=0, atol=1e-12))
+    (2, True)
+    """
+    from dhlb.errors import MeshParseError
+    from dhlb.io._text import output_stem, read_json
+    from dhlb.io.polylines import read_uv_obj
+    from dhlb.mesh import validate_surface
+
+    base = output_stem(path)
+    obj, side = base + ".obj", base + ".json"
+    for p in (obj, side):
+        if not os.path.isfile(p):
+            raise MeshParseError("missing: a stripe pattern is the OBJ and its JSON sidecar", p)
+    meta = read_json(side)
+    if meta.get("format") != "dhlb-stripes":
+        raise MeshParseError("not the sidecar of a dhlb stripe pattern (no 'format': 'dhlb-stripes')", side)
+    if meta.get("expanded"):
+        raise MeshParseError(f"the OBJ holds the subdivision (expand={meta['expanded']}), not the mesh: write the "
+                             "pattern with expand=0 to read it back", side)
+    V, F, U = read_uv_obj(obj)
+    mesh = validate_surface(V, F)
+    try:
+        n = check_int(meta["n"], "n", 1)
+        zeros, branch = meta["zeros"], meta["branch"]
+        zf = np.asarray(zeros["faces"], np.int64).reshape(-1)
+        zero_index = np.zeros(mesh.n_faces, np.int64)
+        zero_index[zf] = np.asarray(zeros["index"], np.int64).reshape(-1)
+        bf = np.asarray(branch["faces"], np.int64).reshape(-1)
+        balpha = TWO_PI * np.column_stack([np.asarray(branch["u_m"], float), np.asarray(branch["u_l"], float)])
+        freq = meta.get("frequency", {})
+        frequency = np.array([freq.get("min", np.nan), freq.get("max", np.nan)], float)
+        if mesh.n_faces != meta.get("n_faces", mesh.n_faces) or len(balpha) != bf.size:
+            raise ValueError(f"{meta.get('n_faces')} faces and {bf.size} branch faces do not fit the OBJ "
+                             f"({mesh.n_faces} faces)")
+        tex = _FileTexture(_FileForm(mesh, n, frequency), TWO_PI * U, zero_index, bf, balpha)
+    except (KeyError, TypeError, ValueError, IndexError) as exc:
+        raise MeshParseError(f"the sidecar does not describe {os.path.basename(obj)} ({exc})", side) from None
+    return LoadedStripes(tex, meta)

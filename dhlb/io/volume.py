@@ -1,4 +1,4 @@
-"""Tetrahedral (and general simplicial) meshes: dispatch over Medit, Gmsh and VTK files."""
+"""Tetrahedral (and general simplicial) meshes: dispatch over Medit, Gmsh and VTK files; conformal maps read back."""
 
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._result import Result
 from dhlb.errors import InvalidSimplexError, MeshParseError
 from dhlb.io.formats import format_of
 from dhlb.io.gmsh import read_gmsh, write_gmsh
@@ -19,7 +20,7 @@ if TYPE_CHECKING:
 
     from numpy.typing import ArrayLike
 
-__all__ = ["read_volume", "write_volume", "read_cells", "write_cells"]
+__all__ = ["read_volume", "write_volume", "read_cells", "write_cells", "LoadedConformal", "read_conformal"]
 
 
 def read_cells(path: str | os.PathLike[str], fmt: str | None = None) -> tuple[np.ndarray, dict[int, np.ndarray]]:
@@ -198,3 +199,147 @@ def write_volume(
     if T.ndim != 2 or T.shape[1] != 4:
         raise InvalidSimplexError(f"tetrahedra need an (m, 4) array, got shape {T.shape}")
     write_cells(path, V, {3: T}, fmt, **kwargs)
+
+
+class LoadedConformal(Result):
+    """A close-to-conformal deformation read back by :func:`read_conformal`.
+
+    It draws as the :class:`~dhlb.conformal.ConformalResult` that was written (:func:`dhlb.render.view.scene_of`,
+    :func:`dhlb.render.registry.picture`, :meth:`show`).
+
+    Parameters
+    ----------
+    points : (N, 3) float array
+        The deformed vertices.
+    mesh : TetMesh
+        The input mesh (its points are the vertices before the map); when the files do not say what
+        the input was (the ``.json`` of ``result.save``), the deformed mesh, and ``input_known`` is False.
+    distortion : (m,) float array or None
+        ``σ_max/σ_min`` per tet (None when neither the files hold it nor the input is known).
+    summary : dict
+        What the JSON or npz held besides the arrays (``eigenvalue``, ``statistics``, ...).
+    input_known : bool
+        The input points are known.
+    """
+
+    def __init__(self, points, mesh, distortion, summary: dict, input_known: bool = True):
+        self.points, self.mesh, self.distortion = points, mesh, distortion
+        self.summary, self.input_known = summary, bool(input_known)
+        self.eigenvalue = float(summary.get("eigenvalue", np.nan))
+
+    def to_json(self) -> dict:
+        """The summary, with the deformed points and the tets.
+
+        Returns
+        -------
+        dict
+        """
+        return {**self.summary, "points": self.points.tolist(), "tets": self.mesh.tets.tolist()}
+
+    def summary_rows(self) -> list[tuple[str, object]]:
+        """The headline numbers, as ``(label, value)`` pairs.
+
+        Returns
+        -------
+        list of (str, object)
+        """
+        d = "unknown" if self.distortion is None else f"{np.mean(self.distortion):.4g}, {np.max(self.distortion):.4g}"
+        return [("vertices, tetrahedra", f"{len(self.points)}, {len(self.mesh.tets)}"),
+                ("λ₁", f"{self.eigenvalue:.6g}"), ("distortion mean, max", d)]
+
+    def __repr__(self) -> str:
+        return f"LoadedConformal({len(self.points)} vertices, {len(self.mesh.tets)} tets, λ₁ = {self.eigenvalue:.4g})"
+
+
+def _input_points(name, folder: str):
+    """The points of the input mesh a ``dhlb conformal`` JSON names (``"ball N"`` or a file), or None."""
+    name = str(name or "")
+    if name.startswith("ball "):
+        from dhlb.mesh import ball_tet_mesh
+
+        try:
+            return ball_tet_mesh(int(name.split()[1])).points
+        except ValueError:
+            return None
+    for p in (name, os.path.join(folder, name)):
+        if name and os.path.isfile(p):
+            from dhlb.mesh import check_tet_mesh
+
+            return check_tet_mesh(*read_volume(p)).points
+    return None
+
+
+def read_conformal(path: str | os.PathLike[str]) -> LoadedConformal:
+    """Read back a conformal deformation: ``OUT.npz`` / ``OUT.json`` of ``result.save``, or ``dhlb conformal``'s files.
+
+    ``dhlb conformal -o OUT.mesh`` writes the deformed tets (``OUT.mesh``, ``OUT.vtk``) and a summary
+    ``OUT.json`` that names the input (``"mesh"``: ``ball N`` or the file, looked for as given and
+    beside the JSON); the distortion per tet is recomputed from the input and the deformed points
+    (:func:`dhlb.conformal.tet_distortion`). ``result.save("OUT.npz")`` holds everything;
+    ``result.save("OUT.json")`` (:meth:`~dhlb.conformal.ConformalResult.to_json`) all but the input points.
+
+    Parameters
+    ----------
+    path : str or path-like
+        ``OUT.npz``, ``OUT.json``, ``OUT.mesh``, ``OUT.vtk``, ``OUT.msh`` or the output base ``OUT``.
+
+    Returns
+    -------
+    LoadedConformal
+
+    Raises
+    ------
+    MeshParseError
+        No such file, or files that do not hold a deformation.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from dhlb.conformal import conformal_deformation
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> res = conformal_deformation(box_tet_mesh(2), None, 0.5)
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     _ = res.save(os.path.join(d, "c.npz"))
+    ...     back = read_conformal(os.path.join(d, "c"))
+    >>> bool(np.array_equal(back.points, res.points)), bool(np.array_equal(back.distortion, res.distortion))
+    (True, True)
+    """
+    from dhlb.io._text import output_stem, read_json
+    from dhlb.mesh import check_tet_mesh
+
+    base = output_stem(path)
+    ext = os.path.splitext(os.fspath(path))[1].lower()
+    folder = os.path.dirname(os.path.abspath(base))
+    summary = read_json(base + ".json") if os.path.isfile(base + ".json") else {}
+    before = distortion = None
+    if ext in ("", ".npz", ".png") and os.path.isfile(base + ".npz"):
+        try:
+            with np.load(base + ".npz", allow_pickle=False) as z:
+                data = {k: z[k] for k in z.files}
+            P, T = np.asarray(data["points"], float), np.asarray(data["tets"], np.int64)
+        except (OSError, ValueError, KeyError) as exc:
+            raise MeshParseError(f"not a conformal deformation of dhlb ({exc})", base + ".npz") from None
+        before, distortion = data.get("input_points"), data.get("distortion")
+        summary = {**summary, "eigenvalue": float(data.get("eigenvalue", summary.get("eigenvalue", np.nan)))}
+    elif "points" in summary and "tets" in summary:
+        P, T = np.asarray(summary["points"], float), np.asarray(summary["tets"], np.int64)
+        before, distortion = summary.get("input_points"), summary.get("distortion")
+        summary = {k: v for k, v in summary.items() if k not in ("points", "tets", "phi", "u", "input_points")}
+    else:
+        order = (ext,) if ext in (".mesh", ".vtk", ".msh") else (".mesh", ".vtk", ".msh")
+        found = [base + e for e in order if os.path.isfile(base + e)]
+        if not found:
+            raise MeshParseError("no deformed mesh: none of .npz, .json with points, .mesh, .vtk, .msh", base)
+        P, T = read_volume(found[0])
+        before = _input_points(summary.get("mesh"), folder)
+    if before is not None and np.shape(before) != P.shape:
+        before = None  # the named input is another mesh than the one deformed
+    mesh = check_tet_mesh(P if before is None else np.asarray(before, float), T)  # rows of T keep their order
+    if distortion is None and before is not None:
+        from dhlb.conformal import tet_distortion
+
+        sig = tet_distortion(mesh.points, mesh.tets, P)[0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            distortion = np.where(sig[:, 2] > 0, sig[:, 0] / np.where(sig[:, 2] > 0, sig[:, 2], 1.0), np.inf)
+    return LoadedConformal(P, mesh, None if distortion is None else np.asarray(distortion, float), summary,
+                           input_known=before is not None)

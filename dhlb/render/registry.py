@@ -2,7 +2,8 @@
 
 The results of the applications find these two functions at call time (``Result._repr_png_``,
 ``Result.show``; see :mod:`dhlb._result`), so that no application imports the render layer.
-A new kind of result registers its picture with ``@picture.register``.
+A new kind of result registers its picture with ``@picture.register``. A result read back from its
+files (:func:`dhlb.io.read_result`) draws through the same function as the result that was written.
 
 Examples
 --------
@@ -21,8 +22,12 @@ from __future__ import annotations
 import functools
 import os
 
+from dhlb.conformal.result import ConformalResult
 from dhlb.errors import InvalidParameterError
 from dhlb.fields.result import DirectionField
+from dhlb.io.polylines import LoadedVortex
+from dhlb.io.stripes import LoadedStripes
+from dhlb.io.volume import LoadedConformal
 from dhlb.stripes.result import StripePattern
 from dhlb.vortex.result import VortexResult
 
@@ -36,7 +41,7 @@ def picture(result, path: str | os.PathLike[str], size: tuple[int, int] = (320, 
     Parameters
     ----------
     result : DirectionField, StripePattern, VortexResult or ConformalResult
-        A result of one of the applications.
+        A result of one of the applications, or one read back by :func:`dhlb.io.read_result`.
     path : str or path-like
         The PNG to write (atomically).
     size : (int, int)
@@ -64,23 +69,42 @@ def _(result: DirectionField, path, size=(320, 320)) -> str:
                             camera=Camera(size=size), style=FieldStyle(max_glyphs=4000))
 
 
-@picture.register
-def _(result: StripePattern, path, size=(320, 320)) -> str:
+@picture.register(StripePattern)
+@picture.register(LoadedStripes)
+def _(result, path, size=(320, 320)) -> str:
     from dhlb.render import Camera, StripeStyle, render_stripes_png
 
     return render_stripes_png(path, result.texture, camera=Camera(size=size),
                               style=StripeStyle(mark_singularities=True, max_triangles=150_000))
 
 
-@picture.register
-def _(result: VortexResult, path, size=(320, 320)) -> str:
+@picture.register(VortexResult)
+@picture.register(LoadedVortex)
+def _(result, path, size=(320, 320)) -> str:
     import dataclasses
 
     from dhlb.render import FILAMENT_CAMERA, render_filaments_png
 
-    return render_filaments_png(path, result.filaments, result.mesh.points, result.mesh.boundary_faces,
+    mesh = result.mesh  # None: curves read back without their domain
+    return render_filaments_png(path, result.filaments, None if mesh is None else mesh.points,
+                                None if mesh is None else mesh.boundary_faces,
                                 title=f"{len(result.filaments)} filament(s)",
                                 camera=dataclasses.replace(FILAMENT_CAMERA, size=size))
+
+
+@picture.register(ConformalResult)
+@picture.register(LoadedConformal)
+def _(result, path, size=(320, 320)) -> str:
+    import dataclasses
+
+    from dhlb.render import CONFORMAL_CAMERA, boundary_distortion, render_conformal_png
+
+    if not getattr(result, "input_known", True):
+        raise InvalidParameterError("this conformal deformation was read back without its input mesh: there is no "
+                                    "'before' to draw (keep the input mesh beside the output, or save the .npz)")
+    F, dF = boundary_distortion(result)
+    return render_conformal_png(path, result.mesh.points, result.points, F, dF,
+                                camera=dataclasses.replace(CONFORMAL_CAMERA, size=size))
 
 
 def show(result, *, screenshot=None, **kwargs):
@@ -88,8 +112,8 @@ def show(result, *, screenshot=None, **kwargs):
 
     Parameters
     ----------
-    result : DirectionField, StripePattern, VortexResult or Scene
-        What to show.
+    result : DirectionField, StripePattern, VortexResult, ConformalResult or Scene
+        What to show (or a result of :func:`dhlb.io.read_result`).
     screenshot : str, optional
         A PNG to render to instead of opening a window.
     **kwargs

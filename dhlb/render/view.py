@@ -5,7 +5,10 @@ coloured point sets, curve networks), built from a result by :func:`scene_of` (d
 the n directions as vector quantities and the singularities coloured by index, red + / blue −;
 stripe patterns: the per-corner texture coordinate ``u = α/2π`` as a parameterization quantity and
 the isolines as a curve network; vortex results: the filaments as curve networks inside the
-translucent boundary of the domain) or by hand. :func:`show` hands it to polyscope: a window, or
+translucent boundary of the domain; conformal deformations: the deformed boundary coloured by the
+distortion of its tetrahedra) or by hand. :func:`scene_of` is the one scene builder: a result in
+memory and the same result read back from its files (:func:`dhlb.io.read_result`) give the same
+scene. :func:`show` hands it to polyscope: a window, or
 with ``screenshot=FILE.png`` a picture rendered without any display through EGL
 (``polyscope.set_allow_headless_backends(True)``, ``polyscope.init("openGL3_egl")``).
 
@@ -66,6 +69,7 @@ class SceneMesh:
     corner_uv: np.ndarray | None = None
     color: tuple = (0.78, 0.80, 0.86)
     transparency: float = 1.0
+    shown_scalar: str | None = None
 
 
 @dataclass
@@ -116,8 +120,12 @@ class Scene:
 
     def add_mesh(self, name: str, V: ArrayLike, F: ArrayLike, *, vectors: dict | None = None,
                  scalars: dict | None = None, corner_uv: ArrayLike | None = None,
-                 color: Sequence[float] = (0.78, 0.80, 0.86), transparency: float = 1.0) -> None:
-        """Add a triangle mesh: ``vectors``, ``scalars`` per vertex; ``corner_uv`` (m, 3) or (m, 3, 2) per corner."""
+                 color: Sequence[float] = (0.78, 0.80, 0.86), transparency: float = 1.0,
+                 shown_scalar: str | None = None) -> None:
+        """Add a triangle mesh with ``vectors`` per vertex, ``scalars`` per vertex or face, ``corner_uv`` per corner.
+
+        ``corner_uv`` is (m, 3) or (m, 3, 2); ``shown_scalar`` names the scalar drawn (none by default).
+        """
         P = np.asarray(V, dtype=np.float64)
         T = np.asarray(F, dtype=np.int64)
         if P.ndim != 2 or P.shape[1] != 3 or T.ndim != 2 or T.shape[1] != 3:
@@ -144,7 +152,9 @@ class Scene:
             if uv.shape != T.shape + (2,):
                 raise ShapeError(f"mesh {name!r}: corner_uv must have shape {T.shape} or {T.shape + (2,)}, "
                                  f"got {np.shape(corner_uv)}")
-        self.meshes.append(SceneMesh(name, P, T, vec, sca, uv, tuple(color), float(transparency)))
+        if shown_scalar is not None and shown_scalar not in sca:
+            raise ShapeError(f"mesh {name!r}: shown_scalar {shown_scalar!r} is not one of its scalars")
+        self.meshes.append(SceneMesh(name, P, T, vec, sca, uv, tuple(color), float(transparency), shown_scalar))
 
     def add_points(self, name: str, P: ArrayLike, colors: ArrayLike, *, radius: float = 0.01) -> None:
         """Add points ``(k, 3)`` with one RGB colour each (or one for all); radius relative to the scene."""
@@ -237,18 +247,36 @@ _CURVE_COLORS = [(0.85, 0.12, 0.10), (0.10, 0.35, 0.85), (0.10, 0.60, 0.25), (0.
 def _vortex_scene(res) -> Scene:
     s = Scene(title=f"{len(res.filaments)} filaments")
     mesh = res.mesh
-    s.add_mesh("domain", mesh.points, mesh.boundary_faces, transparency=0.25)
+    if mesh is not None:  # a result read back from curves alone has no domain
+        s.add_mesh("domain", mesh.points, mesh.boundary_faces, transparency=0.25)
     for k, f in enumerate(res.filaments):
         s.add_curves(f"filament {k}", [f], color=_CURVE_COLORS[k % len(_CURVE_COLORS)], radius=0.006)
     return s
 
 
+def _conformal_scene(res) -> Scene:
+    from dhlb.render.conformal_png import boundary_distortion
+
+    s = Scene(title=f"λ₁ = {res.eigenvalue:.3g}")
+    if res.distortion is None:  # read back without its input mesh: the deformed boundary alone
+        s.add_mesh("deformed", res.points, res.mesh.boundary_faces)
+        return s
+    F, dF = boundary_distortion(res)
+    s.add_mesh("deformed", res.points, F, scalars={"distortion": dF}, shown_scalar="distortion")
+    return s
+
+
 def scene_of(result: Any, *, isolines: bool = True) -> Scene:
-    """The :class:`Scene` of a direction field, stripe pattern or vortex result (a Scene is returned as is).
+    """The :class:`Scene` of a result (a Scene is returned as is): the one scene builder of dhlb.
+
+    A result read back from its files (:func:`dhlb.io.read_result`) has the attributes used here,
+    so it gives the scene of the result that was written.
 
     Parameters
     ----------
-    result : DirectionField, StripePattern, VortexResult or Scene
+    result : object
+        A DirectionField, StripePattern, VortexResult, ConformalResult, a result of
+        :func:`dhlb.io.read_result`, or a Scene.
     isolines : bool
         Stripe patterns: trace the isolines α = 0 (mod 2π) as a curve network.
 
@@ -273,12 +301,15 @@ def scene_of(result: Any, *, isolines: bool = True) -> Scene:
         return result
     if all(hasattr(result, a) for a in ("directions", "singularities", "face_index")):
         return _field_scene(result)
-    if all(hasattr(result, a) for a in ("texture", "psi", "form")):
+    if all(hasattr(result, a) for a in ("texture", "mesh", "n")):
         return _stripes_scene(result, isolines)
-    if all(hasattr(result, a) for a in ("filaments", "psi", "mesh")):
+    if all(hasattr(result, a) for a in ("filaments", "mesh")):
         return _vortex_scene(result)
+    if all(hasattr(result, a) for a in ("points", "distortion", "mesh", "eigenvalue")):
+        return _conformal_scene(result)
     raise InvalidParameterError(f"cannot show a {type(result).__name__}: give a direction field, a stripe pattern, "
-                                "a vortex result or a dhlb.render.view.Scene")
+                                "a vortex or conformal result (or one read back by dhlb.io.read_result) or a "
+                                "dhlb.render.view.Scene")
 
 
 # ---------------------------------------------------------------------------- polyscope
@@ -327,26 +358,58 @@ def _init(ps, headless: bool) -> None:
     ps.set_ground_plane_mode("none")
 
 
-def camera_for(scene: Scene, view: Sequence[float] = (1.0, -1.6, 1.0), distance: float = 2.4):
-    """``(camera position, target)``: looking at the scene's centre from direction ``view``.
+FIELD_OF_VIEW = 45.0
+"""The vertical field of view of polyscope's camera, in degrees."""
 
-    ``distance`` is in units of the half-diagonal of the bounding box (the whole scene fits the
-    45° field of view of polyscope's default camera at 2.4).
+
+def camera_for(scene: Scene, view: Sequence[float] | None = None, up=None, distance: float | None = None):
+    """``(camera position, target, up)``: looking at the scene's centre as the PNG pictures do.
+
+    The direction is :meth:`dhlb.render.Camera.fitted` to the scene's bounding box (``+y`` up,
+    from above, across the thinner side) unless ``view`` / ``up`` are given; the distance fits the
+    bounding sphere into polyscope's field of view, so nothing is clipped.
+
+    Parameters
+    ----------
+    scene : Scene
+        What is shown.
+    view : (3,) float, optional
+        Direction from the scene's centre toward the camera (default: fitted).
+    up : (3,) float or {"x", "y", "z", "-x", "-y", "-z"}, optional
+        The world direction shown upward (default ``+y``).
+    distance : float, optional
+        In units of the half-diagonal of the bounding box (default: the bounding sphere just fits the
+        45° field of view, with a 4 % margin).
+
+    Returns
+    -------
+    position, target, up : (3,) float arrays
+
+    Raises
+    ------
+    InvalidParameterError
+        ``view`` or ``up`` is not a nonzero 3D direction.
 
     Examples
     --------
     >>> s = Scene(); s.add_points("p", [[-1, -1, -1], [1, 1, 1]], (0, 0, 0))
-    >>> [c.round(3).tolist() for c in camera_for(s, view=(0, 0, 1))]
-    [[0.0, 0.0, 4.157], [0.0, 0.0, 0.0]]
+    >>> [c.round(3).tolist() for c in camera_for(s, view=(0, 0, 1), up="y")]
+    [[0.0, 0.0, 4.707], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
     """
+    from dhlb.render._figure import Camera, up_vector
+
     lo, hi = scene.bounds()
     c = 0.5 * (lo + hi)
     r = max(0.5 * float(np.linalg.norm(hi - lo)), 1e-12)
-    d = np.asarray(view, dtype=np.float64)
-    n = float(np.linalg.norm(d))
-    if d.shape != (3,) or not np.isfinite(n) or n == 0:
-        raise InvalidParameterError(f"view must be a nonzero 3-vector, got {view!r}")
-    return c + d / n * distance * r, c
+    if view is not None:
+        d = np.asarray(view, dtype=np.float64).reshape(-1)
+        if d.shape != (3,) or not np.all(np.isfinite(d)) or not np.any(d):
+            raise InvalidParameterError(f"view must be a nonzero 3-vector, got {view!r}")
+    cam = Camera(view=None if view is None else tuple(float(x) for x in d), up=up).fitted(np.vstack([lo, hi]))
+    w = np.asarray(cam.view, dtype=np.float64)
+    if distance is None:
+        distance = 1.04 / np.sin(np.radians(FIELD_OF_VIEW / 2))
+    return c + w / np.linalg.norm(w) * distance * r, c, up_vector(cam.up)
 
 
 def _register(ps, scene: Scene) -> None:
@@ -360,7 +423,7 @@ def _register(ps, scene: Scene) -> None:
                                    radius=0.0012, color=(0.1, 0.1, 0.1))
         for k, v in m.scalars.items():
             sm.add_scalar_quantity(k, v, defined_on="vertices" if len(v) == len(m.points) else "faces",
-                                   enabled=False, cmap="coolwarm")
+                                   enabled=k == m.shown_scalar, cmap="coolwarm")
         if m.corner_uv is not None:
             sm.add_parameterization_quantity("stripes", m.corner_uv.reshape(-1, 2), defined_on="corners",
                                              coords_type="unit", viz_style="checker", checker_size=0.25,
@@ -374,18 +437,21 @@ def _register(ps, scene: Scene) -> None:
 
 
 def show(result: Any, *, screenshot: str | os.PathLike[str] | None = None,
-         view: Sequence[float] = (1.0, -1.6, 1.0), size: tuple[int, int] = (800, 800),
+         view: Sequence[float] | None = None, up=None, size: tuple[int, int] = (800, 800),
          isolines: bool = True) -> str | None:
     """Show a result in polyscope: a window, or a PNG rendered headless with ``screenshot=FILE.png``.
 
     Parameters
     ----------
-    result : DirectionField, StripePattern, VortexResult or Scene
+    result : a result of the applications or of :func:`dhlb.io.read_result`, or Scene
         See :func:`scene_of`.
     screenshot : path, optional
         Render to this PNG without a window (EGL, no display needed) and return its path.
-    view : 3-vector
-        Direction from the scene's centre to the camera (as in the PNG pictures; ``-view`` shows the back).
+    view : (3,) float, optional
+        Direction from the scene's centre to the camera (default: fitted as in the PNG pictures,
+        :func:`camera_for`).
+    up : (3,) float or {"x", "y", "z", "-x", "-y", "-z"}, optional
+        The world direction shown upward (default ``+y``).
     size : (width, height)
         Window / picture size in pixels.
     isolines : bool
@@ -423,7 +489,7 @@ def show(result: Any, *, screenshot: str | os.PathLike[str] | None = None,
     w, h = (int(x) for x in size)
     if not (16 <= w <= 8192 and 16 <= h <= 8192):
         raise InvalidParameterError(f"size must be two integers between 16 and 8192 pixels, got {size!r}")
-    camera, target = camera_for(scene, view)
+    camera, target, upv = camera_for(scene, view, up)
     out = None
     if screenshot is not None:
         out = os.fspath(screenshot)
@@ -435,7 +501,7 @@ def show(result: Any, *, screenshot: str | os.PathLike[str] | None = None,
     ps.remove_all_structures()
     ps.set_window_size(w, h)
     _register(ps, scene)
-    ps.look_at(tuple(camera), tuple(target))
+    ps.look_at_dir(tuple(camera), tuple(target), tuple(float(x) for x in upv))
     if out is None:
         ps.show()
         return None
