@@ -19,7 +19,9 @@ autodoc_member_order = "bysource"
 autodoc_typehints = "description"
 exclude_patterns = ["_build", "_generated"]  # _generated: includes written at build time
 html_theme = "alabaster"
-suppress_warnings = ["myst.xref_missing"]
+# ref.python: "more than one target found" for words of numpydoc type lines that Sphinx turns into
+# cross-references, e.g. the ``n`` of ``(n, 3) float array`` against every attribute named n
+suppress_warnings = ["myst.xref_missing", "ref.python"]
 
 
 # --- `dhlb --help` in the docs (docs/api/cli.md), generated from the parser at build time ---------
