@@ -120,11 +120,11 @@ class Scene:
 
     def add_mesh(self, name: str, V: ArrayLike, F: ArrayLike, *, vectors: dict | None = None,
                  scalars: dict | None = None, corner_uv: ArrayLike | None = None,
-                 color: Sequence[float] = (0.78, 0.80, 0.86), transparency: float = 1.0,
-                 shown_scalar: str | None = None) -> None:
+                 color: Sequence[float] = (0.78, 0.80, 0.86), shown_scalar: str | None = None) -> None:
         """Add a triangle mesh with ``vectors`` per vertex, ``scalars`` per vertex or face, ``corner_uv`` per corner.
 
-        ``corner_uv`` is (m, 3) or (m, 3, 2); ``shown_scalar`` names the scalar drawn (none by default).
+        ``corner_uv`` is (m, 3) or (m, 3, 2); ``color`` is RGB or RGBA (alpha: the opacity, 1 = opaque);
+        ``shown_scalar`` names the scalar drawn (none by default).
         """
         P = np.asarray(V, dtype=np.float64)
         T = np.asarray(F, dtype=np.int64)
@@ -154,7 +154,11 @@ class Scene:
                                  f"got {np.shape(corner_uv)}")
         if shown_scalar is not None and shown_scalar not in sca:
             raise ShapeError(f"mesh {name!r}: shown_scalar {shown_scalar!r} is not one of its scalars")
-        self.meshes.append(SceneMesh(name, P, T, vec, sca, uv, tuple(color), float(transparency), shown_scalar))
+        rgba = tuple(float(c) for c in color)
+        if len(rgba) not in (3, 4):
+            raise ShapeError(f"mesh {name!r}: color must be RGB or RGBA, got {color!r}")
+        self.meshes.append(SceneMesh(name, P, T, vec, sca, uv, rgba[:3], rgba[3] if len(rgba) == 4 else 1.0,
+                                     shown_scalar))
 
     def add_points(self, name: str, P: ArrayLike, colors: ArrayLike, *, radius: float = 0.01) -> None:
         """Add points ``(k, 3)`` with one RGB colour each (or one for all); radius relative to the scene."""
@@ -248,7 +252,7 @@ def _vortex_scene(res) -> Scene:
     s = Scene(title=f"{len(res.filaments)} filaments")
     mesh = res.mesh
     if mesh is not None:  # a result read back from curves alone has no domain
-        s.add_mesh("domain", mesh.points, mesh.boundary_faces, transparency=0.25)
+        s.add_mesh("domain", mesh.points, mesh.boundary_faces, color=(0.78, 0.80, 0.86, 0.25))
     for k, f in enumerate(res.filaments):
         s.add_curves(f"filament {k}", [f], color=_CURVE_COLORS[k % len(_CURVE_COLORS)], radius=0.006)
     return s
