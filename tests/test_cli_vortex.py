@@ -43,10 +43,13 @@ def read_ply_polylines(path):
 
 
 def test_ring_writes_ply_json_png(tmp_path, capsys):
-    out = tmp_path / "ring.ply"
-    code, text, err = dhlb_vortex(["--box", "8", "-o", str(out)], capsys)
+    code, text, err = dhlb_vortex(["--box", "8", "-o", str(tmp_path / "ring")], capsys)  # the default set
     assert code == 0, err
     assert "filaments      1 (1 closed, 0 open" in text and "wrote" in text
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["ring.json", "ring.obj", "ring.png"]
+    out = tmp_path / "ring.ply"
+    code, text, err = dhlb_vortex(["--box", "8", "-o", str(out)], capsys)  # one format
+    assert code == 0, err
     data = json.loads((tmp_path / "ring.json").read_text())
     assert {"filaments", "linking_numbers", "timings", "statistics", "hbar", "mesh", "velocity"} <= set(data)
     assert len(data["filaments"]) == 1 and data["filaments"][0]["closed"] is True
@@ -118,7 +121,7 @@ def test_errors_and_exit_codes(tmp_path, capsys):
         (["--box", "2", "--velocity", str(nan)], 1, "vertex 4"),
         (["--box", "2", "--hbar", "0"], 2, "--hbar: '0' is out of range"),  # usage errors (issue 19)
         (["--box", "2", "--hbar", "-1"], 2, "hbar"),
-        (["--box", "2", "-o", str(tmp_path / "out.txt")], 2, ".ply or .obj"),
+        (["--box", "2", "-o", str(tmp_path / "out.txt")], 2, "does not write .txt files"),
         (["--box", "2", "--velocity", "vortex-street"], 2, "--velocity must be"),
         (["--box", "2", "--velocity", str(tmp_path / "missing.npy")], 2, "no such file"),
         (["--box", "0"], 2, "--box: 0 is out of range"),

@@ -25,8 +25,8 @@ def test_charges_write_mesh_vtk_json_png(tmp_path, capsys):
     src = tmp_path / "ball.mesh"
     write_volume(src, mesh.points, mesh.tets)
     out = tmp_path / "def.mesh"
-    code, text, err = dhlb_conformal([str(src), "--charge", "0,0,2,1", "--charge", "1.8,0,0,-0.5", "-o", str(out)],
-                                     capsys)
+    code, text, err = dhlb_conformal([str(src), "--charge", "0,0,2,1", "--charge", "1.8,0,0,-0.5", "-o",
+                                      str(tmp_path / "def")], capsys)  # a base name: the default set
     assert code == 0, err
     assert "distortion" in text and "2 point charges" not in text  # the labels are listed
     assert "charge #1 (q = -0.5)" in text
@@ -62,7 +62,7 @@ def test_errors_and_exit_codes(tmp_path, capsys):
     code, _, err = dhlb_conformal([str(src), "--u", str(tmp_path / "bad.npy")], capsys)
     assert code == 2 and "(27,)" in err
     code, _, err = dhlb_conformal([str(src), "-o", str(tmp_path / "x.ply")], capsys)
-    assert code == 2 and ".mesh, .vtk or .vtu" in err
+    assert code == 2 and "does not write .ply files" in err and ".mesh, .msh, .vtk, .vtu" in err
     code, _, err = dhlb_conformal([str(tmp_path / "missing.mesh")], capsys)
     assert code == 2 and "no such file" in err
 
@@ -74,7 +74,7 @@ def test_default_ball(capsys):
 
 
 def test_derived_outputs_never_overwrite_the_input(tmp_path):
-    """-o ball.vtk also writes ball.mesh: with ball.mesh as the input that is refused before any work."""
+    """-o ball (a base name) writes ball.mesh: with ball.mesh as the input that is refused before any work."""
     from dhlb.cli import main
     from dhlb.io import write_volume
     from dhlb.mesh import ball_tet_mesh
@@ -83,7 +83,7 @@ def test_derived_outputs_never_overwrite_the_input(tmp_path):
     src = tmp_path / "ball.mesh"
     write_volume(src, m.points, m.tets)
     before = src.read_bytes()
-    assert main(["conformal", str(src), "-o", str(tmp_path / "ball.vtk"), "--no-png", "-q"]) == 2
+    assert main(["conformal", str(src), "-o", str(tmp_path / "ball"), "--no-png", "-q"]) == 2
     assert src.read_bytes() == before
     assert main(["conformal", str(src), "-o", str(tmp_path / "out.vtu"), "--no-png", "-q"]) == 0
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["ball.mesh", "out.json", "out.mesh", "out.vtk", "out.vtu"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["ball.mesh", "out.vtu"]

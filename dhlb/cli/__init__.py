@@ -15,25 +15,24 @@ import sys
 
 __all__ = ["build_parser", "main"]
 
-_EPILOG = """\
+_EXAMPLES = """\
 examples:
   dhlb info                      # topology of the bundled example torus
   dhlb info mesh.off --json      # the same for your mesh, as JSON
   dhlb info --help               # options of one command
-
-exit codes: 0 ok, 1 failure (e.g. unparsable or invalid input), 2 usage error
-(bad option, missing input file, unknown format). Add --debug to a command to see tracebacks."""
+"""
 
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of ``dhlb`` with one subparser per command module."""
     from dhlb import __version__
+    from dhlb.cli._common import EXIT_CODES_HELP
     from dhlb.cli.commands import iter_commands
 
     parser = argparse.ArgumentParser(
         prog="dhlb",
         description="Discrete hermitian line bundles on simplicial complexes: command-line tools.",
-        epilog=_EPILOG,
+        epilog=f"{_EXAMPLES}\n{EXIT_CODES_HELP}\nAdd --debug to a command to see tracebacks.",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     parser.add_argument("--version", action="version", version=f"dhlb {__version__}")
@@ -50,12 +49,54 @@ def _subparser(parser: argparse.ArgumentParser, name: str | None) -> argparse.Ar
     return parser
 
 
+def _check_spelling(parser: argparse.ArgumentParser, argv: list[str]) -> None:
+    """Report a misspelt command or ``--option`` with a "did you mean" (argparse's usage error, exit 2).
+
+    Runs before argparse, whose own message for a misspelt option can be another one (a required
+    option missing). An unambiguous prefix of an option is accepted, as argparse accepts it.
+    """
+    from dhlb.cli._common import did_you_mean
+
+    commands = next((a.choices for a in parser._actions if isinstance(a, argparse._SubParsersAction)), {})
+    at = next((i for i, t in enumerate(argv) if not t.startswith("-")), None)
+    if at is None:
+        return
+    if argv[at] not in commands:
+        hint = did_you_mean(argv[at], commands)
+        if hint:
+            parser.error(f"unknown command {argv[at]!r}{hint}")
+        return
+    sub = commands[argv[at]]
+    known = [s for a in sub._actions for s in a.option_strings if s.startswith("--")]
+    for token in argv[at + 1:]:
+        if token == "--":
+            break
+        if not token.startswith("--"):
+            continue
+        option = token.split("=", 1)[0]
+        if not any(k.startswith(option) for k in known):
+            sub.error(f"unrecognized arguments: {option}{did_you_mean(option, known)}")
+
+
 def main(argv=None) -> int:
-    """Run ``dhlb`` with ``argv`` (default ``sys.argv[1:]``); return the exit code."""
+    """Run ``dhlb`` with ``argv`` (default ``sys.argv[1:]``); return the exit code.
+
+    Examples
+    --------
+    >>> import contextlib, io
+    >>> err = io.StringIO()
+    >>> with contextlib.redirect_stderr(err):
+    ...     main(["stripes", "mesh.obj", "--spacnig", "6"])
+    2
+    >>> err.getvalue().splitlines()[-1]
+    'dhlb stripes: error: unrecognized arguments: --spacnig; did you mean --spacing?'
+    """
     from dhlb.cli._common import EXIT_USAGE, run_command
 
     parser = build_parser()
+    argv = sys.argv[1:] if argv is None else [str(a) for a in argv]
     try:
+        _check_spelling(parser, argv)
         args, extra = parser.parse_known_args(argv)
         if extra:  # report unknown options with the usage line of the subcommand they were given to
             sub = _subparser(parser, getattr(args, "command", None))

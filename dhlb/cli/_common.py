@@ -1,15 +1,25 @@
-"""What every ``dhlb`` subcommand shares: common options, output, error reporting, exit codes.
+"""What every ``dhlb`` subcommand shares: common options, the ``-o`` convention, messages, exit codes.
 
-Exit codes: 0 success; 1 the command failed (unparsable or invalid input, failed computation);
-2 usage error (bad option, missing input file, unknown file format). User mistakes are reported
-in one line on stderr, without a traceback unless ``--debug`` is given.
+Exit codes (:data:`EXIT_CODES_HELP`): 0 success; 2 a usage or value error (bad or misspelt option, value
+out of range, missing input file, unknown format or ``-o`` extension, missing optional package), found
+before any work; 1 the input or the computation fails (the message says what to change). User mistakes
+are reported in one line on stderr, without a traceback unless ``--debug`` is given; warnings once each,
+in the words of the command line (:func:`cli_warning`).
+
+``-o`` of the commands that write results (:class:`OutputSpec`, :func:`output_plan`): a base name OUT
+writes the command's default set, a name with an extension writes that one format; the files are
+written under temporary names and appear together at the end (:meth:`OutputPlan.writing`).
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import difflib
+import importlib
 import math
 import os
+import re
 import sys
 import warnings
 
@@ -17,7 +27,8 @@ from dhlb.errors import DhlbError, MeshParseError
 
 __all__ = ["UsageError", "add_command", "common_options", "run_command", "write_output", "resolve_input",
            "finite_float", "int_in_range", "number_tuple", "nonempty_text", "PIXEL_SIZE", "check_outputs",
-           "input_paths", "usage_from", "report_table"]
+           "input_paths", "usage_from", "report_table", "OutputSpec", "OutputPlan", "output_plan", "require_extra",
+           "did_you_mean", "cli_warning", "EXIT_CODES_HELP"]
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
 
@@ -201,25 +212,338 @@ def common_options() -> argparse.ArgumentParser:
     return parent
 
 
-def add_command(subparsers, name: str, summary: str, description: str, examples: str) -> argparse.ArgumentParser:
+def add_command(subparsers, name: str, summary: str, description: str, examples: str,
+                outputs: OutputSpec | None = None) -> argparse.ArgumentParser:
     """Create the parser of a subcommand with the common options and an examples epilog.
 
-    Its ``type=float`` options accept finite numbers only (NaN/inf are usage errors).
+    Its ``type=float`` options accept finite numbers only (NaN/inf are usage errors). With ``outputs``
+    (a command that writes result files) the help of ``-o`` and the epilog state the ``-o`` convention.
     """
-    return _finite_floats(subparsers.add_parser(
+    epilog = "examples:\n" + examples.rstrip() + "\n\n"
+    if outputs is not None:
+        epilog += outputs.epilog() + "\n\n"
+    p = _finite_floats(subparsers.add_parser(
         name,
         help=summary,
         description=description,
-        epilog="examples:\n" + examples.rstrip() + "\n\n" + EXIT_CODES_HELP,
+        epilog=epilog + EXIT_CODES_HELP,
         parents=[common_options()],
         formatter_class=argparse.RawDescriptionHelpFormatter,
     ))
+    if outputs is not None:
+        action = next(a for a in p._actions if "--output" in a.option_strings)
+        action.metavar, action.help = "OUT", outputs.help()
+    return p
 
 
 EXIT_CODES_HELP = (
-    "exit codes: 0 ok, 1 failure (e.g. unparsable or invalid input), 2 usage error\n"
-    "(bad option, missing input file, unknown format)."
+    "exit codes: 0 success; 2 usage error, found before any work (a bad or misspelt option, a\n"
+    "value out of range, a missing input file, an unknown format or -o extension, a missing optional\n"
+    "package); 1 the input or the computation fails (the message says what to change)."
 )
+"""The exit-code paragraph of every ``--help`` (``dhlb --help`` too)."""
+
+
+def did_you_mean(word: str, choices) -> str:
+    """``"; did you mean X?"`` for the choice closest to ``word`` (difflib), or ``""``.
+
+    Examples
+    --------
+    >>> did_you_mean("linked-ring", ["ring", "linked-rings", "trefoil"])
+    '; did you mean linked-rings?'
+    >>> did_you_mean("zzz", ["ring"])
+    ''
+    """
+    close = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
+    return f"; did you mean {close[0]}?" if close else ""
+
+
+# ------------------------------------------------------------------------------ -o: the output files
+EXTRAS = {
+    "meshio": 'pip install "dhlb[meshio]" (or: pip install meshio)',
+    "matplotlib": "pip install matplotlib",
+    "polyscope": 'pip install "dhlb[view]" (or: pip install polyscope)',
+}
+"""Optional packages the commands need for some outputs, and how to install them."""
+
+
+def require_extra(module: str, purpose: str, hint: str = "") -> None:
+    """Raise :class:`UsageError` (exit 2, before any work) when the optional package ``module`` is missing.
+
+    Parameters
+    ----------
+    module : str
+        A key of :data:`EXTRAS` (``meshio``, ``matplotlib``, ``polyscope``).
+    purpose : str
+        What needs it (``"writing out.vtu"``), the start of the message.
+    hint : str
+        Appended to the install command (e.g. ``" or add --no-png"``).
+
+    Raises
+    ------
+    UsageError
+        ``module`` cannot be imported; the message names the install command.
+
+    Examples
+    --------
+    >>> require_extra("matplotlib", "writing out.png")
+    >>> require_extra("no_such_module_dhlb", "writing out.x")
+    Traceback (most recent call last):
+    ...
+    KeyError: 'no_such_module_dhlb'
+    """
+    install = EXTRAS[module]
+    try:
+        importlib.import_module(module)
+    except ImportError:
+        raise UsageError(f"{purpose} needs {module}, which is not installed: {install}{hint}") from None
+
+
+_EXTENSION = re.compile(r"\.[A-Za-z][A-Za-z0-9]{0,7}")
+
+
+def _extension(name: str) -> str:
+    """The extension of a file name (``.vtu``), or ``""`` for a base name (``spot-s0.5`` has none)."""
+    ext = os.path.splitext(name)[1]
+    return ext if _EXTENSION.fullmatch(ext) else ""
+
+
+class OutputSpec:
+    """What ``-o`` of one command writes: its default set and the formats a name with an extension asks for.
+
+    Parameters
+    ----------
+    command : str
+        The command's name (for messages).
+    default : sequence of str
+        The suffixes written for a base name OUT, in order (``".ply"``, ``"-isolines.obj"``, ...).
+    formats : dict
+        Extension → what the file holds; the extensions ``-o`` accepts (each writes that file only).
+    companions : dict, optional
+        Suffix → suffixes always written with it (a stripe OBJ's ``.json`` sidecar).
+    switches : dict, optional
+        Suffix → the flag's ``dest`` that turns it off (``{".png": "no_png"}``).
+    extras : dict, optional
+        Extension → the optional package (key of :data:`EXTRAS`) its writer needs.
+
+    Examples
+    --------
+    >>> spec = OutputSpec("field", (".ply", ".json"), {".ply": "mesh", ".json": "summary", ".vtu": "ParaView"})
+    >>> spec.help()
+    'a base name OUT writes OUT.ply, OUT.json; a name ending in .ply, .json or .vtu writes that file only'
+    """
+
+    def __init__(self, command: str, default, formats: dict, *, companions: dict | None = None,
+                 switches: dict | None = None, extras: dict | None = None):
+        self.command = command
+        self.default = tuple(default)
+        self.formats = dict(formats)
+        self.companions = dict(companions or {})
+        self.switches = dict(switches or {})
+        self.extras = {".vtu": "meshio", ".png": "matplotlib"} if extras is None else dict(extras)
+
+    def _exts(self) -> str:
+        exts = list(self.formats)
+        return ", ".join(exts[:-1]) + f" or {exts[-1]}" if len(exts) > 1 else exts[0]
+
+    def help(self) -> str:
+        """The help line of ``-o``."""
+        with_ = "".join(f" ({e} with {', '.join(self.companions[e])})" for e in self.formats if e in self.companions)
+        return (f"a base name OUT writes {', '.join('OUT' + s for s in self.default)}; "
+                f"a name ending in {self._exts()} writes that file only{with_}")
+
+    def epilog(self) -> str:
+        """The paragraph of ``--help`` that states the ``-o`` convention."""
+        width = max(len(e) for e in self.formats)
+        lines = [f"output (-o): a base name OUT writes {', '.join('OUT' + s for s in self.default)};",
+                 "a name with an extension writes that format only:"]
+        for ext, what in self.formats.items():
+            need = self.extras.get(ext)
+            notes = [f"with OUT{c}" for c in self.companions.get(ext, ())]
+            notes += [f"needs {need}"] if need and need != "matplotlib" else []
+            lines.append(f"  OUT{ext:<{width}}  {what}" + (f" ({'; '.join(notes)})" if notes else ""))
+        lines += ["any other extension is a usage error (exit 2) found before any work, like a missing",
+                  "optional package. The files are written under temporary names and appear together",
+                  "at the end: after a failure none of them is left."]
+        return "\n".join(lines)
+
+
+class OutputPlan:
+    """The files one run writes (from :func:`output_plan`), written together by :meth:`writing`.
+
+    Attributes
+    ----------
+    base : str or None
+        The output path without extension; None when nothing is written.
+    suffixes : tuple of str
+        What is written: ``base + suffix`` for each.
+    explicit : str or None
+        The extension ``-o`` named, or None for a base name (the default set).
+    written : list of str
+        The files in place after :meth:`writing` ended.
+    """
+
+    def __init__(self, base: str | None, suffixes=(), explicit: str | None = None):
+        self.base, self.suffixes, self.explicit = base, tuple(suffixes), explicit
+        self.written: list[str] = []
+
+    def __bool__(self) -> bool:
+        return bool(self.suffixes)
+
+    def wants(self, suffix: str) -> bool:
+        """Whether ``base + suffix`` is written."""
+        return suffix in self.suffixes
+
+    def path(self, suffix: str) -> str:
+        """The final path ``base + suffix``."""
+        return f"{self.base}{suffix}"
+
+    @property
+    def paths(self) -> list[str]:
+        """The final paths of every file of the plan."""
+        return [self.path(s) for s in self.suffixes]
+
+    @contextlib.contextmanager
+    def writing(self):
+        """Write the files into a hidden folder beside the targets; move them into place at the end.
+
+        Yields a function ``stage(suffix) -> path`` giving the temporary path to write ``base + suffix``
+        to. When the block ends normally the planned files are renamed onto their targets (others a
+        writer left are dropped) and listed in :attr:`written`; after an error or an interrupt the
+        folder is removed and no target is touched.
+
+        Examples
+        --------
+        >>> import os, tempfile
+        >>> with tempfile.TemporaryDirectory() as d:
+        ...     plan = OutputPlan(os.path.join(d, "out"), (".txt", ".json"))
+        ...     try:
+        ...         with plan.writing() as stage:
+        ...             _ = open(stage(".txt"), "w").write("half")
+        ...             raise KeyboardInterrupt
+        ...     except KeyboardInterrupt:
+        ...         pass
+        ...     before = os.listdir(d)
+        ...     with plan.writing() as stage:
+        ...         for s in (".txt", ".json"):
+        ...             _ = open(stage(s), "w").write("x")
+        ...     print(before, sorted(os.listdir(d)), len(plan.written))
+        [] ['out.json', 'out.txt'] 2
+        """
+        import shutil
+        import tempfile
+
+        from dhlb._files import output_error
+
+        folder, name = os.path.split(os.path.abspath(self.path("")))
+        try:
+            tmp = tempfile.mkdtemp(prefix=f".{name}.", suffix=".dhlb-tmp", dir=folder)
+        except OSError as exc:
+            raise output_error(self.path(self.suffixes[0] if self.suffixes else ""), exc) from None
+        moved: list[str] = []
+        try:
+            yield lambda suffix: os.path.join(tmp, name + suffix)
+            for suffix in self.suffixes:
+                src = os.path.join(tmp, name + suffix)
+                if os.path.isfile(src):
+                    try:
+                        os.replace(src, self.path(suffix))
+                    except OSError as exc:
+                        raise output_error(self.path(suffix), exc) from None
+                    moved.append(self.path(suffix))
+        except BaseException:
+            for path in moved:  # all or nothing
+                with contextlib.suppress(OSError):
+                    os.unlink(path)
+            raise
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+        self.written = moved
+
+
+def output_plan(spec: OutputSpec, args, *, default_base: str | None = None, also: dict | None = None,
+                inputs=()) -> OutputPlan:
+    """The files ``-o`` asks for, checked before any work; see :class:`OutputSpec`.
+
+    Parameters
+    ----------
+    spec : OutputSpec
+        What the command writes.
+    args : argparse.Namespace
+        The parsed command line (``output``, the ``switches`` flags, the input files).
+    default_base : str, optional
+        The base name used without ``-o`` (None: nothing is written).
+    also : dict, optional
+        Suffix → suffixes written with it in this run (``--orthogonal``: the second pattern).
+    inputs : sequence of str, optional
+        Input files beyond those :func:`input_paths` finds (never overwritten).
+
+    Returns
+    -------
+    OutputPlan
+
+    Raises
+    ------
+    UsageError
+        An unknown extension, a format a flag turns off, a missing folder, an output that is an input
+        file or a folder, or a missing optional package its writer needs (all exit 2).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> spec = OutputSpec("field", (".ply", ".json", ".png"), {".ply": "mesh", ".json": "summary", ".png": "picture"},
+    ...                   switches={".png": "no_png"})
+    >>> output_plan(spec, argparse.Namespace(output="out", no_png=True)).paths
+    ['out.ply', 'out.json']
+    >>> output_plan(spec, argparse.Namespace(output="out.png", no_png=False)).paths
+    ['out.png']
+    >>> output_plan(spec, argparse.Namespace(output="out.txt", no_png=False))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    dhlb.cli._common.UsageError: -o out.txt: dhlb field does not write .txt files; give a base name OUT ...
+    """
+    out = getattr(args, "output", None)
+    if not out or out == "-":
+        if default_base is None:
+            return OutputPlan(None)
+        out = default_base
+    name = os.path.basename(out)
+    if not name or name in (".", ".."):
+        raise UsageError(f"-o {out}: give a base name such as {os.path.join(out, 'result')}, not a folder")
+    ext = _extension(name)
+    if ext:
+        if ext.lower() not in spec.formats:
+            raise UsageError(f"-o {out}: dhlb {spec.command} does not write {ext} files; give a base name OUT "
+                             f"(writes {', '.join('OUT' + s for s in spec.default)}) or a name ending in "
+                             f"{spec._exts()}")
+        ext = ext.lower()
+        flag = spec.switches.get(ext)
+        if flag and getattr(args, flag, False):
+            raise UsageError(f"-o {out} asks for the {ext} file that --{flag.replace('_', '-')} turns off")
+        base, wanted = out[: -len(ext)], [ext]
+    else:
+        base = out
+        wanted = [s for s in spec.default if not getattr(args, spec.switches.get(s, ""), False)]
+    suffixes: list[str] = []
+    for s in wanted:
+        for t in (s, *spec.companions.get(s, ()), *(also or {}).get(s, ())):
+            if t not in suffixes:
+                suffixes.append(t)
+    plan = OutputPlan(base, suffixes, ext or None)
+    folder = os.path.dirname(os.path.abspath(base))
+    if not os.path.isdir(folder):
+        raise UsageError(f"cannot write {out}: the folder {folder} does not exist")
+    for path in plan.paths:
+        if os.path.isdir(path):
+            raise UsageError(f"cannot write {path}: it is a folder")
+    check_outputs(plan.paths, args, inputs=[p for p in inputs if p])
+    for s in suffixes:
+        module = spec.extras.get(_extension("x" + s).lower())
+        if module:
+            flag = spec.switches.get(s)
+            hint = f", or add --{flag.replace('_', '-')}" if flag and not ext else ""
+            require_extra(module, f"writing {plan.path(s)}", hint)
+    return plan
 
 
 def resolve_input(path: str, fmt: str | None = None) -> str:
@@ -239,8 +563,9 @@ def resolve_input(path: str, fmt: str | None = None) -> str:
         raise UsageError(str(exc)) from None
 
 
-#: argparse destinations that name input files, checked against every output path
-INPUT_DESTS = ("file", "mesh", "velocity", "field")
+#: argparse destinations that name input files, checked against every output path, and what they are called
+INPUT_DESTS = {"file": "the input mesh", "mesh": "the input mesh", "velocity": "the input velocity",
+               "field": "the input field", "align": "the input alignment", "u_file": "the input u file"}
 
 
 def input_paths(args) -> list[str]:
@@ -252,11 +577,15 @@ def input_paths(args) -> list[str]:
     >>> input_paths(argparse.Namespace(file=__file__, output="x.json"))  # doctest: +ELLIPSIS
     ['.../_common.py']
     """
+    return [path for path, _ in _named_inputs(args)]
+
+
+def _named_inputs(args) -> list[tuple[str, str]]:
     out = []
-    for dest in INPUT_DESTS:
+    for dest, role in INPUT_DESTS.items():
         value = getattr(args, dest, None)
         if isinstance(value, str) and value and os.path.isfile(value):
-            out.append(value)
+            out.append((value, f"{role} {value}"))
     return out
 
 
@@ -274,13 +603,16 @@ def check_outputs(outputs, args=None, inputs=()) -> None:
     >>> check_outputs([__file__], argparse.Namespace(file=__file__))  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    dhlb.cli._common.UsageError: refusing to write .../_common.py: it is the input file ...
+    dhlb.cli._common.UsageError: refusing to write .../_common.py: it is the input mesh ...
     """
     from dhlb._files import refuse_overwrite
     from dhlb.errors import OverwriteError
 
+    named = (_named_inputs(args) if args is not None else []) + [(p, f"the input file {p}") for p in inputs if p]
     try:
-        refuse_overwrite(list(outputs), (input_paths(args) if args is not None else []) + list(inputs))
+        refuse_overwrite(list(outputs), [])  # two outputs that are one file
+        for path, role in named:
+            refuse_overwrite(list(outputs), [path], role=role)
     except OverwriteError as exc:
         raise UsageError(str(exc)) from None
 
@@ -346,13 +678,52 @@ def _one_line(message) -> str:
     return " ".join(str(message).split())
 
 
+_UNREFERENCED = re.compile(r"(\d+) (?:of \d+ )?vertices (?:of V )?are used by no (\w+) and were dropped "
+                           r"\((?:first|indices):? (\d+)[^)]*\)")
+
+
+def cli_warning(message, args=None) -> str:
+    """A library warning in the words of the command line: one line, file rows instead of API names.
+
+    The unreferenced-vertex warnings of :mod:`dhlb.mesh` speak of ``V`` and ``vertex_labels``; here they
+    name the input file and its first unused vertex row.
+
+    Examples
+    --------
+    >>> import argparse
+    >>> args = argparse.Namespace(file="meshes/bunny.obj")
+    >>> cli_warning("3 vertices of V are used by no face and were dropped (first: 8, 16, 18); "
+    ...             "mesh.vertex_labels maps compact vertices to rows of V", args)
+    '3 vertices of bunny.obj are used by no face and were dropped (first: row 8)'
+    >>> cli_warning("something   odd")
+    'something odd'
+    """
+    text = _one_line(message)
+    m = _UNREFERENCED.match(text)
+    if m:
+        count, what, first = int(m.group(1)), m.group(2), m.group(3)
+        source = next((p for d in ("file", "mesh") if isinstance(p := getattr(args, d, None), str) and p), None)
+        where = os.path.basename(source) if source else "the mesh"
+        verb = "vertex of {} is used by no {} and was dropped" if count == 1 else \
+            "vertices of {} are used by no {} and were dropped"
+        text = f"{count} {verb.format(where, what)} (first: row {first})"
+    return text
+
+
 def run_command(args) -> int:
-    """Run ``args.func(args)`` and turn exceptions into one-line messages and exit codes."""
+    """Run ``args.func(args)`` and turn exceptions into one-line messages and exit codes.
+
+    Warnings are printed once each (:func:`cli_warning`), none with ``--quiet``.
+    """
     prog = f"dhlb {args.command}"
     debug = getattr(args, "debug", False)
+    shown: set[str] = set()
 
     def show_warning(message, category, filename, lineno, file=None, line=None):
-        print(f"{prog}: warning: {_one_line(message)}", file=sys.stderr)
+        text = cli_warning(message, args)
+        if text not in shown:  # the same warning from two layers (or two calls) is printed once
+            shown.add(text)
+            print(f"{prog}: warning: {text}", file=sys.stderr)
 
     try:
         output = getattr(args, "output", None)

@@ -4,9 +4,11 @@ Each subcommand lives in its own module of :mod:`dhlb.cli` and defines
 
 * ``NAME`` (the word typed after ``dhlb``) and ``SUMMARY`` (one line for ``dhlb --help``);
 * ``register(subparsers)``: add its parser, built with :func:`dhlb.cli._common.add_command`
-  so that it shares the common options ``-o/--output``, ``--json``, ``--quiet``, ``--debug``;
-* ``run(args) -> int``: do the work, raising :class:`dhlb.errors.DhlbError` (exit 1) or
-  :class:`dhlb.cli._common.UsageError` (exit 2) on user mistakes.
+  so that it shares the common options ``-o/--output``, ``--json``, ``--quiet``, ``--debug``
+  (a command that writes result files passes ``outputs=OutputSpec(...)``, the ``-o`` convention);
+* ``run(args) -> int``: check every usage (``output_plan`` for ``-o``) before the work, then do it,
+  raising :class:`dhlb.cli._common.UsageError` (exit 2) on user mistakes and
+  :class:`dhlb.errors.DhlbError` (exit 1) when the input or the computation fails.
 
 To add a command, write the module and append its name to :data:`COMMAND_MODULES`.
 """

@@ -7,23 +7,22 @@ from __future__ import annotations
 
 import json
 import os
-import warnings
 
 import numpy as np
 
 from dhlb.cli._common import (
+    OutputSpec,
     UsageError,
     add_command,
-    check_outputs,
     int_in_range,
     number_tuple,
+    output_plan,
     report_table,
     resolve_input,
 )
-from dhlb.errors import DhlbWarning
 from dhlb.render.conformal_png import boundary_distortion, render_conformal_png
 
-__all__ = ["NAME", "SUMMARY", "boundary_distortion", "format_report", "register",
+__all__ = ["NAME", "OUTPUTS", "SUMMARY", "boundary_distortion", "format_report", "register",
            "render_conformal_png", "run"]
 
 NAME = "conformal"
@@ -39,20 +38,31 @@ u is the potential of point charges, u(x) = sum q / |x - a| (--charge x,y,z,q, r
 charges must lie outside the solid), or one value per mesh vertex (--u FILE.npy). Without -o or --u
 the default is one charge q = 0.5 diam at distance 0.3 diam above the top of the bounding box.
 
-With -o OUT.mesh or -o OUT.vtk the deformed mesh is written to OUT.mesh and OUT.vtk, the result
+With -o OUT (a base name) the deformed mesh is written to OUT.mesh and OUT.vtk, the result
 (statistics, timings) to OUT.json and a picture of the boundary before and after, coloured by the
 distortion of each tetrahedron (sigma_max / sigma_min of the deformation gradient), to OUT.png
-(unless --no-png; needs matplotlib)."""
+(unless --no-png); -o OUT.EXT writes that format only (see below)."""
 
 _EXAMPLES = """\
-  dhlb conformal solid.mesh --charge 0,0,2,1 --charge 1.5,0,0,-0.5 -o deformed.mesh
-  dhlb conformal solid.vtk --u u.npy -o out.vtk --json
+  dhlb conformal solid.mesh --charge 0,0,2,1 --charge 1.5,0,0,-0.5 -o deformed   # .mesh .vtk .json .png
+  dhlb conformal solid.vtk --u u.npy -o out.vtk --json                          # out.vtk only
   dhlb conformal --ball 6 -o ball.mesh           # a tetrahedralised ball, default charge"""
+
+OUTPUTS = OutputSpec("conformal", (".mesh", ".vtk", ".json", ".png"), {
+    ".mesh": "the deformed tets (Medit)",
+    ".msh": "the deformed tets (Gmsh)",
+    ".vtk": "the deformed tets (legacy VTK)",
+    ".vtu": "the deformed tets with phi, u, distortion, for ParaView",
+    ".npz": "points, tets, phi, u, distortion, scale error, eigenvalue",
+    ".json": "the summary: eigenvalue, statistics, timings",
+    ".png": "the boundary before and after, coloured by distortion",
+}, switches={".png": "no_png"})
+"""What ``dhlb conformal -o`` writes (nothing without ``-o``)."""
 
 
 def register(subparsers) -> None:
     """Add the ``conformal`` parser to ``subparsers``."""
-    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
+    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES, outputs=OUTPUTS)
     p.add_argument("mesh", nargs="?", metavar="TETMESH", help="tetrahedral mesh file (.mesh .msh .vtk)")
     p.add_argument("--ball", type=int_in_range(1, 100_000), metavar="N",
                    help="use the unit ball (dhlb.mesh.ball_tet_mesh(N)) instead")
@@ -107,37 +117,19 @@ def _factor(args, mesh, n_rows):
     return u, "; ".join(u.labels)
 
 
-MESH_EXTENSIONS = (".mesh", ".vtk", ".vtu")
-"""``-o`` extensions; the deformed tets are always written as ``.mesh`` and ``.vtk`` beside it, ``.vtu`` when asked."""
-
-
-def _mesh_outputs(out: str) -> list[str]:
-    """The deformed-mesh files ``-o OUT`` writes: ``.mesh`` and ``.vtk``, and ``.vtu`` if asked."""
-    stem, ext = os.path.splitext(out)
-    return [stem + e for e in (".mesh", ".vtk")] + ([out] if ext.lower() == ".vtu" else [])
-
-
-def _outputs(args, result, meta) -> list[str]:
-    from dhlb._files import atomic_write
-
-    out = args.output
-    if not out or out == "-":
-        return []
-    stem = os.path.splitext(out)[0]
-    written = []
-    for path in _mesh_outputs(out):
-        written += result.save(path)
-    with atomic_write(stem + ".json") as fh:
-        json.dump({**meta, **_summary(result)}, fh, indent=1)
-    written.append(stem + ".json")
-    if not args.no_png:
-        try:
-            F, dF = boundary_distortion(result)
-            title = f"{meta['u']}: distortion (colour) 1 .. {result.distortion.max():.3g}"
-            written.append(render_conformal_png(stem + ".png", result.mesh.points, result.points, F, dF, title=title))
-        except ImportError as exc:
-            warnings.warn(f"no PNG written: {exc}", DhlbWarning, stacklevel=2)
-    return written
+def _outputs(plan, result, meta) -> None:
+    """Write the files of ``plan`` (all or none); :attr:`OutputPlan.written` lists them."""
+    with plan.writing() as stage:
+        for suffix in plan.suffixes:
+            if suffix == ".json":
+                with open(stage(suffix), "w", encoding="utf-8") as fh:
+                    json.dump({**meta, **_summary(result)}, fh, indent=1)
+            elif suffix == ".png":
+                F, dF = boundary_distortion(result)
+                title = f"{meta['u']}: distortion (colour) 1 .. {result.distortion.max():.3g}"
+                render_conformal_png(stage(suffix), result.mesh.points, result.points, F, dF, title=title)
+            else:  # the formats of dhlb.io.results.write
+                result.save(stage(suffix))
 
 
 def _summary(result) -> dict:
@@ -171,13 +163,7 @@ def run(args) -> int:
     """Entry point of ``dhlb conformal``."""
     from dhlb.conformal import conformal_deformation
 
-    if args.output and args.output != "-":
-        ext = os.path.splitext(args.output)[1].lower()
-        if ext not in MESH_EXTENSIONS:
-            raise UsageError(f"-o must name a .mesh, .vtk or .vtu file for the deformed mesh, got {args.output!r}")
-        stem = os.path.splitext(args.output)[0]
-        derived = _mesh_outputs(args.output) + [stem + ".json"] + ([] if args.no_png else [stem + ".png"])
-        check_outputs(derived, args, inputs=[args.u_file])  # never over the input mesh or the u file
+    plan = output_plan(OUTPUTS, args)  # before any work; never over the input mesh or the u file
     mesh, n_rows, mesh_name = _mesh(args)
     u, uname = _factor(args, mesh, n_rows)
     if isinstance(u, np.ndarray) and u.shape != (n_rows,):
@@ -186,7 +172,9 @@ def run(args) -> int:
         u = u[np.asarray(mesh.complex.vertex_labels)]
     result = conformal_deformation(mesh, None, u, backend=args.backend)
     meta = {"mesh": mesh_name, "u": uname}
-    meta["written"] = _outputs(args, result, meta)
+    if plan:
+        _outputs(plan, result, meta)
+        meta["written"] = plan.written
     data = _summary(result)
     if args.json or not args.quiet:
         print(json.dumps({**data, **meta}, indent=1) if args.json else format_report(meta, data))

@@ -1,10 +1,11 @@
 """``dhlb field``: the globally optimal n-direction field of a triangle mesh (smoothest or aligned).
 
-Writes ``OUT.ply`` (the mesh with the n unit directions as vertex properties ``d{k}x d{k}y d{k}z``),
-``OUT.npz`` (``u``, ``directions``, ``frames``, ``face_index`` and the singularities, all in the
-input numbering: rows of the file's vertices and faces), ``OUT.json`` (the summary of
-:meth:`dhlb.fields.DirectionField.to_json` plus output timings) and ``OUT.png`` (the shaded mesh,
-direction glyphs, singularities red (+) / blue (−)).
+For a base name OUT (:data:`OUTPUTS`) writes ``OUT.ply`` (the mesh with the n unit directions as vertex
+properties ``d{k}x d{k}y d{k}z``), ``OUT.npz`` (``u``, ``directions``, ``frames``, ``face_index`` and the
+singularities, all in the input numbering: rows of the file's vertices and faces), ``OUT.json`` (the
+summary of :meth:`dhlb.fields.DirectionField.to_json` plus output timings) and ``OUT.png`` (the shaded
+mesh, direction glyphs, singularities red (+) / blue (−)); ``-o OUT.EXT`` writes that one file
+(``.vtu``: ParaView).
 """
 
 from __future__ import annotations
@@ -17,9 +18,20 @@ import time
 
 import numpy as np
 
-from dhlb.cli._common import UsageError, add_command, finite_float, int_in_range, resolve_input, write_output
+from dhlb.cli._common import (
+    OutputSpec,
+    UsageError,
+    add_command,
+    did_you_mean,
+    finite_float,
+    int_in_range,
+    output_plan,
+    resolve_input,
+    write_output,
+)
 
-__all__ = ["NAME", "SUMMARY", "read_alignment", "parse_singularity", "register", "run", "write_field"]
+__all__ = ["NAME", "OUTPUTS", "SUMMARY", "index_sum_label", "read_alignment", "parse_singularity", "register", "run",
+           "write_field"]
 
 NAME = "field"
 MAX_N = 1000
@@ -33,9 +45,9 @@ the smoothest field for the energy E_s = E_D - s (E_A - E_H) (s = 0 Dirichlet, +
 boundary, or to user vectors. Unreferenced vertices are dropped with a warning; each connected
 component gets its own field.
 
-Outputs (OUT is a base path): OUT.ply (mesh + directions as vertex properties), OUT.npz
-(u, directions, frames, face_index, singularities), OUT.json (singularities, index sum,
-Euler characteristic, eigenvalue, timings) and OUT.png (picture). --json prints the summary.
+Outputs (-o, see below): OUT.ply (mesh + directions as vertex properties), OUT.npz (u,
+directions, frames, face_index, singularities), OUT.json (singularities, index sum, Euler
+characteristic, eigenvalue, timings) and OUT.png (picture). --json prints the summary.
 
 With --singularity (repeatable) the field has exactly the given singularities instead
 (dualised trivial connections, dhlb.fields.prescribed_field): FACE:K puts index K/n on the
@@ -52,10 +64,19 @@ _EXAMPLES = """\
 
 _ALIGN = ("curvature", "min-curvature", "boundary", "boundary-normal")
 
+OUTPUTS = OutputSpec(NAME, (".ply", ".npz", ".json", ".png"), {
+    ".ply": "the mesh (input rows) with the directions as vertex properties",
+    ".npz": "u, directions, frames, face_index, singularities (input rows)",
+    ".json": "the summary: singularities, index sum, eigenvalue, timings",
+    ".png": "the picture",
+    ".vtu": "the mesh with directions and face indices, for ParaView",
+}, switches={".png": "no_png"})
+"""What ``dhlb field -o`` writes."""
+
 
 def register(subparsers) -> None:
     """Add the ``field`` parser to ``subparsers``."""
-    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
+    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES, outputs=OUTPUTS)
     p.add_argument("mesh", metavar="MESH", help="triangle mesh file (.obj, .off, .ply)")
     p.add_argument("--n", type=int_in_range(1, MAX_N), default=1,
                    help=f"symmetry: 1 vector, 2 line, 4 cross field, ... up to {MAX_N} (default 1)")
@@ -87,7 +108,8 @@ def read_alignment(value):
     if value is None or value in _ALIGN:
         return value
     if not value.endswith(".npy"):
-        raise UsageError(f"--align must be one of {', '.join(_ALIGN)} or a .npy file, got {value!r}")
+        raise UsageError(f"--align must be one of {', '.join(_ALIGN)} or a .npy file, got {value!r}"
+                         f"{did_you_mean(value, _ALIGN)}")
     if not os.path.isfile(value):
         raise UsageError(f"{value}: no such file")
     try:
@@ -132,8 +154,8 @@ def parse_singularity(text: str) -> tuple:
     raise argparse.ArgumentTypeError(f"{text!r}: the location must be a face number or three finite coordinates x,y,z")
 
 
-def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
-    """Write OUT.ply, OUT.npz (:func:`dhlb.io.results.write_field_files`) and OUT.png for the field ``res``.
+def write_field(out: str, res, V, F, *, png: bool = True, kinds=None) -> dict:
+    """Write the files of ``dhlb field`` for the field ``res`` under the base path ``out``.
 
     Parameters
     ----------
@@ -146,12 +168,15 @@ def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
     F : (m, 3) int array
         The input faces.
     png : bool
-        Also draw ``OUT.png``.
+        Also draw ``OUT.png`` (when ``kinds`` is not given).
+    kinds : sequence of str, optional
+        The suffixes to write among ``.ply``, ``.npz`` (:func:`dhlb.io.results.write_field_files`),
+        ``.png`` and ``.vtu``; default ``.ply``, ``.npz`` and, with ``png``, ``.png``.
 
     Returns
     -------
     dict
-        Kind → path (``ply``, ``npz``, ``json`` — the JSON is written by :func:`run` — and ``png``).
+        Kind → path (``ply``, ``npz``, ``json`` — the JSON is written by :func:`run` — ``png``, ``vtu``).
 
     Examples
     --------
@@ -164,16 +189,45 @@ def write_field(out: str, res, V, F, *, png: bool = True) -> dict:
     ...     sorted(os.path.basename(p) for p in paths.values() if os.path.exists(p))
     ['t.npz', 't.ply']
     """
-    from dhlb.io.results import write_field_files
+    from dhlb.io.results import _field_ply, write_field_files, write_field_npz
 
-    paths = write_field_files(out, res, V, F)
-    if png:
+    kinds = set((".ply", ".npz") + ((".png",) if png else ()) if kinds is None else kinds)
+    paths = {"json": out + ".json"}
+    if {".ply", ".npz"} <= kinds:
+        paths.update(write_field_files(out, res, V, F))
+    elif ".ply" in kinds:
+        paths["ply"] = _field_ply(out + ".ply", res, V, F)
+    elif ".npz" in kinds:
+        paths["npz"] = write_field_npz(out + ".npz", res)
+    if ".png" in kinds:
         from dhlb.render import render_field_png
 
         mesh = res.mesh
         paths["png"] = render_field_png(out + ".png", mesh.points, mesh.faces, res.directions, res.singularities,
                                         title=f"n = {res.n}, s = {res.s:g}, index sum {res.index_sum}")
+    if ".vtu" in kinds:
+        from dhlb.io.paraview import field_to_vtu
+
+        paths["vtu"] = field_to_vtu(res, out + ".vtu")
     return paths
+
+
+def index_sum_label(res) -> str:
+    """What the index sum of the field ``res`` equals: ``nχ`` on a closed mesh, ``(ΣΩ + rotation)/2π`` otherwise.
+
+    With boundary the sum is not ``nχ``: it is the total curvature plus the turning of the field along
+    the boundary, over 2π (the row "boundary" of ``dhlb demo``).
+
+    Examples
+    --------
+    >>> from dhlb.io import read_surface, example_path
+    >>> from dhlb.fields import direction_field
+    >>> index_sum_label(direction_field(*read_surface(example_path("torus.obj")), n=4))
+    'Σ index = 0 = nχ = 4·0'
+    """
+    if res.mesh.is_closed:
+        return f"Σ index = {res.index_sum} = nχ = {res.n}·{res.euler_characteristic}"
+    return f"Σ index = {res.index_sum} = (ΣΩ + rotation)/2π = {res.poincare_hopf:.6f} (a mesh with boundary)"
 
 
 def run(args) -> int:
@@ -182,16 +236,10 @@ def run(args) -> int:
     from dhlb.io import read_surface
 
     if not args.output or args.output == "-":
-        raise UsageError("give the output base path with -o OUT (writes OUT.ply, OUT.npz, OUT.json, OUT.png)")
-    out = args.output
-    vtu = out.lower().endswith(".vtu")  # also write the surface with its directions and indices for ParaView
-    for ext in (".ply", ".npz", ".json", ".png", ".vtu"):
-        out = out.removesuffix(ext)
-    parent = os.path.dirname(os.path.abspath(out))
-    if not os.path.isdir(parent):
-        raise UsageError(f"cannot write {out}.*: the directory {parent} does not exist")
+        raise UsageError(f"give the output with -o OUT: {OUTPUTS.help()}")
     t0 = time.perf_counter()
     fmt = resolve_input(args.mesh, args.fmt)  # every surface read_surface reads (also via meshio); see below
+    plan = output_plan(OUTPUTS, args)  # before any work: the extension, the folder, the inputs, meshio
     align = read_alignment(args.align)
     sing = args.singularity or []
     if args.singularity and (align is not None or args.s != 0.0):
@@ -208,25 +256,21 @@ def run(args) -> int:
     if note and not args.quiet:
         print(f"dhlb field: note: {note}", file=sys.stderr)
     summary = res.to_json()
-    paths = write_field(out, res, V, F, png=not args.no_png)
-    if vtu:
-        from dhlb.io.paraview import field_to_vtu
-
-        paths["vtu"] = field_to_vtu(res, out + ".vtu")
-    t3 = time.perf_counter()
-    summary["timings"] = dict(summary["timings"], io=t1 - t0, output=t3 - t2, end_to_end=t3 - t0)
-    summary["files"] = paths
+    summary["files"] = {s.lstrip("."): plan.path(s) for s in plan.suffixes}
     summary["input"] = args.mesh
-    from dhlb._files import atomic_write
-
-    with atomic_write(paths["json"], "w", encoding="utf-8") as fh:
-        json.dump(summary, fh, indent=2)
+    with plan.writing() as stage:  # all files or none
+        write_field(stage(""), res, V, F, kinds=[s for s in plan.suffixes if s != ".json"])
+        t3 = time.perf_counter()
+        summary["timings"] = dict(summary["timings"], io=t1 - t0, output=t3 - t2, end_to_end=t3 - t0)
+        if plan.wants(".json"):
+            with open(stage(".json"), "w", encoding="utf-8") as fh:
+                json.dump(summary, fh, indent=2)
     if args.json:
         args.output = None  # the summary goes to stdout; -o named the output files
         write_output(args, json.dumps(summary, indent=2))
     elif not args.quiet:
         s = summary
-        print(f"{args.mesh}: {s['n_vertices']} vertices, {s['n_faces']} faces, chi = {s['euler_characteristic']}; "
-              f"n = {s['n']}, s = {s['s']:g}: {len(s['singularities'])} singularities, index sum {s['index_sum']} "
-              f"(Poincare-Hopf {s['poincare_hopf']:g}); wrote {', '.join(paths.values())}")
+        print(f"{args.mesh}: {s['n_vertices']} vertices, {s['n_faces']} faces, χ = {s['euler_characteristic']}; "
+              f"n = {s['n']}, s = {s['s']:g}: {len(s['singularities'])} singularities, {index_sum_label(res)}; "
+              f"wrote {', '.join(plan.written)}")
     return 0

@@ -7,9 +7,18 @@ import os
 
 import numpy as np
 
-from dhlb.cli._common import PIXEL_SIZE, UsageError, add_command, finite_float, int_in_range, resolve_input
+from dhlb.cli._common import (
+    PIXEL_SIZE,
+    OutputSpec,
+    UsageError,
+    add_command,
+    finite_float,
+    int_in_range,
+    output_plan,
+    resolve_input,
+)
 
-__all__ = ["NAME", "SUMMARY", "register", "run", "output_paths"]
+__all__ = ["NAME", "OUTPUTS", "SUMMARY", "register", "run"]
 
 NAME = "stripes"
 SUMMARY = "stripe pattern along a direction field: OBJ with texture coordinates, isolines, PNG"
@@ -29,15 +38,15 @@ dislocations. --section eigenvector gives the relaxed eigenvector (the seed's pa
 power the seed's Algorithm 9 (--iterations inverse power steps from a random start, --seed).
 Parameters that scale the work (--frequency/--spacing for the isolines, --size) are checked
 against a memory estimate before the work starts (exit 2 with the estimate and the allowed range).
-No output may be the input mesh or field file; every file is written to a temporary file in its
-folder and renamed when complete.
+No output may be the input mesh or field file.
 
-Writes, for -o OUT (default: the mesh name with -stripes):
+Writes, for -o OUT (a base name; default: the mesh name with -stripes):
   OUT.obj           the mesh with one texture coordinate per face corner, u = alpha/2pi
   OUT.json          sidecar: zero faces (index, lArg interpolation) and branch faces (cone values)
   OUT-isolines.obj  the isolines alpha = 0 (mod 2pi) as polylines ('l' records)
   OUT.png           a rendering of cos(alpha), fine enough to show lArg and branch points
---json prints one JSON object (zero_faces as [{"face", "index"}] in input face rows,
+and with --orthogonal OUT-orthogonal.obj and .json. -o OUT.obj, OUT.png or OUT.vtu writes
+that format only (see below). --json prints one JSON object (zero_faces as [{"face", "index"}] in input face rows,
 branch_faces, timings, eigenvalue, solver, the written files)."""
 
 _EXAMPLES = """\
@@ -47,9 +56,17 @@ _EXAMPLES = """\
   dhlb stripes vase.obj --spacing 6 --section eigenvector -o vase-relaxed"""
 
 
+OUTPUTS = OutputSpec(NAME, (".obj", ".json", "-isolines.obj", ".png"), {
+    ".obj": "the mesh with one texture coordinate per face corner",
+    ".png": "the picture",
+    ".vtu": "psi, the corner angles, zero and branch faces, for ParaView",
+}, companions={".obj": (".json",)}, switches={".png": "no_png", "-isolines.obj": "no_isolines"})
+"""What ``dhlb stripes -o`` writes (``--orthogonal`` adds ``OUT-orthogonal.obj/.json/.vtu``)."""
+
+
 def register(subparsers) -> None:
     """Add the ``stripes`` parser to ``subparsers``."""
-    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
+    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES, outputs=OUTPUTS)
     p.add_argument("file", metavar="MESH", help="triangle surface mesh (.obj .off .ply ...)")
     size = p.add_mutually_exclusive_group(required=True)
     size.add_argument("--frequency", type=finite_float(0, low_open=True), metavar="F",
@@ -75,13 +92,6 @@ def register(subparsers) -> None:
     p.add_argument("--level", type=float, default=0.0, help="isoline level c of alpha = c (mod 2pi), default 0")
     p.add_argument("--size", type=PIXEL_SIZE, default=800, metavar="PX", help="PNG size in pixels (default 800)")
     p.set_defaults(func=run)
-
-
-def output_paths(base: str) -> dict:
-    """The files written for the output base ``base`` (a trailing ``.obj`` is dropped)."""
-    if base.lower().endswith(".obj"):
-        base = base[:-4]
-    return {"obj": base + ".obj", "sidecar": base + ".json", "isolines": base + "-isolines.obj", "png": base + ".png"}
 
 
 def _directions(args, V, F, n):
@@ -120,14 +130,14 @@ def _check_size(size):
         raise ResourceLimitError("--size", size, est, MAX_BYTES, f"allowed: --size {low} to {allowed}")
 
 
-def _check_density(args, V, F, n):
+def _check_density(args, V, F, n, plan):
     """Refuse a frequency whose isolines cannot fit in MAX_BYTES, before any solve.
 
     A lower estimate of the isoline work: every face is crossed about ``f · perimeter / 2`` times
     per level (zero faces, found only after the solve, add more; :func:`dhlb.stripes.isolines`
     checks the exact count before allocating).
     """
-    if args.no_isolines:
+    if not plan.wants("-isolines.obj"):
         return
     from dhlb.errors import ResourceLimitError
     from dhlb.stripes.isolines import BYTES_PER_SEGMENT, BYTES_PER_SUBTRIANGLE
@@ -168,42 +178,43 @@ def _write_isolines(path, iso_list) -> int:
     return len(polylines)
 
 
-def _outputs(res, paths, args) -> dict:
+def _outputs(res, plan, stage, args) -> dict:
+    """Write the files of ``plan`` (to the temporary paths ``stage(suffix)``); return their final names."""
     from dhlb.io.stripes import write_stripes_obj
     from dhlb.stripes import isolines
 
     written = {}
     iso = None
-    if not args.no_isolines:  # computed first: refused (memory) before any file is written
+    if plan.wants("-isolines.obj"):  # computed first: refused (memory) before any file is written
         iso = [isolines(res.texture, level=args.level, max_bytes=MAX_BYTES)]
         if res.orthogonal is not None:
             iso.append(isolines(res.orthogonal.texture, level=args.level, max_bytes=MAX_BYTES))
-    obj, side = write_stripes_obj(paths["obj"], res.texture)
-    written.update(obj=obj, sidecar=side)
+    if plan.wants(".obj"):
+        write_stripes_obj(stage(".obj"), res.texture)
+        written.update(obj=plan.path(".obj"), sidecar=plan.path(".json"))
     if iso is not None:
-        written["isolines"] = paths["isolines"]
-        written["n_isolines"] = _write_isolines(paths["isolines"], iso)
-    if not args.no_png:
-        from dhlb.render import Camera, StripeStyle, render_stripes_png  # written atomically by the render layer
+        written["isolines"] = plan.path("-isolines.obj")
+        written["n_isolines"] = _write_isolines(stage("-isolines.obj"), iso)
+    if plan.wants(".png"):
+        from dhlb.render import Camera, StripeStyle, render_stripes_png
 
-        written["png"] = render_stripes_png(paths["png"], res.texture, camera=Camera(size=(args.size, args.size)),
-                                            style=StripeStyle(mark_singularities=True))
-    if res.orthogonal is not None:
-        o = output_paths(paths["obj"][:-4] + "-orthogonal")
-        written["orthogonal_obj"], written["orthogonal_sidecar"] = write_stripes_obj(o["obj"], res.orthogonal.texture)
+        render_stripes_png(stage(".png"), res.texture, camera=Camera(size=(args.size, args.size)),
+                           style=StripeStyle(mark_singularities=True))
+        written["png"] = plan.path(".png")
+    if plan.wants(".vtu"):
+        from dhlb.io.paraview import stripes_to_vtu
+
+        written["vtu"] = plan.path(".vtu")
+        stripes_to_vtu(res, stage(".vtu"))
+    if res.orthogonal is not None and plan.wants("-orthogonal.obj"):
+        write_stripes_obj(stage("-orthogonal.obj"), res.orthogonal.texture)
+        written.update(orthogonal_obj=plan.path("-orthogonal.obj"), orthogonal_sidecar=plan.path("-orthogonal.json"))
+    if res.orthogonal is not None and plan.wants("-orthogonal.vtu"):
+        from dhlb.io.paraview import stripes_to_vtu
+
+        written["orthogonal_vtu"] = plan.path("-orthogonal.vtu")
+        stripes_to_vtu(res.orthogonal, stage("-orthogonal.vtu"))
     return written
-
-
-def _all_outputs(paths, args) -> list:
-    out = [paths["obj"], paths["sidecar"]]
-    if not args.no_isolines:
-        out.append(paths["isolines"])
-    if not args.no_png:
-        out.append(paths["png"])
-    if args.orthogonal:
-        o = output_paths(paths["obj"][:-4] + "-orthogonal")
-        out += [o["obj"], o["sidecar"]]
-    return out
 
 
 def _check_args(args) -> None:
@@ -225,27 +236,25 @@ def run(args) -> int:
 
 
 def _run(args) -> int:
-    from dhlb._files import refuse_overwrite
     from dhlb.io import read_surface
     from dhlb.stripes import SectionOptions, StripeOptions, stripe_pattern
 
     fmt = resolve_input(args.file, args.fmt)
     _check_args(args)
-    base = args.output or os.path.splitext(os.path.basename(args.file))[0] + "-stripes"
-    paths = output_paths(base)
-    refuse_overwrite(_all_outputs(paths, args), [args.file], role=f"the input mesh {args.file}")
-    if args.field not in ("smoothest", "curvature"):
-        refuse_overwrite(_all_outputs(paths, args), [args.field], role=f"the input field {args.field}")
+    also = {".obj": ("-orthogonal.obj", "-orthogonal.json"), ".vtu": ("-orthogonal.vtu",)} if args.orthogonal else {}
+    plan = output_plan(OUTPUTS, args, also=also,  # before any work; never over the mesh or the field file
+                       default_base=os.path.splitext(os.path.basename(args.file))[0] + "-stripes")
     n = args.n if args.n is not None else (2 if args.field == "curvature" else 1)
     V, F = read_surface(args.file, fmt)
-    _check_density(args, V, F, n)
+    _check_density(args, V, F, n, plan)
     directions = _directions(args, V, F, n)
     section = SectionOptions(kind=args.section, iterations=args.iterations, seed=args.seed)
     options = StripeOptions(energy=args.energy, orthogonal=args.orthogonal, progress=not (args.quiet or args.json),
                             section=section)
     res = stripe_pattern(V, F, directions, args.frequency, spacing=args.spacing, n=n, options=options,
                          solver=args.backend)
-    written = _outputs(res, paths, args)
+    with plan.writing() as stage:  # all files or none
+        written = _outputs(res, plan, stage, args)
     summary = res.to_json()
     summary["files"] = written
     summary["mesh"] = args.file
@@ -260,5 +269,5 @@ def _run(args) -> int:
         print(f"section {summary['section']}{steps}: unit energy {summary['unit_energy']:.6g}")
         print(f"zeros: {len(summary['zero_faces'])} faces, branch faces: {len(summary['branch_faces'])}")
         print(f"time: setup {t['setup']:.3f} s, solve {t['solve']:.3f} s, texture {t['texture']:.3f} s")
-        print("wrote " + ", ".join(str(v) for k, v in written.items() if isinstance(v, str)))
+        print("wrote " + ", ".join(plan.written))
     return 0

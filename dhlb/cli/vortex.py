@@ -8,25 +8,25 @@ from __future__ import annotations
 
 import json
 import os
-import warnings
 
 import numpy as np
 
-from dhlb._files import atomic_write
 from dhlb.cli._common import (
+    OutputSpec,
     UsageError,
     add_command,
-    check_outputs,
+    did_you_mean,
     finite_float,
     int_in_range,
     nonempty_text,
+    output_plan,
     report_table,
     resolve_input,
 )
-from dhlb.errors import DhlbWarning, InvalidParameterError, ResourceLimitError
+from dhlb.errors import InvalidParameterError, ResourceLimitError
 from dhlb.io.polylines import write_polylines_obj, write_polylines_ply
 
-__all__ = ["NAME", "SUMMARY", "demo_velocity", "format_report", "register", "run", "write_polylines_obj",
+__all__ = ["NAME", "OUTPUTS", "SUMMARY", "demo_velocity", "format_report", "register", "run", "write_polylines_obj",
            "write_polylines_ply"]
 
 NAME = "vortex"
@@ -50,21 +50,31 @@ the torus with radii 0.55 rho, 0.25 rho), each of circulation --circulation (def
 radius --core (default 0.08 rho), regularized Biot-Savart; or FILE.npy with one velocity vector
 per mesh vertex (per row of TETMESH's vertex list).
 
-With -o OUT.ply or -o OUT.obj the filaments are written as polylines to OUT, and the full result
-(filaments, linking numbers, timings, statistics) to OUT with the extension .json, and a picture
-to OUT with the extension .png (unless --no-png; needs matplotlib). --json prints the result as
-JSON: {"filaments": [{"points": [[x, y, z], ...], "closed": bool}], "linking_numbers": ..., "timings": ...}."""
+With -o OUT (a base name) the filaments are written as polylines to OUT.obj, the full result
+(filaments, linking numbers, timings, statistics) to OUT.json and a picture to OUT.png (unless
+--no-png); -o OUT.EXT writes that format only (see below). --json prints the result as JSON:
+{"filaments": [{"points": [[x, y, z], ...], "closed": bool}], "linking_numbers": ..., "timings": ...}."""
 
 _EXAMPLES = """\
   dhlb vortex                                   # a ring in the cube, --box 12, hbar 1
-  dhlb vortex --box 16 --velocity linked-rings --hbar 1 -o rings.ply
+  dhlb vortex --box 16 --velocity linked-rings --hbar 1 -o rings   # rings.obj, .json, .png
   dhlb vortex --velocity ring --hbar 0.5 --json  # two filaments
   dhlb vortex domain.mesh --velocity v.npy --hbar 0.2 -o filaments.obj"""
 
 
+OUTPUTS = OutputSpec(NAME, (".obj", ".json", ".png"), {
+    ".obj": "the filaments as polylines ('l' records)",
+    ".ply": "the filaments as polylines (edges)",
+    ".json": "the result: filaments, linking numbers, statistics, timings",
+    ".png": "the picture",
+    ".vtu": "the tet mesh with psi, |psi| and the velocity, for ParaView",
+}, companions={".vtu": ("-filaments.vtp",)}, switches={".png": "no_png"})
+"""What ``dhlb vortex -o`` writes (nothing without ``-o``)."""
+
+
 def register(subparsers) -> None:
     """Add the ``vortex`` parser to ``subparsers``."""
-    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
+    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES, outputs=OUTPUTS)
     p.add_argument("mesh", nargs="?", metavar="TETMESH", help="tetrahedral mesh file (.mesh .msh .vtk)")
     p.add_argument("--box", type=int_in_range(1, 100_000), metavar="N",
                    help="use the cube [-1, 1]^3 with N cells per axis instead (memory is checked first)")
@@ -158,7 +168,8 @@ def _velocity(args, V, T):
         field, _ = demo_velocity(spec, P, circulation=args.circulation, core_radius=args.core)
         return field, f"{spec} (circulation {args.circulation:.6g}, core radius {field.core_radius:.4g})"
     if not spec.endswith(".npy"):
-        raise UsageError(f"--velocity must be one of {', '.join(DEMOS)} or a .npy file, got {spec!r}")
+        raise UsageError(f"--velocity must be one of {', '.join(DEMOS)} or a .npy file, got {spec!r}"
+                         f"{did_you_mean(spec, DEMOS)}")
     if not os.path.isfile(spec):
         raise UsageError(f"{spec}: no such file")
     try:
@@ -168,38 +179,25 @@ def _velocity(args, V, T):
     return arr, f"{spec} (per-vertex)"  # checked against the mesh's rows by vortex_filaments
 
 
-OUTPUT_EXTENSIONS = (".ply", ".obj", ".vtu")
-"""``-o`` extensions: filament polylines (.ply, .obj) or the tet mesh with ψ, |ψ|, velocity for ParaView (.vtu)."""
+def _outputs(plan, result, meta, velocity=None) -> None:
+    """Write the files of ``plan`` (all or none); :attr:`OutputPlan.written` lists them."""
+    with plan.writing() as stage:
+        for ext in (".obj", ".ply"):
+            if plan.wants(ext):
+                (write_polylines_ply if ext == ".ply" else write_polylines_obj)(stage(ext), result.filaments)
+        if plan.wants(".vtu"):
+            from dhlb.io.paraview import vortex_to_vtu
 
-
-def _outputs(args, result, meta, velocity=None) -> list[str]:
-    out = args.output
-    if not out or out == "-":
-        return []
-    stem, ext = os.path.splitext(out)
-    if ext.lower() not in OUTPUT_EXTENSIONS:
-        raise UsageError(f"-o must name a .ply or .obj file (filament polylines) or a .vtu file (ParaView), "
-                         f"got {out!r}")
-    if ext.lower() == ".vtu":
-        from dhlb.io.paraview import vortex_to_vtu
-
-        written = vortex_to_vtu(result, out, velocity)
-    else:
-        written = [(write_polylines_ply if ext.lower() == ".ply" else write_polylines_obj)(out, result.filaments)]
-    with atomic_write(stem + ".json", "w", encoding="utf-8") as fh:
-        json.dump({**meta, **result.to_json()}, fh, indent=1)
-    written.append(stem + ".json")
-    if not args.no_png:
-        try:
+            vortex_to_vtu(result, stage(".vtu"), velocity)
+        if plan.wants(".json"):
+            with open(stage(".json"), "w", encoding="utf-8") as fh:
+                json.dump({**meta, **result.to_json()}, fh, indent=1)
+        if plan.wants(".png"):
             from dhlb.render.filaments_png import render_filaments_png
 
             title = f"{meta['velocity']}, ħ = {meta['hbar']:g}: {len(result.filaments)} filaments"
             mesh = result.mesh
-            written.append(render_filaments_png(stem + ".png", result.filaments, mesh.points, mesh.boundary_faces,
-                                                title=title))
-        except ImportError as exc:
-            warnings.warn(f"no PNG written: {exc}", DhlbWarning, stacklevel=2)
-    return written
+            render_filaments_png(stage(".png"), result.filaments, mesh.points, mesh.boundary_faces, title=title)
 
 
 def format_report(meta: dict, data: dict) -> str:
@@ -229,24 +227,16 @@ def run(args) -> int:
     from dhlb.linalg import SolverOptions
     from dhlb.vortex import VortexOptions, vortex_filaments
 
-    if args.output and args.output != "-":
-        ext = os.path.splitext(args.output)[1].lower()
-        if ext not in OUTPUT_EXTENSIONS:  # fail before the computation
-            raise UsageError(f"-o must name a .ply or .obj file (filament polylines) or a .vtu file (ParaView), "
-                             f"got {args.output!r}")
-        stem = os.path.splitext(args.output)[0]
-        derived = ([args.output, stem + ".json"] + ([] if args.no_png else [stem + ".png"])
-                   + ([stem + "-filaments.vtp"] if ext == ".vtu" else []))
-        check_outputs(derived, args)  # never over the mesh or the velocity file
-        if not os.path.isdir(os.path.dirname(os.path.abspath(args.output))):
-            raise UsageError(f"cannot write {args.output}: the folder does not exist")
+    plan = output_plan(OUTPUTS, args)  # before the computation; never over the mesh or the velocity file
     V, T, mesh_name = _mesh(args)
     velocity, vname = _velocity(args, V, T)
     result = vortex_filaments(V, T, velocity, args.hbar, options=VortexOptions(order=args.order),
                               solver=SolverOptions(backend=args.backend, tol=args.tol),
                               progress=not (args.quiet or args.json))
     meta = {"mesh": mesh_name, "velocity": vname, "hbar": float(args.hbar)}
-    meta["written"] = _outputs(args, result, meta, velocity)
+    if plan:
+        _outputs(plan, result, meta, velocity)
+        meta["written"] = plan.written
     data = result.to_json()
     text = json.dumps({**data, **meta}, indent=1) if args.json else format_report(meta, data)
     print(text)
