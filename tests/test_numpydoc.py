@@ -45,6 +45,7 @@ PACKAGES = [
     "dhlb.conformal.quaternion",
     "dhlb.stripes.revolution",
     "dhlb.render",
+    "dhlb.cli",
 ]
 
 # names not (yet) under the gate, with the reason (none now)

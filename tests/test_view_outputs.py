@@ -118,8 +118,9 @@ def test_every_command_output_opens(tmp_path, monkeypatch):
     torus = example_path("torus.obj")
     assert main(["field", torus, "--n", "4", "-o", "f", "-q", "--no-png"]) == 0
     assert main(["stripes", torus, "--spacing", "4", "-o", "s", "-q", "--no-png"]) == 0
+    assert main(["vortex", "--box", "6", "--velocity", "ring", "-o", "v", "--no-png", "-q"]) == 0
     assert main(["vortex", "--box", "6", "--velocity", "ring", "-o", "v.ply", "--no-png", "-q"]) == 0
-    assert main(["conformal", "--ball", "3", "-o", "c.mesh", "--no-png", "-q"]) == 0
+    assert main(["conformal", "--ball", "3", "-o", "c", "--no-png", "-q"]) == 0
     F = read_surface(torus)[1]
     expect = {"f": ("DirectionField", len(F)), "s": ("LoadedStripes", len(F)), "v": ("LoadedVortex", None),
               "c": ("LoadedConformal", None)}

@@ -24,7 +24,14 @@ examples:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of ``dhlb`` with one subparser per command module."""
+    """The argument parser of ``dhlb`` with one subparser per command module.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        ``dhlb`` and its commands (``build_parser().parse_args(argv)`` gives the namespace a
+        command's ``run`` takes).
+    """
     from dhlb import __version__
     from dhlb.cli._common import EXIT_CODES_HELP
     from dhlb.cli.commands import iter_commands
@@ -80,6 +87,16 @@ def _check_spelling(parser: argparse.ArgumentParser, argv: list[str]) -> None:
 
 def main(argv=None) -> int:
     """Run ``dhlb`` with ``argv`` (default ``sys.argv[1:]``); return the exit code.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``dhlb`` (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        0 success, 1 a computation that cannot be done, 2 a usage or value error.
 
     Examples
     --------

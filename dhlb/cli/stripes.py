@@ -82,7 +82,7 @@ def register(subparsers) -> None:
                    help="unit (default): unit-modulus section after the eigenvector, keeps the spacing; "
                         "eigenvector: the relaxed eigenvector; power: the seed's Algorithm 9")
     p.add_argument("--iterations", type=int_in_range(0, MAX_ITERATIONS), default=None, metavar="K",
-                   help="unit: maximum number of steps (default 100); power: number of steps (default 20)")
+                   help="unit: maximum number of steps (default 30); power: number of steps (default 20)")
     p.add_argument("--seed", type=int_in_range(0, 2**63 - 1), default=None, help="random start of --section power")
     p.add_argument("--backend", default=None, metavar="B", help="factorization backend (default superlu)")
     p.add_argument("--orthogonal", action="store_true", help="also the pattern of the field turned by 90 degrees")
@@ -265,7 +265,11 @@ def _run(args) -> int:
         print(f"{args.file}: {summary['n_vertices']} vertices, {summary['n_faces']} faces; n = {summary['n']}, "
               f"energy {summary['energy']}, eigenvalue {summary['eigenvalue']:.6g}")
         it = summary["iteration"]
-        steps = f" after {it['iterations']} steps" if it else ""
+        steps = ""
+        if it:
+            steps = f" after {it['iterations']} steps"
+            if it["kind"] == "unit":
+                steps += " (converged)" if it["converged"] else " (step limit, not converged: raise --iterations)"
         print(f"section {summary['section']}{steps}: unit energy {summary['unit_energy']:.6g}")
         print(f"zeros: {len(summary['zero_faces'])} faces, branch faces: {len(summary['branch_faces'])}")
         print(f"time: setup {t['setup']:.3f} s, solve {t['solve']:.3f} s, texture {t['texture']:.3f} s")
