@@ -37,3 +37,14 @@ def test_old_solver_module_is_a_deprecated_alias():
     import dhlb.linalg
 
     assert dhlb.fem.smallest_eigenpairs is dhlb.linalg.smallest_eigenpairs
+
+
+def test_reading_a_mesh_file_does_not_load_the_mesh_machinery():
+    # dhlb.io imported dhlb.mesh (and with it topology and scipy.sparse.csgraph) eagerly: 0.54 s against 0.18 s
+    import subprocess
+    import sys
+
+    code = ("import sys, dhlb.io; "
+            "print(sorted(m for m in ('dhlb.mesh.surface', 'dhlb.mesh.tet', 'dhlb.topology') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]", out

@@ -16,7 +16,6 @@ from typing import ParamSpec, TypeVar
 import numpy as np
 
 from dhlb.errors import InvalidSimplexError, MeshParseError, NonFiniteError
-from dhlb.mesh import arrays as _mesh_arrays
 
 __all__ = [
     "no_gc",
@@ -339,7 +338,9 @@ def prepare_write(V, F, min_corners: int = 1) -> tuple[np.ndarray, np.ndarray]:
         raise InvalidSimplexError(f"cell array must have shape (m, k) with k >= {min_corners}, got {F.shape}")
     if F.size and not np.issubdtype(F.dtype, np.integer):
         raise InvalidSimplexError(f"cell array must hold integers, got dtype {F.dtype}")
-    F = _mesh_arrays.check_cells(F, len(V), F.shape[1], "cell", points="the vertex array")
+    from dhlb.mesh.arrays import check_cells  # on first write: the readers do not pay for dhlb.mesh
+
+    F = check_cells(F, len(V), F.shape[1], "cell", points="the vertex array")
     return V, F
 
 

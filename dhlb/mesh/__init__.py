@@ -22,12 +22,19 @@ Examples
 (27, 98, 120, 48)
 """
 
-from dhlb.mesh.arrays import MeshComplex, mesh_arrays, mesh_complex
-from dhlb.mesh.coerce import as_surface, as_tangent_bundle, as_tet_mesh
-from dhlb.mesh.compact import compact_mesh
-from dhlb.mesh.surface import SurfaceMesh, validate_surface
-from dhlb.mesh.tangent import TangentBundle, tangent_bundle
-from dhlb.mesh.tet import TetMesh, ball_tet_mesh, box_tet_mesh, check_tet_mesh, signed_volumes
+import lazy_loader as _lazy
+
+# Lazy (SPEC 1, as the top-level package): ``from dhlb.mesh.compact import compact_mesh`` in a reader
+# does not load the surface, tet and topology machinery.
+_ATTRS = {
+    "arrays": ["MeshComplex", "mesh_arrays", "mesh_complex"],
+    "coerce": ["as_surface", "as_tangent_bundle", "as_tet_mesh"],
+    "compact": ["compact_mesh"],
+    "surface": ["SurfaceMesh", "validate_surface"],
+    "tangent": ["TangentBundle", "tangent_bundle"],
+    "tet": ["TetMesh", "ball_tet_mesh", "box_tet_mesh", "check_tet_mesh", "signed_volumes"],
+}
+__getattr__, __dir__, _ = _lazy.attach(__name__, submodules=[], submod_attrs=_ATTRS)
 
 __all__ = [
     "SurfaceMesh", "validate_surface", "TangentBundle", "tangent_bundle",
