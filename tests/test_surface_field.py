@@ -436,3 +436,5 @@ def test_the_answer_does_not_depend_on_the_unit(scale):
     assert res.eigenvalue * scale**2 == pytest.approx(ref.eigenvalue, rel=1e-12)
     u, u0 = res.u / np.linalg.norm(res.u), ref.u / np.linalg.norm(ref.u)
     assert abs(np.vdot(u0, u)) == pytest.approx(1.0, abs=1e-9)        # the same section up to a global phase
+    # and the same directions: the unit normals overflowed (|n|² of 1e300) to zero at 1e150
+    assert np.allclose(np.abs(np.einsum("vkd,vkd->vk", res.directions, ref.directions)), 1.0, atol=1e-6)

@@ -60,8 +60,11 @@ __all__ = ["TangentBundle", "tangent_bundle"]
 
 
 def _unit(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    nrm = np.linalg.norm(x, axis=-1)
-    return x / np.where(nrm > 0, nrm, 1.0)[..., None], nrm
+    """``(x / |x|, |x|)`` per row, scaled by the largest entry first: no overflow or underflow of ``|x|²``."""
+    m = np.max(np.abs(x), axis=-1)
+    y = x / np.where(m > 0, m, 1.0)[..., None]
+    r = np.linalg.norm(y, axis=-1)
+    return y / np.where(r > 0, r, 1.0)[..., None], r * m
 
 
 class TangentBundle:
