@@ -1,5 +1,6 @@
 """Tests of dhlb.linalg.backends: every installed backend gives the same eigenpairs and solves."""
 
+import re
 import warnings
 
 import numpy as np
@@ -329,3 +330,83 @@ def test_number_of_eigenpairs_is_checked_against_memory_before_work(monkeypatch)
     with pytest.raises(ResourceLimitError, match=r"k = 200 .* at most about k = \d+ eigenpairs"):
         smallest_eigenpairs(A, sp.identity(n, format="csr"), k=200)
     assert smallest_eigenpairs(A, sp.identity(n, format="csr"), k=2).converged
+
+
+# ---------------------------------------------------------------------- every automatic choice converges (issue 29)
+_AMG = B._importable("pyamg")
+
+
+def _tet_pencil(m):
+    from dhlb.geometry import EuclideanComplex
+    from dhlb.mesh import box_tet_mesh
+
+    mesh = box_tet_mesh(m)
+    geo = EuclideanComplex(mesh.complex, points=mesh.points)
+    return geo.stiffness_matrix().tocsr(), geo.mass_matrix(lumped=True).tocsr()
+
+
+@pytest.mark.parametrize("m, expected, bound", [(8, "superlu", 60), (22, "amg-lobpcg" if _AMG else "superlu", 80)])
+def test_auto_choice_on_tet_laplacians_converges_in_bounded_iterations(m, expected, bound):
+    A, M = _tet_pencil(m)                     # 729 and 12,167 unknowns: below and above ITERATIVE_3D
+    res = smallest_eigenpairs(A, M, k=3)
+    assert res.backend == expected and res.converged
+    assert res.iterations <= bound, res.iterations      # measured: 49 (ARPACK solves), 62 (LOBPCG iterations)
+    assert abs(res.eigenvalues[0]) < 1e-8
+
+
+def test_auto_choice_on_2d_problems_converges_in_bounded_iterations(torus_problem):
+    A, M = torus_problem                                        # small: dense
+    res = smallest_eigenpairs(A, M, k=4)
+    assert res.backend == "dense" and res.converged
+    n = 120                                                     # 14,400 unknowns, a 2-D grid: SuperLU
+    T = sp.diags([-np.ones(n - 1), np.r_[1, 2 * np.ones(n - 2), 1], -np.ones(n - 1)], [-1, 0, 1])
+    A = (sp.kron(T, sp.identity(n)) + sp.kron(sp.identity(n), T)).tocsr()
+    res = smallest_eigenpairs(A, sp.identity(n * n, format="csr"), k=3)
+    assert res.backend == "superlu" and res.converged and res.iterations <= 60, res.iterations
+
+
+def test_auto_choice_on_a_quaternionic_pencil_converges_in_bounded_iterations():
+    from dhlb.conformal import conformal_deformation, default_charge, point_charge_factor
+    from dhlb.mesh import ball_tet_mesh
+
+    mesh = ball_tet_mesh(11)                  # 11,614 complex unknowns (rank 2): amg-lobpcg when pyamg is installed
+    res = conformal_deformation(mesh, None, point_charge_factor(default_charge(mesh)))
+    s = res.statistics["solver"]
+    assert s["backend"] == ("amg-lobpcg" if _AMG else "superlu") and s["converged"]
+    assert s["iterations"] <= 100, s          # measured: 43 LOBPCG iterations on ball_tet_mesh(14)
+
+
+def test_indefinite_pencils_never_go_to_the_iterative_backend():
+    A, M = _tet_pencil(22)                    # a 3-D pattern above ITERATIVE_3D, made indefinite
+    K = (A - 30.0 * M).tocsr()
+    res = smallest_eigenpairs(K, M, k=1, psd=False)
+    assert res.backend == "superlu" and res.converged and res.factorizations <= 12
+    assert res.eigenvalues[0] == pytest.approx(-30.0, abs=1e-8)
+
+
+@pytest.mark.skipif(not _AMG, reason="pyamg is not installed")
+def test_stalled_amg_lobpcg_stops_naming_a_direct_backend():
+    """The plain connection energy of bunny-tet under the old default charge: indefinite, AMG cannot precondition it.
+
+    Before: LOBPCG counted each breakdown as one iteration and went on for more than 12 minutes.
+    """
+    import os
+
+    from dhlb.conformal import default_charge, edge_gradients, point_charge_factor, quaternion_bundle
+    from dhlb.errors import ConvergenceError
+    from dhlb.fem import connection_laplacian, connection_mass
+    from dhlb.geometry import EuclideanComplex
+    from dhlb.mesh import check_tet_mesh
+
+    with np.load(os.path.join(os.path.dirname(__file__), "data", "bunny-tet.npz")) as z:
+        mesh = check_tet_mesh(z["points"], z["tets"].astype(np.int64))
+    C = default_charge(mesh)
+    C[0, 3] = 0.5 * float(np.linalg.norm(np.ptp(mesh.points, axis=0)))
+    geo = EuclideanComplex(mesh.complex, points=mesh.points)
+    A = connection_laplacian(quaternion_bundle(mesh, edge_gradients(mesh, point_charge_factor(C))), geo)
+    M = connection_mass(geo, 2)
+    assert B.select_backend(A.shape[0], A.nnz, dimension=lambda: B.pattern_dimension(A)) == "amg-lobpcg"
+    with pytest.raises(ConvergenceError, match=r"stalled.*backend='(superlu|cholmod)'") as info:
+        smallest_eigenpairs(A, M, k=1, solver=SolverOptions(maxiter=30))
+    its = int(re.search(r"after (\d+) iterations", str(info.value)).group(1))
+    assert its <= 50

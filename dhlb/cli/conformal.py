@@ -35,8 +35,9 @@ quaternionic connection d + 1/2 (grad u x dx) on M x H gives unit quaternions ph
 map f solves the least-squares problem df(X) = e^u conj(phi) X phi (one Poisson solve).
 
 u is the potential of point charges, u(x) = sum q / |x - a| (--charge x,y,z,q, repeatable; the
-charges must lie outside the solid), or one value per mesh vertex (--u FILE.npy). Without -o or --u
-the default is one charge q = 0.5 diam at distance 0.3 diam above the top of the bounding box.
+charges must lie outside the solid), or one value per mesh vertex (--u FILE.npy). Without --charge or
+--u the default is one charge at distance 0.3 diam above the top of the bounding box, q = 0.5 diam or
+less on a coarse mesh: at most 0.5 rad phase change per edge (dhlb.conformal.default_charge).
 
 With -o OUT (a base name) the deformed mesh is written to OUT.mesh and OUT.vtk, the result
 (statistics, timings) to OUT.json and a picture of the boundary before and after, coloured by the
@@ -68,7 +69,8 @@ def register(subparsers) -> None:
                    help="use the unit ball (dhlb.mesh.ball_tet_mesh(N)) instead")
     p.add_argument("--format", dest="fmt", metavar="FMT", help="mesh format if the extension does not say it")
     p.add_argument("--charge", action="append", default=[], type=number_tuple("X,Y,Z,Q"), metavar="X,Y,Z,Q",
-                   help="a point charge at (X, Y, Z) with charge Q (repeatable)")
+                   help="a point charge at (X, Y, Z) with charge Q (repeatable; default: one charge scaled to "
+                        "the mesh, dhlb.conformal.default_charge)")
     p.add_argument("--u", dest="u_file", metavar="FILE.npy", help="one value of u per mesh vertex")
     p.add_argument("--backend", metavar="B", help="linear-algebra backend (default: dhlb's)")
     p.add_argument("--no-png", action="store_true", help="with -o: do not render the PNG picture")
@@ -92,7 +94,7 @@ def _mesh(args):
 
 
 def _factor(args, mesh, n_rows):
-    from dhlb.conformal import point_charge_factor
+    from dhlb.conformal import default_charge, point_charge_factor
 
     if args.charge and args.u_file:
         raise UsageError("give either --charge ... or --u FILE.npy, not both")
@@ -109,10 +111,7 @@ def _factor(args, mesh, n_rows):
     if args.charge:
         C = [list(c) for c in args.charge]
     else:
-        P = mesh.points
-        lo, hi = P.min(0), P.max(0)
-        diam = float(np.linalg.norm(hi - lo))
-        C = [[0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), hi[2] + 0.3 * diam, 0.5 * diam]]
+        C = default_charge(mesh)
     u = point_charge_factor(C)
     return u, "; ".join(u.labels)
 

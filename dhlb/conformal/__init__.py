@@ -8,7 +8,9 @@ imports only the layers below (topology, bundles, geometry, fem) and the tet mes
   λ₁, per-tet distortion and scale error);
 * target factors: :func:`point_charge_factor`, :func:`mobius_factor`, :class:`ConformalFactor`;
 * building blocks: :func:`quaternion_bundle` (the SU(2) connection as a
-  :class:`dhlb.bundles.VectorBundle`), :func:`edge_gradients`, :func:`tet_distortion`;
+  :class:`dhlb.bundles.VectorBundle`), :func:`tet_connection_laplacian` (its energy, PSD on every
+  mesh), :func:`edge_gradients`, :func:`tet_distortion`;
+* :func:`default_charge`: a point charge scaled to the mesh (at most :data:`MAX_EDGE_ANGLE` per edge);
 * :mod:`dhlb.conformal.quaternion`: quaternion algebra, H ≅ C², H ≅ R⁴ (SO(4)).
 
 Examples
@@ -21,15 +23,19 @@ Examples
 """
 from dhlb.conformal import quaternion
 from dhlb.conformal.deformation import (
+    MAX_EDGE_ANGLE,
     ConformalResult,
     conformal_deformation,
+    default_charge,
     edge_gradients,
     quaternion_bundle,
+    tet_connection_laplacian,
     tet_distortion,
 )
 from dhlb.conformal.factors import ConformalFactor, mobius_factor, point_charge_factor
 
 __all__ = [
-    "ConformalFactor", "ConformalResult", "conformal_deformation", "edge_gradients", "mobius_factor",
-    "point_charge_factor", "quaternion", "quaternion_bundle", "tet_distortion",
+    "MAX_EDGE_ANGLE", "ConformalFactor", "ConformalResult", "conformal_deformation", "default_charge",
+    "edge_gradients", "mobius_factor", "point_charge_factor", "quaternion", "quaternion_bundle",
+    "tet_connection_laplacian", "tet_distortion",
 ]

@@ -15,11 +15,13 @@ factor     ``u`` at the vertices and ``g_ij`` = grad u on every edge (at its mid
            recovered from vertex values for an array: see :func:`edge_gradients`)
 bundle     :func:`quaternion_bundle`: the complex rank-2 hermitian :class:`dhlb.bundles.VectorBundle`
            with ``η_ij = exp(−½ g_ij × e_ij)`` ∈ SU(2) (H ≅ C², right complex structure)
-solve      :func:`dhlb.fem.connection_laplacian` + :func:`dhlb.fem.connection_mass` (lumped),
+solve      :func:`tet_connection_laplacian` (the connection energy tet by tet, in a gauge per tet:
+           positive semidefinite on every mesh) + :func:`dhlb.fem.connection_mass` (lumped),
            :func:`dhlb.fem.smallest_eigenpairs`; ``φ = ψ/|ψ|``
 map        ``E_ij = e^{(u_i+u_j)/2} φ̄_ij e_ij φ_ij`` (φ_ij: φ_i and φ_j transported to the edge
-           midpoint and averaged), then ``min Σ w_ij |f_j − f_i − E_ij|²`` (cotan weights): one
-           Poisson solve ``L f = D₀ᵀ W E`` with three right-hand sides, vertex 0 pinned
+           midpoint and averaged), ``G_T`` the least-squares linear map of the edges of each tet
+           to their ``E``, then ``min Σ_T vol_T |∇f − G_T|²``: one Poisson solve ``L f = b``
+           (``b_i = Σ_T vol_T G_T ∇λ_i``) with three right-hand sides, vertex 0 pinned
            (:func:`dhlb.fem.solve`); ``f`` is translated so that its centroid is that of the input
 quality    per tet: deformation gradient ``F``, ``distortion = σ_max/σ_min``,
            ``scale_error = log(mean σ) − u``
@@ -44,6 +46,7 @@ import time
 from typing import TYPE_CHECKING
 
 import numpy as np
+import scipy.sparse as sp
 
 from dhlb.conformal.factors import ConformalFactor
 from dhlb.conformal.quaternion import from_c2, imag, qconj, qexp, qmul, su2_matrix
@@ -65,28 +68,63 @@ if TYPE_CHECKING:
     from dhlb.bundles import VectorBundle
 from dhlb.conformal.result import ConformalResult
 
-__all__ = ["ConformalResult", "conformal_deformation", "edge_gradients", "quaternion_bundle", "tet_distortion"]
+__all__ = ["MAX_EDGE_ANGLE", "RESOLVED_EDGE_ANGLE", "TET_PSD_TOL", "ConformalResult", "conformal_deformation",
+           "default_charge", "edge_gradients", "quaternion_bundle", "tet_connection_laplacian", "tet_distortion"]
 
 DEFAULT_TOL = 1e-10
 """Default backward-error tolerance of the eigen solve."""
 
+RESOLVED_EDGE_ANGLE = 0.5 * np.pi
+"""Phase changes per edge from this one on are not resolved: :func:`conformal_deformation` refuses them.
+
+At ``θ = π/2`` the chord of a section turning by ``θ`` has lost 29 % of its length at its midpoint
+(``cos(θ/2)``); at ``θ = π`` its two ends are opposite and the section cannot be told from one
+turning the other way (or vanishing in between).
+"""
+
+TET_PSD_TOL = 1e-6
+"""A tet's plain connection energy is kept while its smallest eigenvalue is ``>= −TET_PSD_TOL ·`` its trace.
+
+Measured with a Möbius factor (a flat connection, where the plain energy is consistent): at most
+7.3e-7 on ``ball_tet_mesh(4)``, 1.6e-8 on ``ball_tet_mesh(8)`` (it vanishes under refinement); with
+the default charge 2.5e-7 on ``hand-tet.mesh`` and 4.4e-3 on the slivers of ``bunny-tet.mesh``, whose
+plain energy has 4 eigenvalues below −9·10⁵ (:func:`tet_connection_laplacian`).
+"""
+
+MAX_EDGE_ANGLE = 0.5
+r"""The largest phase change per edge, ``θ_e = ½ |g_e × e|`` (radians), that :func:`default_charge` allows.
+
+``θ_e`` is the angle of the transport ``η_e = exp(−½ g_e × e)`` and the angle in ``R⁴`` between
+the values of a parallel section at the two ends of the edge; their chord (what P1 elements see)
+has length ``2 sin(θ/2)`` and its midpoint the norm ``cos(θ/2)``, so at ``θ = ½`` a P1 section
+loses at most 3 % of its length between vertices and the edge energy misses ``θ²/12`` ≈ 2 % of
+the rotation (``proofs/derive_conformal_tet_energy.py``).  Sections that turn by ``π`` along an
+edge cannot be resolved at all (:func:`conformal_deformation` then raises
+:class:`~dhlb.errors.SectionZeroError`).
+"""
+
 
 def _smallest_pair(A, M, tol, backend):
-    """The smallest eigenpair of ``A ψ = λ M ψ`` when A may be slightly indefinite.
+    """The smallest eigenpair of ``A ψ = λ M ψ``, A positive semidefinite up to :data:`TET_PSD_TOL`.
 
-    The plain connection energy ``Σ w_ij |ψ_j − η_ij ψ_i|²`` is PSD for the trivial bundle but not
-    in general when some cotangent weights are negative (obtuse dihedral angles, e.g. in
-    :func:`dhlb.mesh.ball_tet_mesh`): then λ₁ can be slightly negative.  The engine's default
-    (any backend, e.g. AMG-LOBPCG on large meshes) is tried first; if it proves A indefinite, the
-    engine's ``psd=False`` mode finds the smallest pair certified by the inertia of ``A − σM``.
+    The engine's default backend is tried first (AMG-LOBPCG on large meshes when pyamg is
+    installed).  Should ``A`` have an eigenvalue below ``−ε`` (tets whose plain energy is negative
+    by less than :data:`TET_PSD_TOL`, or rounding), or should an automatically chosen iterative
+    backend stall, the engine's ``psd=False`` mode finds the smallest pair certified by the
+    inertia of ``A − σM`` (SuperLU).
     """
-    from dhlb.errors import NotSemidefiniteError
+    from dhlb.errors import ConvergenceError, NotSemidefiniteError
     from dhlb.fem import SolverOptions, smallest_eigenpairs
 
+    auto = backend is None or backend == "auto"
     try:
         return smallest_eigenpairs(A, M, k=1, solver=SolverOptions(tol=tol, backend=backend))
     except NotSemidefiniteError:
-        return smallest_eigenpairs(A, M, k=1, psd=False, solver=SolverOptions(tol=tol, backend=backend))
+        pass
+    except ConvergenceError:
+        if not auto:
+            raise
+    return smallest_eigenpairs(A, M, k=1, psd=False, solver=SolverOptions(tol=tol, backend=backend))
 
 
 # ---------------------------------------------------------------------------- checks
@@ -307,6 +345,171 @@ def quaternion_bundle(mesh: TetMesh, edge_gradient: np.ndarray) -> VectorBundle:
     return VectorBundle(X, su2_matrix(eta), "C", metric=True)
 
 
+def tet_connection_laplacian(bundle: VectorBundle, geometry: Any) -> sp.csr_matrix:
+    r"""The connection energy of a metric bundle on a tet mesh, assembled tet by tet; no tet term is indefinite.
+
+    The plain energy ``Σ_ij w_ij |ψ_j − η_ij ψ_i|²`` (:func:`dhlb.fem.connection_laplacian`) is a
+    sum over tets of ``A_T = Σ_{ab ⊂ T} w^T_ab |ψ_b − η_ab ψ_a|²``.  ``A_T`` is a unitary conjugate
+    of the P1 stiffness of ``T`` (positive semidefinite whatever the signs of its cotan weights)
+    only when the transports around ``T`` compose to the identity.  With a curved connection and
+    negative weights (obtuse dihedral angles, slivers) it can be indefinite: the plain energy of
+    ``bunny-tet.mesh`` under the default charge has 4 eigenvalues below −9·10⁵, with eigenvectors
+    on a few slivers, and its least-energy section vanishes.  A tet whose ``A_T`` has an
+    eigenvalue below ``−TET_PSD_TOL · tr A_T`` (:data:`TET_PSD_TOL`) is therefore read in the
+    gauge of one of its vertices ``k``: the value at ``a`` is carried to ``k`` along the edge
+    ``ak``, so the term ``ab`` uses the path ``a → k → b`` (``η_kb η_ak``; the edge ``ab`` itself
+    when ``k ∈ {a, b}``), and the four choices of ``k`` are averaged.  Each gauged term is the
+    scalar P1 stiffness of ``T`` conjugated by a unitary, hence PSD; the diagonal is unchanged and
+    the off-diagonal block of the edge ``ab`` in ``T`` becomes
+    ``−w^T_ab ¼ (2 η_ab + Σ_{k ∉ {a,b}} η_kb η_ak)``.  Path and edge transports differ by the
+    holonomy of a triangle, ``1 + O(F h²)``; every other tet keeps its plain term, so that on
+    meshes without such tets the result is :func:`dhlb.fem.connection_laplacian`
+    (``proofs/derive_conformal_tet_energy.py``).
+
+    Parameters
+    ----------
+    bundle : VectorBundle
+        A metric (unitary or orthogonal transports) bundle of rank k over a pure 3-dimensional complex.
+    geometry : EuclideanComplex
+        Its metric (the cotan weights of each tet).
+
+    Returns
+    -------
+    scipy.sparse.csr_matrix, shape (N k, N k)
+        Section index ``i·k + a``, like :func:`dhlb.fem.connection_laplacian`.
+
+    Raises
+    ------
+    ShapeError
+        The complex is not 3-dimensional, or bundle and geometry live on different complexes.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> from dhlb.fem import connection_laplacian
+    >>> from dhlb.geometry import EuclideanComplex
+    >>> mesh = box_tet_mesh(2)
+    >>> geo = EuclideanComplex(mesh.complex, points=mesh.points)
+    >>> flat = quaternion_bundle(mesh, np.zeros((mesh.complex.n_simplices(1), 3)))     # trivial: the plain energy
+    >>> bool(abs(tet_connection_laplacian(flat, geo) - connection_laplacian(flat, geo)).max() < 1e-14)
+    True
+    >>> steep = quaternion_bundle(mesh, np.tile([30.0, 0, 0], (mesh.complex.n_simplices(1), 1)))
+    >>> A = tet_connection_laplacian(steep, geo)
+    >>> bool(np.linalg.eigvalsh(A.toarray()).min() > -1e-12)
+    True
+    """
+    from dhlb.topology import _keys
+    from dhlb.topology.structure import subfaces
+
+    X = bundle.X
+    c = np.asarray(geometry.cotan_weights, dtype=np.float64)     # c_ab = −w^T_ab, c_aa = Σ w^T
+    if X.dim != 3 or geometry.complex.n_vertices != X.n_vertices or c.shape != (X.n_simplices(3), 4, 4):
+        raise ShapeError(f"tet_connection_laplacian needs a bundle and a geometry on the same tet complex (bundle: "
+                         f"dimension {X.dim}, {X.n_vertices} vertices; cotan weights of shape {c.shape})")
+    eta = np.asarray(bundle.transports)
+    k = eta.shape[1]
+    S = X.simplices(3)
+    m, N = S.shape[0], X.n_vertices
+    edges = subfaces(X, 3, 1)
+    pairs = _keys.combination_columns(4, 2).tolist()
+    tau = np.zeros((m, 4, 4, k, k), dtype=eta.dtype)             # tau[:, a, b]: a → b
+    for p, (a, b) in enumerate(pairs):
+        t = eta[edges[:, p]]
+        tau[:, a, b], tau[:, b, a] = t, np.swapaxes(t, 1, 2).conj()
+    L = np.zeros((m, 4, 4, k, k), dtype=eta.dtype)
+    for a in range(4):
+        L[:, a, a] = c[:, a, a, None, None] * np.eye(k)
+    for a, b in pairs:
+        blk = c[:, a, b, None, None] * tau[:, a, b]
+        L[:, b, a], L[:, a, b] = blk, np.swapaxes(blk, 1, 2).conj()
+    dense = np.swapaxes(L, 2, 3).reshape(m, 4 * k, 4 * k)
+    low = np.linalg.eigvalsh(dense)[:, 0] < -TET_PSD_TOL * np.trace(dense, axis1=1, axis2=2).real
+    if np.any(low):
+        for a, b in pairs:
+            avg = 2.0 * tau[low, a, b]
+            for j in range(4):
+                if j not in (a, b):
+                    avg = avg + tau[low, j, b] @ tau[low, a, j]
+            blk = c[low, a, b, None, None] * (0.25 * avg)
+            L[low, b, a], L[low, a, b] = blk, np.swapaxes(blk, 1, 2).conj()
+    off = np.arange(k)
+    rows = np.broadcast_to(S[:, :, None, None, None] * k + off[:, None], L.shape)
+    cols = np.broadcast_to(S[:, None, :, None, None] * k + off[None, :], L.shape)
+    return sp.coo_matrix((L.ravel(), (rows.ravel(), cols.ravel())), shape=(N * k, N * k)).tocsr()
+
+
+def _edge_angles(mesh: TetMesh, g: np.ndarray) -> np.ndarray:
+    """``θ_e = ½ |g_e × e|``: the angle of each edge transport (the phase change of a parallel section)."""
+    E = mesh.complex.simplices(1)
+    return 0.5 * np.linalg.norm(np.cross(g, mesh.points[E[:, 1]] - mesh.points[E[:, 0]]), axis=1)
+
+
+def default_charge(P: ArrayLike | TetMesh, T: ArrayLike | None = None, *, max_edge_angle: float = MAX_EDGE_ANGLE
+                   ) -> np.ndarray:
+    r"""The default point charge of ``dhlb conformal``: one row ``(x, y, z, q)`` scaled to the mesh.
+
+    The charge sits at the distance ``0.3 d`` above the top centre of the bounding box (``d`` its
+    diagonal); its strength is ``q = 0.5 d`` (scale-invariant: ``u = q/r`` is then the same on a
+    mesh and its scaled copy) unless the mesh is too coarse for it: since ``u`` is linear in ``q``,
+    so is the phase change per edge ``θ_e = ½ |grad u × e| ≤ q |e| / (2 r²)``, and ``q`` is reduced
+    until ``max_e θ_e = max_edge_angle`` (:data:`MAX_EDGE_ANGLE`).
+
+    Parameters
+    ----------
+    P : (n, 3) float array, or TetMesh
+        Vertex positions, or a validated :class:`~dhlb.mesh.TetMesh` (then ``T`` must be None).
+    T : (m, 4) int array or None
+        Tetrahedra (rows of ``P``).
+    max_edge_angle : float, optional
+        The largest phase change per edge allowed, in radians (> 0).
+
+    Returns
+    -------
+    (1, 4) float array
+        The charge, ready for :func:`~dhlb.conformal.point_charge_factor`.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``max_edge_angle`` is not a finite number > 0 (and the errors of :func:`dhlb.mesh.check_tet_mesh`).
+
+    Examples
+    --------
+    >>> from dhlb.mesh import ball_tet_mesh
+    >>> C = default_charge(ball_tet_mesh(6))             # fine enough: q = 0.5 d
+    >>> C.round(4).tolist()
+    [[0.0, 0.0, 2.0392, 1.7321]]
+    >>> float(default_charge(ball_tet_mesh(1))[0, 3]) < 1.7       # coarse: a weaker charge
+    True
+    """
+    from dhlb.conformal.factors import point_charge_factor
+
+    if not (np.isscalar(max_edge_angle) and np.isfinite(max_edge_angle) and max_edge_angle > 0):
+        raise InvalidParameterError(f"max_edge_angle must be a finite number > 0, got {max_edge_angle!r}")
+    mesh = as_tet_mesh(P, T, caller="default_charge")
+    Pm = mesh.points
+    lo, hi = Pm.min(0), Pm.max(0)
+    d = float(np.linalg.norm(hi - lo))
+    C = np.array([[0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), hi[2] + 0.3 * d, 0.5 * d]])
+    theta = _edge_angles(mesh, edge_gradients(mesh, point_charge_factor(C))).max(initial=0.0)
+    if theta > max_edge_angle:
+        C[0, 3] *= max_edge_angle / theta
+    return C
+
+
+def _working_scale(u: Any, theta: float) -> str:
+    """What to do when u varies too fast: a scale of ``u`` (and its charges) with ``θ <= MAX_EDGE_ANGLE``."""
+    s = MAX_EDGE_ANGLE / theta if theta > MAX_EDGE_ANGLE else 0.5
+    hint = (f"u varies too fast for this mesh (up to {theta:.3g} rad per edge): scale u by {s:.3g} (at most "
+            f"{MAX_EDGE_ANGLE:g} rad per edge) or refine the mesh")
+    C = getattr(u, "charges", None)
+    if C is not None:
+        q = " ".join(f"--charge {x:g},{y:g},{z:g},{s * qq:.3g}" for x, y, z, qq in np.asarray(C))
+        hint += f"; for these charges: {q}"
+    return hint
+
+
 def tet_distortion(P: ArrayLike, T: ArrayLike, F: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Singular values of the affine map of every tet ``P[T] → F[T]``: ``(σ (m, 3) descending, det (m,), J (m, 3, 3))``.
 
@@ -359,6 +562,32 @@ def _mid_phi(phi: np.ndarray, E: np.ndarray, e: np.ndarray, g: np.ndarray) -> np
     return s / n[:, None]
 
 
+def _tet_gradient_rhs(X, P: np.ndarray, e: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """``b_i = Σ_T vol_T G_T ∇λ_i``: the right-hand side of ``min Σ_T vol_T |∇f − G_T|²`` (``L f = b``).
+
+    ``G_T`` is the least-squares linear map of the six edges of ``T`` to their targets,
+    ``G_T = (Σ E_ab e_abᵀ)(Σ e_ab e_abᵀ)⁻¹``; it is exact (``G_T = J``) when the targets are
+    ``E_ab = J e_ab``.  Every tet term is a positive multiple of a square, whatever the signs of
+    the cotan weights (the edge form ``Σ w_ab |f_b − f_a − E_ab|²`` agrees with it only for
+    integrable targets and pumps their non-integrable part into the negative weights of slivers).
+    """
+    from dhlb.topology.structure import subfaces
+
+    S = X.simplices(3)
+    edges = subfaces(X, 3, 1)                                       # canonical edges of each tet, e = x_b − x_a
+    ee, EE = e[edges], target[edges]                                # (m, 6, 3)
+    G = np.einsum("mpi,mpj->mij", EE, ee) @ np.linalg.inv(np.einsum("mpi,mpj->mij", ee, ee))
+    B = P[S[:, 1:]] - P[S[:, :1]]                                   # rows x_k − x_0
+    Binv = np.linalg.inv(B)                                         # columns ∇λ_1..3
+    grads = np.concatenate([-Binv.sum(axis=2, keepdims=True), Binv], axis=2)   # (m, 3, 4): ∇λ_a as columns
+    vol = np.abs(np.linalg.det(B)) / 6.0
+    contrib = vol[:, None, None] * (G @ grads)                      # (m, 3, 4): vol G ∇λ_a
+    b = np.zeros((P.shape[0], 3))
+    for a in range(4):
+        np.add.at(b, S[:, a], contrib[:, :, a])
+    return b
+
+
 def conformal_deformation(
     P: ArrayLike | TetMesh,
     T: ArrayLike | None,
@@ -405,7 +634,11 @@ def conformal_deformation(
         (a charge) inside the mesh: the charge and the nearest vertex
         are named; bad ``tol``.
     SectionZeroError
-        The least-energy section vanishes at a vertex (u varies too fast for the mesh).
+        ``u`` varies too fast for the mesh: a parallel section would turn by
+        :data:`RESOLVED_EDGE_ANGLE` or more along an edge (checked before any solve), or the
+        least-energy section vanishes at a vertex or turns by π along an edge; the message names a
+        scale of ``u`` (for point charges: the charges) whose phase change per edge is at most
+        :data:`MAX_EDGE_ANGLE`.
 
     Examples
     --------
@@ -416,7 +649,7 @@ def conformal_deformation(
     >>> bool(res.eigenvalue > 0), bool(res.distortion.mean() > 1), res.statistics["inverted_tets"]
     (True, True, 0)
     """
-    from dhlb.fem import connection_laplacian, connection_mass, cotan_edge_weights, solve
+    from dhlb.fem import connection_mass, solve
     from dhlb.geometry import EuclideanComplex
 
     if not (np.isscalar(tol) and np.isfinite(tol) and tol > 0):
@@ -448,13 +681,19 @@ def conformal_deformation(
         g = edge_gradients(mesh, None, values=uv)
     lap("factor")
 
+    theta = _edge_angles(mesh, g)
+    if theta.size and theta.max() >= RESOLVED_EDGE_ANGLE:
+        k = int(np.argmax(theta))
+        raise SectionZeroError(f"a parallel section would turn by {theta[k]:.3g} rad along the edge between vertex "
+                               f"rows {rows[X.simplices(1)[k]].tolist()}, more than P1 elements resolve "
+                               f"({RESOLVED_EDGE_ANGLE:.3g} rad): {_working_scale(u, float(theta[k]))}")
     bundle = quaternion_bundle(mesh, g)
     geo = EuclideanComplex(X, points=Pm)
     E = X.simplices(1)
     e = Pm[E[:, 1]] - Pm[E[:, 0]]
     lap("bundle")
 
-    A = connection_laplacian(bundle, geo)
+    A = tet_connection_laplacian(bundle, geo)
     M = connection_mass(geo, 2)
     res = _smallest_pair(A, M, tol, backend)
     psi = res.eigenvectors[:, 0]
@@ -465,16 +704,18 @@ def conformal_deformation(
     if np.any(small):
         v = int(np.argmax(small))
         raise SectionZeroError(f"the least-energy section vanishes at vertex row {int(rows[v])} "
-                               f"({np.round(Pm[v], 6).tolist()}): u varies too fast for this mesh; refine it")
+                               f"({np.round(Pm[v], 6).tolist()}); {_working_scale(u, _edge_angles(mesh, g).max())}")
     phi = q / nq[:, None]
     lap("solve")
 
-    pm = _mid_phi(phi, E, e, g)
+    try:
+        pm = _mid_phi(phi, E, e, g)
+    except SectionZeroError as err:
+        raise SectionZeroError(f"{err}; {_working_scale(u, _edge_angles(mesh, g).max())}") from None
     target = np.exp(0.5 * (uv[E[:, 0]] + uv[E[:, 1]]))[:, None] * qmul(qconj(pm), qmul(imag(e), pm))[:, 1:]
-    w = cotan_edge_weights(geo)
     N = Pm.shape[0]
-    b = X.coboundary(0).T @ (w[:, None] * target)     # d₀ᵀ W E: the normal equations' right-hand side
-    L = geo.stiffness_matrix().tocsr()                 # = d₀ᵀ W d₀
+    b = _tet_gradient_rhs(X, Pm, e, target)           # Σ_T vol_T G_T ∇λ_i: the normal equations' right-hand side
+    L = geo.stiffness_matrix().tocsr()                 # Σ_T vol_T ∇λ_i · ∇λ_j
     Ml = geo.mass_matrix(lumped=True).tocsr()
     f = np.zeros((N, 3))
     if N > 1:
@@ -498,7 +739,7 @@ def conformal_deformation(
         "distortion_mean": float(np.mean(distortion)), "distortion_max": float(np.max(distortion)),
         "scale_error_rms": float(np.sqrt(np.mean(scale_error**2))),
         "scale_error_max": float(np.max(np.abs(scale_error))),
-        "max_edge_angle": float(0.5 * np.linalg.norm(np.cross(g, e), axis=1).max()) if E.size else 0.0,
+        "max_edge_angle": float(_edge_angles(mesh, g).max()) if E.size else 0.0,
         "solver": {"backend": res.backend, "iterations": int(res.iterations), "converged": bool(res.converged),
                    "residual": float(np.max(res.residuals)), "shift": float(res.shift), "method": res.method},
     }

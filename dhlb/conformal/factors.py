@@ -53,6 +53,9 @@ class ConformalFactor:
         A short description (used in reports).
     labels : list of str, optional
         One name per singular point (e.g. ``"charge #0 (q = 1)"``).
+    charges : (k, 4) float array, optional
+        For the potential of point charges, their rows ``(x, y, z, q)`` (kept as the attribute
+        ``charges``, else None; scaling the factor scales the ``q``).
 
     Examples
     --------
@@ -64,13 +67,14 @@ class ConformalFactor:
     """
 
     def __init__(self, value: Callable, gradient: Callable, *, singularities: ArrayLike | None = None,
-                 name: str = "u", labels: list[str] | None = None):
+                 name: str = "u", labels: list[str] | None = None, charges: ArrayLike | None = None):
         self._value = value
         self._gradient = gradient
         S = np.zeros((0, 3)) if singularities is None else np.asarray(singularities, dtype=np.float64).reshape(-1, 3)
         self.singularities = S
         self.labels = list(labels) if labels is not None else [f"singular point #{k}" for k in range(S.shape[0])]
         self.name = name
+        self.charges = None if charges is None else np.asarray(charges, dtype=np.float64).reshape(-1, 4)
 
     def __call__(self, x: ArrayLike) -> np.ndarray:
         """Values ``u(x)`` at ``(m, 3)`` points."""
@@ -90,8 +94,10 @@ class ConformalFactor:
         if not (np.isscalar(s) and np.isfinite(s)):
             raise InvalidParameterError(f"a conformal factor can only be scaled by a finite number, got {s!r}")
         s = float(s)
+        C = None if self.charges is None else self.charges * [1.0, 1.0, 1.0, s]
         return ConformalFactor(lambda x: s * self._value(x), lambda x: s * self._gradient(x),
-                               singularities=self.singularities, name=f"{s:g} * {self.name}", labels=self.labels)
+                               singularities=self.singularities, name=f"{s:g} * {self.name}", labels=self.labels,
+                               charges=C)
 
     __rmul__ = __mul__
 
@@ -154,7 +160,8 @@ def point_charge_factor(charges: ArrayLike) -> ConformalFactor:
         return -np.einsum("mk,mkc->mc", q[None] / r**3, d)
 
     labels = [f"charge #{k} (q = {q[k]:g}) at ({A[k, 0]:g}, {A[k, 1]:g}, {A[k, 2]:g})" for k in range(len(q))]
-    return ConformalFactor(value, gradient, singularities=A, name=f"{len(q)} point charges", labels=labels)
+    return ConformalFactor(value, gradient, singularities=A, name=f"{len(q)} point charges", labels=labels,
+                           charges=C)
 
 
 def mobius_factor(center: ArrayLike, radius: float = 1.0) -> ConformalFactor:

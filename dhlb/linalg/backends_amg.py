@@ -14,7 +14,10 @@ Eigenproblem
     M-normalized ``x``; it is set to ``tol · ‖A‖₁ / sqrt(‖M‖₁)``, which implies the normwise
     backward error ``η <= tol`` used by :func:`~dhlb.fem.smallest_eigenpairs` (because
     ``‖x‖₂ >= ‖x‖_M / sqrt(‖M‖₂)``); the caller checks ``η`` after a final Rayleigh–Ritz step and
-    restarts from the current block if needed.
+    restarts from the current block if needed.  A chunk that does not halve the best residual norm
+    so far stops the solve with :class:`~dhlb.errors.ConvergenceError` naming a direct backend
+    (measured: on the indefinite plain connection energy of ``bunny-tet.mesh`` LOBPCG was still
+    iterating after 12 minutes; SuperLU's inertia-certified path takes seconds).
 Linear solves
     ``factorize(K)`` builds the hierarchy of ``K`` and ``solve`` runs AMG-preconditioned CG
     (``positive_definite=True``) or GMRES to a relative residual of 1e-12; GMRES on a strongly
@@ -41,9 +44,9 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from dhlb.errors import ConvergenceError
-from dhlb.linalg.backends import blas_guard
+from dhlb.linalg.backends import _importable, blas_guard
 
-__all__ = ["AMGLobpcgBackend"]
+__all__ = ["STALL_FACTOR", "STALL_MIN_ITERATIONS", "AMGLobpcgBackend"]
 
 _SOLVE_TOL = 1e-12
 
@@ -113,7 +116,11 @@ class AMGLobpcgBackend:
         """Run LOBPCG on the block ``X`` (``p`` columns) for the lowest eigenpairs; returns ``(X, iterations)``.
 
         ``shift`` is the ``ε > 0`` of the preconditioned matrix ``A + εM``; ``tol`` the wanted
-        backward error.
+        backward error.  The driver calls this in chunks of 25, 50, 100, … iterations on the same
+        ``A``.  The solve has stalled, and :class:`~dhlb.errors.ConvergenceError` names a direct
+        backend, when LOBPCG stops before ``maxiter`` without reaching its tolerance (a breakdown),
+        or when a chunk after the first :data:`STALL_MIN_ITERATIONS` iterations does not bring the
+        best residual norm below :data:`STALL_FACTOR` times the best before it.
         """
         normA = float(abs(A).sum(axis=0).max())
         normM = float(abs(M).sum(axis=0).max())
@@ -122,10 +129,31 @@ class AMGLobpcgBackend:
             if not hasattr(self, "_prec") or self._prec[0] is not A:
                 P = _hierarchy((A + shift * M).tocsr()).aspreconditioner()
                 self._prec = (A, P)
+                self._progress = (np.inf, 0)        # best residual norm of the chunks so far, their iterations
             P = self._prec[1]
             hist = []
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")  # "not reaching the requested tolerance", small-n fallback
                 _, Xn, hist = spla.lobpcg(A, X, B=M, M=P, tol=res_tol, maxiter=int(maxiter), largest=False,
                                           retResidualNormsHistory=True)
-        return Xn, max(1, len(hist) - 1)
+        its = max(1, len(hist) - 1)
+        best = float(np.min([np.max(np.abs(h)) for h in hist])) if len(hist) else np.inf
+        before, done = self._progress
+        self._progress = (min(before, best), done + its)
+        broke_down = len(hist) + 1 < int(maxiter)        # LOBPCG stops early only when converged, or when it fails
+        halving = done >= STALL_MIN_ITERATIONS and not best <= STALL_FACTOR * before
+        if best > res_tol and (broke_down or halving):
+            direct = "cholmod" if _importable("sksparse") else "superlu"
+            why = (f"LOBPCG broke down after {its} of {int(maxiter)} iterations" if broke_down else
+                   f"the last {its} iterations did not halve the best residual norm before them ({before:.3g})")
+            raise ConvergenceError(
+                f"amg-lobpcg stalled: {why}; residual norm {best:.3g} after {done + its} iterations, "
+                f"{res_tol:.3g} needed. Its AMG preconditioner of A + εM does not fit this pencil (A indefinite, or "
+                f"a connection far from flat); use a direct backend: backend={direct!r}")
+        return Xn, its
+
+
+STALL_MIN_ITERATIONS = 25
+"""Iterations after which :meth:`AMGLobpcgBackend.eigensolve` starts checking for a stall."""
+STALL_FACTOR = 0.5
+"""A chunk of LOBPCG iterations must bring the best residual norm below this fraction of the previous best."""
