@@ -129,10 +129,13 @@ def test_vortex_refuses_derived_output_over_the_mesh(tmp_path, capsys):
     # -o ball.obj would also write ball.json and ball.png; -o ball.mesh.ply writes ball.mesh.json ...
     code, _, err = run_cli(["vortex", mesh, "-o", tmp_path / "ball.mesh"], capsys)
     assert code == 2 and mesh.read_bytes() == before
-    odd = tmp_path / "out.json"  # a Medit mesh under an odd name: -o out.ply would write out.json over it
+    odd = tmp_path / "out.json"  # a Medit mesh under an odd name: -o out (the default set) would write out.json
     odd.write_bytes(before)
-    code, _, err = run_cli(["vortex", odd, "--format", "mesh", "-o", tmp_path / "out.ply"], capsys)
+    code, _, err = run_cli(["vortex", odd, "--format", "mesh", "-o", tmp_path / "out"], capsys)
     assert code == 2 and "refusing to write" in one_error_line(err) and odd.read_bytes() == before
+    # -o out.ply writes that file only (issue 29's -o convention), so the input stays untouched
+    code, _, err = run_cli(["vortex", odd, "--format", "mesh", "-o", tmp_path / "out.ply", "--no-png"], capsys)
+    assert code == 0 and odd.read_bytes() == before and (tmp_path / "out.ply").is_file()
 
 
 # ------------------------------------------------------------------------------------- readers

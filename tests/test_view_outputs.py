@@ -67,15 +67,20 @@ def _scene_of_cli(base):
     return seen[0]
 
 
-def _expected_content(path):
-    """(faces of the drawn mesh or None, number of points drawn, number of curves) from the files themselves."""
-    base, ext = os.path.splitext(str(path))
-    if ext == ".npz":
-        with np.load(path) as z:
+def _expected_content(path, res):
+    """(faces of the first drawn mesh or None, number of points drawn, number of curves) from the files themselves."""
+    base = os.path.splitext(str(path))[0]
+    kind = type(res).__name__
+    if kind == "DirectionField":
+        with np.load(base + ".npz") as z:
             return len(z["mesh_faces"]), len(z["singular_faces"]), 0
+    if kind == "LoadedConformal":                                     # the deformed boundary, no points, no curves
+        return len(res.mesh.boundary_faces), 0, 0
     side = json.load(open(base + ".json")) if os.path.exists(base + ".json") else {}
     if side.get("format") == "dhlb-stripes":
         return side["n_faces"], len(side["zeros"]["faces"]) + len(side["branch"]["faces"]), 1
+    if "filaments" in side:                                           # the domain the JSON names, and the filaments
+        return len(res.mesh.boundary_faces), 0, len(side["filaments"])
     lines = open(base + ".obj").read().splitlines()
     return None, 0, sum(ln.startswith("l ") for ln in lines)
 
@@ -83,18 +88,20 @@ def _expected_content(path):
 def test_every_demo_output_opens(demo_dir, tmp_path, monkeypatch):
     files = sorted(f for f in os.listdir(demo_dir) if os.path.splitext(f)[1] in DATA_EXTENSIONS)
     kinds = {type(read_result(demo_dir / f)).__name__ for f in files}
-    assert {"DirectionField", "LoadedStripes", "LoadedVortex"} <= kinds
-    assert {"field-n4-s+0.npz", "vortex-linked.obj", "stripes.obj", "boundary-n4.npz"} <= set(files)
+    assert {"DirectionField", "LoadedStripes", "LoadedVortex", "LoadedConformal"} <= kinds
+    assert {"field-n4-s+0.npz", "vortex-linked.obj", "vortex-linked.json", "stripes.obj", "boundary-n4.npz",
+            "conformal-mobius.npz", "conformal-octopus.npz"} <= set(files)
     shots = _has_screenshots(tmp_path)
     monkeypatch.chdir(tmp_path)
     for f in files:
         path = demo_dir / f
-        faces, n_points, n_curves = _expected_content(path)
-        scene = scene_of(read_result(path))
+        res = read_result(path)
+        faces, n_points, n_curves = _expected_content(path, res)
+        scene = scene_of(res)
         if faces is not None:
             assert scene.meshes[0].faces.shape == (faces, 3), f
         else:
-            assert scene.meshes == [], f  # the demo's vortex OBJ names no domain
+            assert scene.meshes == [], f
         assert sum(len(p.points) for p in scene.points) == n_points, f
         assert len(scene.curves) == n_curves, f
         base = os.path.splitext(f)[0]

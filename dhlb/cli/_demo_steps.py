@@ -6,11 +6,13 @@ check passed), ``seconds``, ``picture`` / ``caption`` and ``details`` (JSON-read
 
 from __future__ import annotations
 
+import json
 import os
 import time
 
 import numpy as np
 
+from dhlb._files import atomic_write
 from dhlb.io.results import FIELD_NPZ_NOTE as NPZ_NOTE
 from dhlb.io.results import write_field_npz
 from dhlb.render import CONFORMAL_CAMERA, FILAMENT_CAMERA, Camera
@@ -24,9 +26,27 @@ def _back_path(png: str) -> str:
     return png[:-4] + "-back.png"
 
 
-VIEW_ANGLES = {"front": (1.0, 0.6, 0.4), "back": (-1.0, -0.6, -0.4), "left": (-0.4, 0.6, 1.0),
-               "right": (0.4, -0.6, -1.0)}
-"""Camera directions of the polyscope views of each result (when ``dhlb[view]`` and EGL are there)."""
+def view_angles(points) -> dict:
+    """Camera directions of the polyscope views of a result: the fitted view and three turns about ``up``.
+
+    ``front`` is :meth:`dhlb.render.Camera.fitted` (as in the PNG pictures), ``back`` walks around
+    the model, ``left`` and ``right`` a quarter turn; all from the same height above it.
+
+    Parameters
+    ----------
+    points : (k, 3) float array
+
+    Returns
+    -------
+    dict
+        ``{"front": (3,), "back": (3,), "left": (3,), "right": (3,)}`` directions toward the camera.
+    """
+    from dhlb.render._figure import up_vector
+
+    cam = Camera().fitted(points)
+    v, u = np.asarray(cam.view, dtype=np.float64), up_vector(cam.up)
+    height, across = (v @ u) * u, np.cross(u, v - (v @ u) * u)
+    return {"front": v, "back": 2.0 * height - v, "left": height + across, "right": height - across}
 
 
 def _views(res, out: str, name: str) -> str | None:
@@ -43,7 +63,7 @@ def _views(res, out: str, name: str) -> str | None:
     except ImportError:
         return None
     shots = []
-    for label, view in VIEW_ANGLES.items():
+    for label, view in view_angles(res.mesh.points).items():
         path = os.path.join(out, f"{name}-3d-{label}.png")
         try:
             shots.append((show(res, screenshot=path, view=view, size=(480, 480)), f"{name}: {label}"))
@@ -160,7 +180,7 @@ def vortex(out, progress, *, backend=None) -> list[dict]:
     from dhlb.vortex import vortex_filaments
 
     recs = []
-    mesh = box_tet_mesh(12, lower=(-1.0, -1.0, -1.0), upper=(1.0, 1.0, 1.0))
+    mesh = box_tet_mesh(12, lower=-1.0, upper=1.0)      # what "box 12" names (dhlb vortex --box 12)
     cases = [("vortex-ring", "ring", "a vortex ring (ħ = 1): one closed filament", 1, None),
              ("vortex-linked", "linked-rings", "two linked rings (ħ = 1): two filaments, linking number ±1", 2, 1)]
     for name, kind, caption, n_expected, link_expected in cases:
@@ -169,6 +189,8 @@ def vortex(out, progress, *, backend=None) -> list[dict]:
             field, _ = demo_velocity(kind, mesh.points)
             res = vortex_filaments(mesh, None, field, 1.0, solver=backend)
             write_polylines_obj(os.path.join(out, f"{name}.obj"), res.filaments)
+            with atomic_write(os.path.join(out, f"{name}.json")) as fh:   # as dhlb vortex: names the domain
+                json.dump({"mesh": "box 12", "velocity": kind, "hbar": 1.0, **res.to_json()}, fh, indent=1)
             png = render_filaments_png(os.path.join(out, f"{name}.png"), res.filaments, res.mesh.points,
                                        res.mesh.boundary_faces, title=caption)
             render_filaments_png(_back_path(png), res.filaments, res.mesh.points, res.mesh.boundary_faces,
@@ -180,7 +202,8 @@ def vortex(out, progress, *, backend=None) -> list[dict]:
         L = np.asarray(res.linking_numbers)
         ok = len(closed) == n_expected and (link_expected is None or (L.shape == (2, 2) and abs(int(L[0, 1])) == 1))
         check = f"{n_expected} closed" + ("" if link_expected is None else ", |linking number| = 1")
-        result = f"{len(res.filaments)} filaments ({len(closed)} closed)"
+        k = len(res.filaments)
+        result = f"{k} filament{'s' if k != 1 else ''} ({len(closed)} closed)"
         if L.shape == (2, 2):
             result += f", linking {int(L[0, 1])}"
         recs.append({"step": "vortex " + kind, "mesh": f"cube ({len(mesh.points)} v, {len(mesh.tets)} tets)",
@@ -215,6 +238,7 @@ def conformal(out, progress, *, backend=None) -> list[dict]:
         def work(name=name, mesh=mesh, u=u, caption=caption):
             t0 = time.perf_counter()
             res = conformal_deformation(mesh.points, mesh.tets, u, backend=backend)
+            res.save(os.path.join(out, f"{name}.npz"))               # opens with dhlb view
             F, dF = boundary_distortion(res)
             png = render_conformal_png(os.path.join(out, f"{name}.png"), mesh.points, res.points, F, dF,
                                        title=caption)

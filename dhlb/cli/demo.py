@@ -1,9 +1,9 @@
-"""``dhlb demo``: the main job on the bundled data — fields, stripes and vortex filaments, with pictures.
+"""``dhlb demo``: the main job on the bundled data — fields, stripes, vortex filaments, conformal maps.
 
 Runs every application of the package on meshes shipped inside it (the cow Spot, a saddle disk
-with boundary, a tetrahedral ball generated on the fly), prints a summary table with the checks
-(Poincaré–Hopf, filament counts and linking) and timings, and writes the pictures, meshes and an
-``index.html`` page that shows every picture with a caption.
+with boundary, a tetrahedral cube and ball generated on the fly, a real tet mesh), prints a summary
+table with the checks (Poincaré–Hopf, filament counts and linking, λ₁) and timings, and writes
+the pictures, the results and an ``index.html`` page that shows every picture with a caption.
 """
 
 from __future__ import annotations
@@ -24,9 +24,10 @@ SUMMARY = "run every application on bundled data; write pictures, meshes and ind
 _DESCRIPTION = """\
 The main job: on meshes bundled with dhlb, compute smoothest direction fields for n = 1, 2, 4 and
 s = -1, 0, +1 (the cow Spot, closed, genus 0), a curvature-aligned cross field, a boundary-aligned
-cross field on a saddle disk (Poincaré–Hopf with boundary), a stripe pattern, and the vortex
-filaments of a vortex ring and of two linked rings in a tetrahedral ball. Prints a summary table
-and writes PNG pictures, the meshes/fields and a self-contained index.html into OUT."""
+cross field on a saddle disk (Poincaré–Hopf with boundary), a stripe pattern, the vortex
+filaments of a vortex ring and of two linked rings in a tetrahedral cube, and close-to-conformal
+deformations of a tetrahedral ball and of a real tet mesh. Prints a summary table and writes PNG
+pictures, the results (each opens with 'dhlb view') and a self-contained index.html into OUT."""
 
 _EXAMPLES = """\
   dhlb demo                      # writes ./dhlb-demo/index.html
