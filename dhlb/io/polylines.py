@@ -368,20 +368,9 @@ class LoadedVortex(Result):
 
 def _domain(name, folder: str):
     """The TetMesh a vortex JSON names (``"box N"`` of ``dhlb vortex --box N`` or a mesh file), or None."""
-    from dhlb.mesh import box_tet_mesh, check_tet_mesh
+    from dhlb.io.volume import named_tet_mesh
 
-    name = str(name or "")
-    if name.startswith("box "):
-        try:
-            return box_tet_mesh(int(name.split()[1]), lower=-1.0, upper=1.0)
-        except ValueError:
-            return None
-    for p in (name, os.path.join(folder, name)):
-        if name and os.path.isfile(p):
-            from dhlb.io.volume import read_volume
-
-            return check_tet_mesh(*read_volume(p))
-    return None
+    return named_tet_mesh(name, folder)
 
 
 def read_vortex(path: str | os.PathLike[str]) -> LoadedVortex:

@@ -251,22 +251,28 @@ class LoadedConformal(Result):
         return f"LoadedConformal({len(self.points)} vertices, {len(self.mesh.tets)} tets, λ₁ = {self.eigenvalue:.4g})"
 
 
-def _input_points(name, folder: str):
-    """The points of the input mesh a ``dhlb conformal`` JSON names (``"ball N"`` or a file), or None."""
-    name = str(name or "")
-    if name.startswith("ball "):
-        from dhlb.mesh import ball_tet_mesh
+def named_tet_mesh(name, folder: str = ""):
+    """The tet mesh a result's JSON names, or None.
 
-        try:
-            return ball_tet_mesh(int(name.split()[1])).points
-        except ValueError:
-            return None
+    ``"box N"`` (``dhlb vortex --box N``), ``"ball N"`` (``dhlb conformal --ball N``) or a mesh file,
+    looked for as given and in ``folder``.
+    """
+    from dhlb.mesh import ball_tet_mesh, box_tet_mesh, check_tet_mesh
+
+    name = str(name or "")
+    kind, _, size = name.partition(" ")
+    if kind in ("box", "ball") and size.isdigit():
+        return box_tet_mesh(int(size), lower=-1.0, upper=1.0) if kind == "box" else ball_tet_mesh(int(size))
     for p in (name, os.path.join(folder, name)):
         if name and os.path.isfile(p):
-            from dhlb.mesh import check_tet_mesh
-
-            return check_tet_mesh(*read_volume(p)).points
+            return check_tet_mesh(*read_volume(p))
     return None
+
+
+def _input_points(name, folder: str):
+    """The points of the input mesh a ``dhlb conformal`` JSON names, or None."""
+    mesh = named_tet_mesh(name, folder)
+    return None if mesh is None else mesh.points
 
 
 def read_conformal(path: str | os.PathLike[str]) -> LoadedConformal:
