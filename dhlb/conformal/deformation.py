@@ -46,7 +46,6 @@ import time
 from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.sparse as sp
 
 from dhlb.conformal.factors import ConformalFactor
 from dhlb.conformal.quaternion import from_c2, imag, qconj, qexp, qmul, su2_matrix
@@ -57,6 +56,7 @@ from dhlb.errors import (
     SectionZeroError,
     ShapeError,
 )
+from dhlb.fem.connection import TET_PSD_TOL, tet_connection_laplacian  # the engine's per-tet energy
 from dhlb.mesh.coerce import as_tet_mesh
 from dhlb.mesh.tet import TetMesh, signed_volumes
 
@@ -82,14 +82,6 @@ At ``θ = π/2`` the chord of a section turning by ``θ`` has lost 29 % of its l
 turning the other way (or vanishing in between).
 """
 
-TET_PSD_TOL = 1e-6
-"""A tet's plain connection energy is kept while its smallest eigenvalue is ``>= −TET_PSD_TOL ·`` its trace.
-
-Measured with a Möbius factor (a flat connection, where the plain energy is consistent): at most
-7.3e-7 on ``ball_tet_mesh(4)``, 1.6e-8 on ``ball_tet_mesh(8)`` (it vanishes under refinement); with
-the default charge 2.5e-7 on ``hand-tet.mesh`` and 4.4e-3 on the slivers of ``bunny-tet.mesh``, whose
-plain energy has 4 eigenvalues below −9·10⁵ (:func:`tet_connection_laplacian`).
-"""
 
 MAX_EDGE_ANGLE = 0.5
 r"""The largest phase change per edge, ``θ_e = ½ |g_e × e|`` (radians), that :func:`default_charge` allows.
@@ -343,100 +335,6 @@ def quaternion_bundle(mesh: TetMesh, edge_gradient: np.ndarray) -> VectorBundle:
     e = P[E[:, 1]] - P[E[:, 0]]
     eta = qexp(imag(-0.5 * np.cross(edge_gradient, e)))
     return VectorBundle(X, su2_matrix(eta), "C", metric=True)
-
-
-def tet_connection_laplacian(bundle: VectorBundle, geometry: Any) -> sp.csr_matrix:
-    r"""The connection energy of a metric bundle on a tet mesh, assembled tet by tet; no tet term is indefinite.
-
-    The plain energy ``Σ_ij w_ij |ψ_j − η_ij ψ_i|²`` (:func:`dhlb.fem.connection_laplacian`) is a
-    sum over tets of ``A_T = Σ_{ab ⊂ T} w^T_ab |ψ_b − η_ab ψ_a|²``.  ``A_T`` is a unitary conjugate
-    of the P1 stiffness of ``T`` (positive semidefinite whatever the signs of its cotan weights)
-    only when the transports around ``T`` compose to the identity.  With a curved connection and
-    negative weights (obtuse dihedral angles, slivers) it can be indefinite: the plain energy of
-    ``bunny-tet.mesh`` under the default charge has 4 eigenvalues below −9·10⁵, with eigenvectors
-    on a few slivers, and its least-energy section vanishes.  A tet whose ``A_T`` has an
-    eigenvalue below ``−TET_PSD_TOL · tr A_T`` (:data:`TET_PSD_TOL`) is therefore read in the
-    gauge of one of its vertices ``k``: the value at ``a`` is carried to ``k`` along the edge
-    ``ak``, so the term ``ab`` uses the path ``a → k → b`` (``η_kb η_ak``; the edge ``ab`` itself
-    when ``k ∈ {a, b}``), and the four choices of ``k`` are averaged.  Each gauged term is the
-    scalar P1 stiffness of ``T`` conjugated by a unitary, hence PSD; the diagonal is unchanged and
-    the off-diagonal block of the edge ``ab`` in ``T`` becomes
-    ``−w^T_ab ¼ (2 η_ab + Σ_{k ∉ {a,b}} η_kb η_ak)``.  Path and edge transports differ by the
-    holonomy of a triangle, ``1 + O(F h²)``; every other tet keeps its plain term, so that on
-    meshes without such tets the result is :func:`dhlb.fem.connection_laplacian`
-    (``proofs/derive_conformal_tet_energy.py``).
-
-    Parameters
-    ----------
-    bundle : VectorBundle
-        A metric (unitary or orthogonal transports) bundle of rank k over a pure 3-dimensional complex.
-    geometry : EuclideanComplex
-        Its metric (the cotan weights of each tet).
-
-    Returns
-    -------
-    scipy.sparse.csr_matrix, shape (N k, N k)
-        Section index ``i·k + a``, like :func:`dhlb.fem.connection_laplacian`.
-
-    Raises
-    ------
-    ShapeError
-        The complex is not 3-dimensional, or bundle and geometry live on different complexes.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from dhlb.mesh import box_tet_mesh
-    >>> from dhlb.fem import connection_laplacian
-    >>> from dhlb.geometry import EuclideanComplex
-    >>> mesh = box_tet_mesh(2)
-    >>> geo = EuclideanComplex(mesh.complex, points=mesh.points)
-    >>> flat = quaternion_bundle(mesh, np.zeros((mesh.complex.n_simplices(1), 3)))     # trivial: the plain energy
-    >>> bool(abs(tet_connection_laplacian(flat, geo) - connection_laplacian(flat, geo)).max() < 1e-14)
-    True
-    >>> steep = quaternion_bundle(mesh, np.tile([30.0, 0, 0], (mesh.complex.n_simplices(1), 1)))
-    >>> A = tet_connection_laplacian(steep, geo)
-    >>> bool(np.linalg.eigvalsh(A.toarray()).min() > -1e-12)
-    True
-    """
-    from dhlb.topology import _keys
-    from dhlb.topology.structure import subfaces
-
-    X = bundle.X
-    c = np.asarray(geometry.cotan_weights, dtype=np.float64)     # c_ab = −w^T_ab, c_aa = Σ w^T
-    if X.dim != 3 or geometry.complex.n_vertices != X.n_vertices or c.shape != (X.n_simplices(3), 4, 4):
-        raise ShapeError(f"tet_connection_laplacian needs a bundle and a geometry on the same tet complex (bundle: "
-                         f"dimension {X.dim}, {X.n_vertices} vertices; cotan weights of shape {c.shape})")
-    eta = np.asarray(bundle.transports)
-    k = eta.shape[1]
-    S = X.simplices(3)
-    m, N = S.shape[0], X.n_vertices
-    edges = subfaces(X, 3, 1)
-    pairs = _keys.combination_columns(4, 2).tolist()
-    tau = np.zeros((m, 4, 4, k, k), dtype=eta.dtype)             # tau[:, a, b]: a → b
-    for p, (a, b) in enumerate(pairs):
-        t = eta[edges[:, p]]
-        tau[:, a, b], tau[:, b, a] = t, np.swapaxes(t, 1, 2).conj()
-    L = np.zeros((m, 4, 4, k, k), dtype=eta.dtype)
-    for a in range(4):
-        L[:, a, a] = c[:, a, a, None, None] * np.eye(k)
-    for a, b in pairs:
-        blk = c[:, a, b, None, None] * tau[:, a, b]
-        L[:, b, a], L[:, a, b] = blk, np.swapaxes(blk, 1, 2).conj()
-    dense = np.swapaxes(L, 2, 3).reshape(m, 4 * k, 4 * k)
-    low = np.linalg.eigvalsh(dense)[:, 0] < -TET_PSD_TOL * np.trace(dense, axis1=1, axis2=2).real
-    if np.any(low):
-        for a, b in pairs:
-            avg = 2.0 * tau[low, a, b]
-            for j in range(4):
-                if j not in (a, b):
-                    avg = avg + tau[low, j, b] @ tau[low, a, j]
-            blk = c[low, a, b, None, None] * (0.25 * avg)
-            L[low, b, a], L[low, a, b] = blk, np.swapaxes(blk, 1, 2).conj()
-    off = np.arange(k)
-    rows = np.broadcast_to(S[:, :, None, None, None] * k + off[:, None], L.shape)
-    cols = np.broadcast_to(S[:, None, :, None, None] * k + off[None, :], L.shape)
-    return sp.coo_matrix((L.ravel(), (rows.ravel(), cols.ravel())), shape=(N * k, N * k)).tocsr()
 
 
 def _edge_angles(mesh: TetMesh, g: np.ndarray) -> np.ndarray:

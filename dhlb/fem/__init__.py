@@ -3,7 +3,13 @@
 The solvers live in :mod:`dhlb.linalg`; their public names are re-exported here.
 """
 from dhlb.fem.assembly import bundle_matrices, dirichlet_matrix, lumped_mass, mass_matrix
-from dhlb.fem.connection import connection_laplacian, connection_mass, cotan_edge_weights
+from dhlb.fem.connection import (
+    TET_PSD_TOL,
+    connection_laplacian,
+    connection_mass,
+    cotan_edge_weights,
+    tet_connection_laplacian,
+)
 from dhlb.fem.integrals import (
     expi_divided_difference,
     expi_moment,
@@ -30,6 +36,8 @@ __all__ = [
     "lumped_mass",
     "mass_matrix",
     "connection_laplacian",
+    "tet_connection_laplacian",
+    "TET_PSD_TOL",
     "connection_mass",
     "cotan_edge_weights",
     "expi_divided_difference",
