@@ -10,16 +10,8 @@ import os
 
 import numpy as np
 
-from dhlb.cli._common import (
-    OutputSpec,
-    UsageError,
-    add_command,
-    int_in_range,
-    number_tuple,
-    output_plan,
-    report_table,
-    resolve_input,
-)
+from dhlb.cli._common import UsageError, add_command, int_in_range, number_tuple, report_table, resolve_input
+from dhlb.cli._outputs import OutputSpec, output_plan
 from dhlb.render.conformal_png import boundary_distortion, render_conformal_png
 
 __all__ = ["NAME", "OUTPUTS", "SUMMARY", "boundary_distortion", "format_report", "register",

@@ -19,16 +19,15 @@ import time
 import numpy as np
 
 from dhlb.cli._common import (
-    OutputSpec,
     UsageError,
     add_command,
     did_you_mean,
     finite_float,
     int_in_range,
-    output_plan,
     resolve_input,
     write_output,
 )
+from dhlb.cli._outputs import OutputSpec, output_plan
 
 __all__ = ["NAME", "OUTPUTS", "SUMMARY", "index_sum_label", "read_alignment", "parse_singularity", "register", "run",
            "write_field"]

@@ -7,16 +7,8 @@ import os
 
 import numpy as np
 
-from dhlb.cli._common import (
-    PIXEL_SIZE,
-    OutputSpec,
-    UsageError,
-    add_command,
-    finite_float,
-    int_in_range,
-    output_plan,
-    resolve_input,
-)
+from dhlb.cli._common import PIXEL_SIZE, UsageError, add_command, finite_float, int_in_range, resolve_input
+from dhlb.cli._outputs import OutputSpec, output_plan
 
 __all__ = ["NAME", "OUTPUTS", "SUMMARY", "register", "run"]
 

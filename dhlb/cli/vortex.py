@@ -12,17 +12,16 @@ import os
 import numpy as np
 
 from dhlb.cli._common import (
-    OutputSpec,
     UsageError,
     add_command,
     did_you_mean,
     finite_float,
     int_in_range,
     nonempty_text,
-    output_plan,
     report_table,
     resolve_input,
 )
+from dhlb.cli._outputs import OutputSpec, output_plan
 from dhlb.errors import InvalidParameterError, ResourceLimitError
 from dhlb.io.polylines import write_polylines_obj, write_polylines_ply
 
