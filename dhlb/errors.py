@@ -247,7 +247,23 @@ class DhlbWarning(UserWarning):
 
 
 class UnreferencedVertexWarning(DhlbWarning):
-    """Vertices that no simplex uses were dropped (the map to the input indices is kept)."""
+    """Vertices that no simplex uses were dropped (the map to the input indices is kept).
+
+    Parameters
+    ----------
+    message : str
+        The warning in the library's words.
+    dropped : sequence of int, optional
+        The input rows of the dropped vertices (kept as the attribute ``dropped``, a tuple), so that a
+        caller (the command line) can say it in its own words.
+    cell : str, optional
+        The kind of cell that uses none of them (``"face"``, ``"tetrahedron"``, ...).
+    """
+
+    def __init__(self, message: str = "", *, dropped=(), cell: str = "cell"):
+        super().__init__(message)
+        self.dropped = tuple(int(i) for i in dropped)
+        self.cell = cell
 
 
 class ShapeError(DhlbError, ValueError):

@@ -15,12 +15,11 @@ import argparse
 import difflib
 import math
 import os
-import re
 import sys
 import warnings
 from typing import TYPE_CHECKING
 
-from dhlb.errors import DhlbError, MeshParseError
+from dhlb.errors import DhlbError, MeshParseError, UnreferencedVertexWarning
 
 if TYPE_CHECKING:
     from dhlb.cli._outputs import OutputSpec
@@ -390,36 +389,31 @@ def _one_line(message) -> str:
     return " ".join(str(message).split())
 
 
-_UNREFERENCED = re.compile(r"(\d+) (?:of \d+ )?vertices (?:of V )?are used by no (\w+) and were dropped "
-                           r"\((?:first|indices):? (\d+)[^)]*\)")
-
-
 def cli_warning(message, args=None) -> str:
     """A library warning in the words of the command line: one line, file rows instead of API names.
 
-    The unreferenced-vertex warnings of :mod:`dhlb.mesh` speak of ``V`` and ``vertex_labels``; here they
-    name the input file and its first unused vertex row.
+    An :class:`~dhlb.errors.UnreferencedVertexWarning` speaks of ``V`` and ``vertex_labels``; here it
+    names the input file and its first unused vertex row (from the warning's ``dropped`` and ``cell``).
 
     Examples
     --------
     >>> import argparse
+    >>> from dhlb.errors import UnreferencedVertexWarning
     >>> args = argparse.Namespace(file="meshes/bunny.obj")
-    >>> cli_warning("3 vertices of V are used by no face and were dropped (first: 8, 16, 18); "
-    ...             "mesh.vertex_labels maps compact vertices to rows of V", args)
+    >>> cli_warning(UnreferencedVertexWarning("3 vertices of V ... rows of V", dropped=[8, 16, 18], cell="face"),
+    ...             args)
     '3 vertices of bunny.obj are used by no face and were dropped (first: row 8)'
     >>> cli_warning("something   odd")
     'something odd'
     """
-    text = _one_line(message)
-    m = _UNREFERENCED.match(text)
-    if m:
-        count, what, first = int(m.group(1)), m.group(2), m.group(3)
+    if isinstance(message, UnreferencedVertexWarning) and message.dropped:
+        count, first = len(message.dropped), message.dropped[0]
         source = next((p for d in ("file", "mesh") if isinstance(p := getattr(args, d, None), str) and p), None)
         where = os.path.basename(source) if source else "the mesh"
         verb = "vertex of {} is used by no {} and was dropped" if count == 1 else \
             "vertices of {} are used by no {} and were dropped"
-        text = f"{count} {verb.format(where, what)} (first: row {first})"
-    return text
+        return f"{count} {verb.format(where, message.cell)} (first: row {first})"
+    return _one_line(message)
 
 
 def run_command(args) -> int:

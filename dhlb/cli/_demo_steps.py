@@ -46,7 +46,8 @@ def view_angles(points) -> dict:
     cam = Camera().fitted(points)
     v, u = np.asarray(cam.view, dtype=np.float64), up_vector(cam.up)
     height, across = (v @ u) * u, np.cross(u, v - (v @ u) * u)
-    return {"front": v, "back": 2.0 * height - v, "left": height + across, "right": height - across}
+    return {"front": v, "back": np.asarray(cam.behind(points).view), "left": height + across,
+            "right": height - across}
 
 
 def _views(res, out: str, name: str) -> str | None:

@@ -242,12 +242,10 @@ def _mesh(cells, V, k: int, what: str) -> MeshComplex:
         kept, new = _renumber(pts.shape[0], arr)  # kept == X.vertex_labels
         if kept.size < pts.shape[0]:
             unused = np.flatnonzero(new < 0)
-            warnings.warn(
+            warnings.warn(UnreferencedVertexWarning(
                 f"{unused.size} vertices are used by no {what} and were dropped (first: {int(unused[0])}); "
-                "complex.vertex_labels maps the kept vertices to the input rows",
-                UnreferencedVertexWarning,
-                stacklevel=3,
-            )
+                "complex.vertex_labels maps the kept vertices to the input rows", dropped=unused, cell=what),
+                stacklevel=3)
         pts = pts[kept]
     return MeshComplex(X, pts, X.index(k, arr), SimplicialComplex.orientation_of(arr))
 

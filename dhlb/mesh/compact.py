@@ -86,10 +86,8 @@ def compact_mesh(V: ArrayLike, F: ArrayLike) -> tuple[np.ndarray, np.ndarray, np
     if kept.size < n:
         dropped = np.flatnonzero(new < 0)
         first = ", ".join(str(int(i)) for i in dropped[:5]) + (", ..." if dropped.size > 5 else "")
-        warnings.warn(
+        warnings.warn(UnreferencedVertexWarning(
             f"{dropped.size} of {n} vertices are used by no cell and were dropped (indices {first}); "
-            "the returned `kept` maps new vertex indices to the input ones",
-            UnreferencedVertexWarning,
-            stacklevel=2,
-        )
+            "the returned `kept` maps new vertex indices to the input ones", dropped=dropped, cell="cell"),
+            stacklevel=2)
     return V[kept], new[F], kept

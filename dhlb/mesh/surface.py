@@ -358,9 +358,10 @@ def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, comp
     checks.check_geometry(P, T, rows)
     unused = np.flatnonzero(_renumber(len(P), T0)[1] < 0)  # not counting dropped components
     if unused.size:
-        warnings.warn(f"{unused.size} vertices of V are used by no face and were dropped (first: "
-                      f"{', '.join(str(int(v)) for v in unused[:5])}); mesh.vertex_labels maps compact "
-                      "vertices to rows of V", UnreferencedVertexWarning, stacklevel=2)
+        warnings.warn(UnreferencedVertexWarning(
+            f"{unused.size} vertices of V are used by no face and were dropped (first: "
+            f"{', '.join(str(int(v)) for v in unused[:5])}); mesh.vertex_labels maps compact vertices to rows of V",
+            dropped=unused, cell="face"), stacklevel=2)
     fast = checks.fast_topology(T, len(P))
     if fast:
         flip = np.zeros(len(T), bool)
