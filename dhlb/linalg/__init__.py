@@ -1,6 +1,6 @@
 """Layer 4: sparse linear algebra — eigenpairs and shifted solves of Hermitian pencils, their backends.
 
-* :func:`smallest_eigenpairs` — ``A u = λ M u``: ARPACK in shift-and-invert mode on one sparse
+* :func:`smallest_eigenpairs` — ``A u = λ M u``: shift-and-invert Lanczos on one sparse
   factorization (:mod:`dhlb.linalg.eigen`), dense for small problems, LOBPCG for iterative
   backends; every pair passes a normwise backward-error test.
 * :func:`solve` — ``(A − λM) x = b``.

@@ -33,7 +33,7 @@ class EigenResult:
     eigenvectors : (n, k) float or complex array
         The eigenvectors as columns, M-orthonormal (``Uᴴ M U = I``).
     iterations : int
-        Applications of the shifted inverse (ARPACK), LOBPCG iterations, or 0 (dense).
+        Applications of the shifted inverse (Lanczos), LOBPCG iterations, or 0 (dense).
     residuals : (k,) float array
         The normwise backward errors ``η`` of the pairs.
     converged : bool
@@ -43,9 +43,9 @@ class EigenResult:
     shift : float
         The shift ``σ`` that was factorized (``A − σM``).
     block_size : int, optional
-        The number of Krylov vectors (ARPACK's ``ncv``) or of the LOBPCG block.
+        The largest Lanczos basis or the LOBPCG block.
     method : str, optional
-        ``"arpack"``, ``"dense"``, ``"lobpcg"``, or ``"rayleigh-ritz"`` (the warm start passed as it was).
+        ``"lanczos"``, ``"dense"``, ``"lobpcg"``, or ``"rayleigh-ritz"`` (the warm start passed as it was).
     factorizations : int, optional
         The number of sparse factorizations done.
     solves : int, optional
@@ -76,7 +76,7 @@ class EigenResult:
     backend: str
     shift: float
     block_size: int = 0
-    method: str = "arpack"
+    method: str = "lanczos"
     factorizations: int = 0
     solves: int = 0
     note: str = ""

@@ -1,15 +1,14 @@
 """Sparse generalized Hermitian eigenproblems ``A u = λ M u``: the ``k`` smallest pairs.
 
 Method
-    With a direct backend, one factorization of ``K = A − σM`` and ARPACK
-    (:func:`scipy.sparse.linalg.eigsh`, implicitly restarted Lanczos) in shift-and-invert mode:
-    Lanczos on ``K⁻¹ M`` in the M-inner product, whose largest eigenvalues ``θ = 1/(λ − σ)``
-    belong to the ``λ`` closest to ``σ``.  The factorization is applied through a
-    :class:`~scipy.sparse.linalg.LinearOperator` (``OPinv``), so every backend of
-    :mod:`dhlb.linalg.backends` serves, and :attr:`EigenResult.solves` counts its applications.
-    ARPACK's own stopping test (Ritz estimate relative to ``θ``) is only a first filter: the
-    returned vectors go through a Rayleigh–Ritz step on ``(A, M)`` and the backward-error test
-    below, and ARPACK is restarted from them with a tighter tolerance if they miss it.
+    With a direct backend, one factorization of ``K = A − σM`` and shift-and-invert Lanczos
+    (:mod:`dhlb.linalg._lanczos`): Lanczos on ``K⁻¹ M`` in the M-inner product, whose largest
+    eigenvalues ``θ = 1/(λ − σ)`` belong to the ``λ`` closest to ``σ``.  The factorization is
+    applied through its ``solve``, so every backend of :mod:`dhlb.linalg.backends` serves, and
+    :attr:`EigenResult.solves` counts its applications.  Lanczos stops at the first step where
+    a Rayleigh–Ritz step on ``(A, M)`` in its basis gives pairs that pass the backward-error test
+    below (explicit residuals); ARPACK, which tests only when its basis is full, needed a quarter
+    more solves (see :mod:`dhlb.linalg._lanczos`).
     Problems with at most :data:`DENSE_MAX` unknowns (unless a backend is named) and problems
     too small for a Lanczos basis are solved densely (:func:`scipy.linalg.eigh`), so any valid
     small problem converges.  Iterative backends
@@ -51,7 +50,6 @@ from dataclasses import replace
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import (
@@ -67,6 +65,7 @@ from dhlb.linalg._checks import fix_phase as _fix_phase
 from dhlb.linalg._checks import norm1 as _norm1
 from dhlb.linalg._checks import validate_pair as _validate_pair
 from dhlb.linalg._eigen_steps import EigenResult, _iterate_lobpcg, _not_converged, _not_psd, _rayleigh_ritz
+from dhlb.linalg._lanczos import lanczos
 from dhlb.linalg.backends import available_backends, blas_guard, get_backend, pattern_dimension
 from dhlb.linalg.memory import InsufficientMemoryError
 from dhlb.linalg.options import SolverOptions, solver_options
@@ -74,7 +73,6 @@ from dhlb.linalg.options import SolverOptions, solver_options
 __all__ = ["DENSE_MAX", "EigenResult", "backward_errors", "default_shift", "default_tol", "smallest_eigenpairs"]
 
 _EPS = np.finfo(float).eps
-_ComplexWarning = getattr(getattr(np, "exceptions", np), "ComplexWarning", Warning)
 
 _SOLVER = ("tol", "maxiter", "backend", "block_size", "factor_shift", "seed")  # the keywords of dhlb 0.1
 
@@ -193,19 +191,19 @@ def smallest_eigenpairs(A, M, k: int = 1, *, sigma=None, v0=None, psd: bool = Tr
         Shift; if given, the ``k`` eigenvalues closest to ``sigma`` are returned (``A`` need not
         be PSD then).  Default ``-ε`` (see module docstring): the ``k`` smallest.
     v0 : (n,) or (n, j) array, optional
-        Start vector(s) (summed into one for ARPACK); default a seeded random vector, so results
+        Start vector(s) (summed into one for Lanczos); default a seeded random vector, so results
         are reproducible.
     psd : bool
         ``True`` (default): ``A`` must be positive semidefinite, and an eigenvalue below ``−ε``
         is an error.  ``False``: ``A`` may be indefinite; the ``k`` algebraically smallest pairs
         are returned, certified by inertia: SuperLU's ``L D Lᴴ`` pivots count the eigenvalues
-        below the shift, and the shift is lowered (refactorizing) until ARPACK has found all of
+        below the shift, and the shift is lowered (refactorizing) until Lanczos has found all of
         them.  Direct backends only (SuperLU is used for the inertia).
     solver : dhlb.linalg.SolverOptions or str, optional
         Backend, tolerance (default :func:`default_tol` ``(n)``), ``maxiter``, ``block_size``,
         ``factor_shift`` and ``seed`` (:class:`~dhlb.linalg.SolverOptions`); a string names the
         backend.  With one BLAS thread every backend is bitwise reproducible run to run for a given
-        ``seed``: the direct backends (SuperLU, CHOLMOD) and ARPACK are deterministic given the start
+        ``seed``: the direct backends (SuperLU, CHOLMOD) and Lanczos are deterministic given the start
         vector, and so are pyamg's aggregation and LOBPCG (``amg-lobpcg``).  A different ``seed``
         gives the same eigenvalues to the tolerance and, for a simple eigenvalue, the same
         eigenvector up to its phase, which :attr:`EigenResult.eigenvectors` fixes (largest entry
@@ -247,7 +245,7 @@ def smallest_eigenpairs(A, M, k: int = 1, *, sigma=None, v0=None, psd: bool = Tr
     >>> np.allclose(res.eigenvalues, 2 - 2 * np.cos(np.pi * np.arange(3) / n), atol=1e-12)
     True
     >>> res.converged, res.method, res.factorizations, bool(res.residuals.max() <= 1e-10)
-    (True, 'arpack', 1, True)
+    (True, 'lanczos', 1, True)
     >>> smallest_eigenpairs(A, sp.identity(n), solver=SolverOptions(backend="superlu", tol=1e-12)).converged
     True
     """
@@ -283,11 +281,11 @@ def _check_basis_memory(n: int, k: int, block_size, complex_: bool) -> None:
 
     if n <= DENSE_MAX:
         return
-    vectors = 3 * max(2 * k + 1, k + 11, int(block_size or 0))   # Krylov basis, its M-images, Ritz vectors
+    vectors = max(2 * k + 1, k + 24, int(block_size or 0)) + 1 + 2 * k + 3   # basis, Ritz vectors, A X, work
     need = vectors * n * (16 if complex_ else 8)
     have = available_bytes()
     if need > have:
-        fit = max(1, int(have / (3 * 2 * n * (16 if complex_ else 8))))
+        fit = max(1, int(have / (5 * n * (16 if complex_ else 8))))
         raise ResourceLimitError("k", k, need, have, f"at most about k = {fit} eigenpairs of this {n:,}-unknown "
                                  "problem fit in memory")
 
@@ -296,7 +294,7 @@ def _pencil_scales(A, M) -> tuple[float, float]:
     """Powers of two ``(s_A, s_M)`` that bring ``‖A‖₁`` and ``max M_ii`` near 1, or ``(1, 1)`` if they are.
 
     The eigenproblem is scale-covariant: ``(s_A A) u = (s_A λ / s_M)(s_M M) u``.  A mesh measured in
-    units of 1e-150 has a mass matrix near 1e-300 and ARPACK's M-norms underflow; scaling by powers
+    units of 1e-150 has a mass matrix near 1e-300 and the M-norms of Lanczos underflow; scaling by powers
     of two (``s_M`` a power of four, so that ``√s_M`` is one too) is exact, so results in the
     caller's units do not depend on the unit.  Only far-out scales (beyond 2^±64) are touched.
     """
@@ -339,13 +337,14 @@ def _solve(A, M, k, tol, maxiter, sigma, v0, backend, block_size, factor_shift, 
     complex_ = np.iscomplexobj(A.data) or np.iscomplexobj(M.data)
     eps_shift = default_shift(A, M)
     shift = -eps_shift if default else float(sigma)
-    ncv = min(n, int(block_size) if block_size is not None else max(2 * k + 1, k + 11))
+    ncv = int(block_size) if block_size is not None else max(2 * k + 1, k + 24)
     v = _start_vector(n, complex_, v0, seed)
     auto = backend is None or (isinstance(backend, str) and backend == "auto")
     if not auto:
         get_backend(backend)  # an unknown or uninstalled name is an error even when the dense path answers
-    if (auto and n <= DENSE_MAX) or ncv >= n - 1:
+    if (auto and n <= DENSE_MAX) or k >= n - 2 or (block_size is not None and ncv >= n - 1):
         return _dense(A, M, k, shift, default, psd, tol, eps_shift)
+    ncv = min(ncv, n - 1)
     if default and not psd:
         with blas_guard():
             return _lowest_of_indefinite(A, M, k, eps_shift, tol, maxiter, v, ncv)
@@ -366,7 +365,7 @@ def _solve(A, M, k, tol, maxiter, sigma, v0, backend, block_size, factor_shift, 
             res = _iterative(get_backend("amg-lobpcg"), A, M, k, v, block_size, eps_shift, tol, maxiter, default,
                              complex_, seed)
             return replace(res, note=f"{be.name} would not fit in memory ({err}); solved by amg-lobpcg instead")
-        res = _arpack(fac, A, M, k, shift, tol, maxiter, v, ncv, default, getattr(fac, "name", be.name))
+        res = _shift_invert(fac, A, M, k, shift, tol, maxiter, v, ncv, default, getattr(fac, "name", be.name))
     return replace(res, factor=fac, factorizations=1)
 
 
@@ -374,7 +373,7 @@ def _lowest_of_indefinite(A, M, k, eps_shift, tol, maxiter, v, ncv, tries=12):
     """The ``k`` smallest pairs of an indefinite pencil, certified by the inertia of ``A − σM``.
 
     ``ν`` negative pivots of the ``L D Lᴴ`` factorization of ``A − σM`` (Sylvester) mean exactly
-    ``ν`` eigenvalues below ``σ``.  ARPACK asks for the ``ν + k`` nearest to ``σ``; when ``ν`` of
+    ``ν`` eigenvalues below ``σ``.  Lanczos asks for the ``ν + k`` nearest to ``σ``; when ``ν`` of
     them lie below ``σ`` every eigenvalue below ``σ`` has been found, and the ``k`` smallest of
     what was found are the ``k`` smallest of the pencil.  Otherwise ``σ`` is lowered below the
     lowest eigenvalue found, by ten times its distance to ``σ`` and then a hundred, ... (never
@@ -382,7 +381,7 @@ def _lowest_of_indefinite(A, M, k, eps_shift, tol, maxiter, v, ncv, tries=12):
     """
     from dhlb.linalg.backends import SuperLUBackend
 
-    n, normA, normM = A.shape[0], _norm1(A), _norm1(M)
+    n = A.shape[0]
     shift, solves = -eps_shift, 0
     d = M.diagonal().real                              # Gershgorin: every eigenvalue is >= floor
     floor = -1.01 * float(np.max(abs(A).sum(axis=1).A1 / d)) / float(min(1.0, np.min(d) / np.max(d))) - eps_shift
@@ -394,25 +393,19 @@ def _lowest_of_indefinite(A, M, k, eps_shift, tol, maxiter, v, ncv, tries=12):
             continue
         nu = fac.negative_pivots
         if nu == 0:
-            res = _arpack(fac, A, M, k, shift, tol, maxiter, v, ncv, False, fac.name)
+            res = _shift_invert(fac, A, M, k, shift, tol, maxiter, v, ncv, False, fac.name)
             return replace(res, factor=fac, factorizations=attempt, solves=solves + res.solves)
         nev = min(n - 2, nu + k)
-        op = _CountingInverse(fac, n, np.complex128 if np.iscomplexobj(v) else np.float64)
-        arpack_tol, X = 10 * tol, None
-        while True:
-            X = _eigsh(A, M, nev, shift, op, v, max(ncv, min(n - 1, 2 * nev + 1)), arpack_tol, maxiter)
-            if X is None:
-                break
-            _, _, lam_all, _, _ = _rayleigh_ritz(A, M, X, X.shape[1], shift, normA, normM)
-            _, _, lam, U, eta = _rayleigh_ritz(A, M, X, k, -np.inf, normA, normM)
-            if int(np.sum(lam_all < shift)) < nu or np.all(eta <= tol) or arpack_tol < _EPS:
-                break
-            v, arpack_tol = U.sum(axis=1), arpack_tol / 100
+        op = _CountingInverse(fac)
+        out = lanczos(op, A, M, nev, v, shift=shift,
+                      solver=SolverOptions(tol=tol, maxiter=maxiter, block_size=max(ncv, min(n - 1, 2 * nev + 1))))
         solves += op.count
-        if X is not None and int(np.sum(lam_all < shift)) == nu and np.all(eta <= tol):
-            return EigenResult(lam, _fix_phase(U), solves, eta, True, fac.name, shift, ncv, "arpack",
-                               factorizations=attempt, solves=solves, factor=fac)
-        low = min(float(lam_all.min()) if X is not None else shift, shift)
+        lam_all = out.eigenvalues
+        if out.converged and int(np.sum(lam_all < shift)) == nu:
+            sel = np.argsort(lam_all, kind="stable")[:k]
+            return EigenResult(lam_all[sel], _fix_phase(out.vectors[:, sel]), solves, out.residuals[sel], True,
+                               fac.name, shift, ncv, "lanczos", factorizations=attempt, solves=solves, factor=fac)
+        low = min(float(lam_all.min()), shift)
         shift = max(low - max(abs(shift - low), eps_shift) * 10.0**attempt, floor)
     raise ConvergenceError(f"smallest_eigenpairs(psd=False): the {k} smallest eigenvalues were not certified "
                            f"after {tries} shifts (last shift {shift:.6g}); is A far from semidefinite?")
@@ -429,92 +422,68 @@ def _iterative(be, A, M, k, v, block_size, eps_shift, tol, maxiter, default, com
     return _iterate_lobpcg(be, A, M, U, k, eps_shift, tol, maxiter)
 
 
-class _CountingInverse(spla.LinearOperator):
+class _CountingInverse:
     """``x ↦ K⁻¹ x`` through a factor, counting the solves."""
 
-    def __init__(self, fac, n, dtype):
-        super().__init__(dtype=np.dtype(dtype), shape=(n, n))
+    def __init__(self, fac):
         self.fac, self.count = fac, 0
 
-    def _matvec(self, x):
+    def __call__(self, x):
         self.count += 1
-        return self.fac.solve(np.asarray(x).reshape(-1))
+        return self.fac.solve(x)
 
 
-def _arpack(fac, A, M, k, shift, tol, maxiter, v, ncv, default, name):
-    """ARPACK on the factorized shift, then Rayleigh–Ritz on ``(A, M)`` and the backward-error test.
+def _shift_invert(fac, A, M, k, shift, tol, maxiter, v, ncv, default, name):
+    """Shift-and-invert Lanczos (:mod:`dhlb.linalg._lanczos`) on the factorized shift.
 
-    ARPACK's tolerance starts at ``10 tol`` (its test is relative to ``θ = 1/(λ − σ)``, which on
-    these problems puts ``η`` about two orders lower) and is tightened a hundredfold, restarting
-    from the current Ritz vectors (their sum, so that every wanted direction is in the new Krylov
-    space), while ``η > tol``.  For ``k > 1`` ARPACK is asked for ``k + max(2, k // 2)`` pairs, and
-    the result is checked for a missed copy of a multiple eigenvalue (a single-vector Krylov
-    method sees the second copy only through rounding): ARPACK runs once more on the M-orthogonal
-    complement of the pairs found, and whatever it finds below ``λ_k`` joins them.
+    Lanczos stops at the first step where the backward errors of the ``k`` wanted pairs meet
+    ``tol``.  For ``k > 1`` the result is checked for a missed copy of a multiple eigenvalue (a
+    single-vector Krylov method sees the second copy only through rounding): Lanczos runs once
+    more on the M-orthogonal complement of the pairs found, and whatever it finds below ``λ_k``
+    joins them (Rayleigh–Ritz on the union); this repeats until a pass finds nothing new below ``λ_k``.
     """
     n = A.shape[0]
-    op = _CountingInverse(fac, n, np.complex128 if np.iscomplexobj(v) else np.float64)
+    op = _CountingInverse(fac)
     normA, normM = _norm1(A), _norm1(M)
-    nev = k if k == 1 else min(k + max(2, k // 2), ncv - 2)
-    ncv = max(ncv, min(n - 1, 2 * nev + 1))
-    arpack_tol, lam, U, eta, checked = 10 * tol, None, None, None, k == 1
-    while True:
-        X = _eigsh(A, M, nev, shift, op, v, ncv, arpack_tol, maxiter)
-        if X is not None and X.shape[1] > 0:
-            if not checked:
-                start = _random_block(n, 1, np.iscomplexobj(X))[:, 0]
-                Y = _eigsh(A, M, max(1, k // 4), shift, _Deflated(op, M, X), start, ncv, arpack_tol, maxiter)
-                X, checked = X if Y is None else np.concatenate([X, Y], axis=1), True
-            W = X if X.shape[1] >= k else np.concatenate([X, _random_block(n, k - X.shape[1], np.iscomplexobj(X))],
-                                                         axis=1)
-            _, _, lam, U, eta = _rayleigh_ritz(A, M, W, k, shift, normA, normM)
-            if default and lam[0] < shift:
-                raise _not_psd(lam[0], shift)
-            if np.all(eta <= tol):
-                return EigenResult(lam, _fix_phase(U), op.count, eta, True, name, shift, ncv, "arpack",
-                                   solves=op.count)
-            v = U.sum(axis=1)
-        if op.count >= maxiter or arpack_tol < _EPS:
-            part = EigenResult(np.full(k, np.nan) if lam is None else lam,
-                               np.zeros((n, k)) if U is None else _fix_phase(U), op.count,
-                               np.full(k, np.inf) if eta is None else eta, False, name, shift, ncv, "arpack",
-                               factorizations=1, solves=op.count, factor=fac)
-            raise _not_converged(part, op.count, tol, ncv)
-        arpack_tol /= 100
+    out = lanczos(op, A, M, k, v, shift=shift, solver=SolverOptions(tol=tol, maxiter=maxiter, block_size=ncv))
+    lam, U, eta = out.eigenvalues, out.vectors, out.residuals
+    found, passes = U, 0
+    while out.converged and k > 1:   # a pass finds one copy of each eigenvalue: repeat until none is missed
+        passes += 1
+        defl = _Deflated(op, M, found)
+        start = defl.project(_random_block(n, 1, np.iscomplexobj(U), seed=7 + passes)[:, 0])  # not the first start
+        extra = lanczos(defl, A, M, max(1, k // 4), start, shift=shift,
+                        solver=SolverOptions(tol=tol, maxiter=max(1, maxiter - op.count), block_size=ncv))
+        if not (extra.converged and np.any(extra.eigenvalues < lam[-1])):
+            break
+        union, _, lam2, U2, eta2 = _rayleigh_ritz(A, M, np.concatenate([found, extra.vectors], axis=1), k, shift,
+                                                  normA, normM)
+        if not np.sum(lam2) < np.sum(lam) - 1e-8 * (abs(lam[-1]) + abs(shift)):   # nothing missed: a copy again
+            break
+        found, lam, U, eta = union, lam2, U2, eta2
+    if default and lam[0] < shift:
+        raise _not_psd(lam[0], shift)
+    if out.converged and np.all(eta <= tol):
+        return EigenResult(lam, _fix_phase(U), op.count, eta, True, name, shift, ncv, "lanczos", solves=op.count)
+    part = EigenResult(lam, _fix_phase(U), op.count, eta, False, name, shift, ncv, "lanczos", factorizations=1,
+                       solves=op.count, factor=fac)
+    raise _not_converged(part, op.count, tol, ncv)
 
 
-def _eigsh(A, M, nev, shift, op, v, ncv, arpack_tol, maxiter):
-    """ARPACK's Ritz vectors (``None`` if it found none); its own failures as typed errors."""
-    restarts = max(1, (maxiter - op.count) // max(1, ncv - nev))
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", _ComplexWarning)  # eigs on a Hermitian pencil: real λ, complex dtype
-            _, X = spla.eigsh(A, k=nev, M=M, sigma=shift, which="LM", OPinv=op, v0=v, ncv=ncv, tol=arpack_tol,
-                              maxiter=restarts)
-    except spla.ArpackNoConvergence as err:
-        X = err.eigenvectors
-    except spla.ArpackError as err:
-        raise ConvergenceError(f"ARPACK failed on this problem ({err}); try another backend or block_size") from err
-    if X is not None and not np.all(np.isfinite(X)):
-        raise InvalidOperatorError("the shifted solve produced non-finite values; A - σM is numerically singular")
-    return X if X is None or X.shape[1] else None
+class _Deflated:
+    """``y ↦ P K⁻¹ y`` with ``P = I − X Xᴴ M`` the M-orthogonal projector onto the complement of ``X``.
 
-
-class _Deflated(spla.LinearOperator):
-    """``y ↦ P K⁻¹ y`` with ``P = I − X G⁻¹ Xᴴ M`` the M-orthogonal projector onto the complement of ``X``."""
+    ``X`` is M-orthonormal (Lanczos' Ritz vectors).
+    """
 
     def __init__(self, op, M, X):
-        super().__init__(dtype=op.dtype, shape=op.shape)
         self.op, self.X, self.MX = op, X, M @ X
-        self.G = X.conj().T @ self.MX
 
-    @property
-    def count(self):
-        return self.op.count
+    def project(self, x):
+        return x - self.X @ (self.MX.conj().T @ x)
 
-    def _matvec(self, y):
-        x = self.op.matvec(y)
-        return x - self.X @ np.linalg.solve(self.G, self.MX.conj().T @ x)
+    def __call__(self, y):   # twice: K⁻¹ amplifies what one projection leaves of X by up to 1/|λ − σ|
+        return self.project(self.project(self.op(y)))
 
 
 def _dense(A, M, k, shift, smallest, psd, tol, eps_shift):

@@ -42,7 +42,7 @@ class SolverOptions:
         Maximal number of applications of the shifted inverse (direct backends) or of LOBPCG
         iterations (``amg-lobpcg``).
     block_size : int, optional
-        Number of Lanczos vectors ARPACK keeps (its ``ncv``; default ``max(2k + 1, k + 11)``),
+        Largest Lanczos basis before a thick restart (default ``max(2k + 1, k + 24)``),
         or the LOBPCG block for ``amg-lobpcg``; raise it above the size of a cluster of nearly
         equal eigenvalues.  Must be at least the number ``k`` of wanted pairs (checked by the solve).
     factor_shift : {"auto", "floor"}
