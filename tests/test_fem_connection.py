@@ -136,6 +136,27 @@ def test_simplex_weights_are_linear_and_zero_removes_simplices():
     assert abs(connection_laplacian(B, geo, simplex_weights=2.0) - 2 * connection_laplacian(B, geo)).max() <= 1e-14
 
 
+@pytest.mark.parametrize("k,field", [(1, "C"), (2, "R"), (3, "C")])
+def test_an_array_of_transports_is_the_bundle(k, field):
+    X, geo = geometry(2, 3, 1)
+    rng = np.random.default_rng(k)
+    T = random_orthogonal(rng, X.n_simplices(1), k, field)
+    sw = rng.uniform(0, 2, X.n_simplices(2))
+    A = connection_laplacian(VectorBundle(X, T, field, metric=True), geo, simplex_weights=sw)
+    B = connection_laplacian(T if k > 1 else T[:, 0, 0], geo, simplex_weights=sw)
+    assert B.dtype == A.dtype and abs(A - B).max() == 0
+    G = T + 0.5 * np.eye(k)                                  # not orthogonal: the general assembly, the same matrix
+    assert abs(connection_laplacian(G, geo) - connection_laplacian(VectorBundle(X, G, field), geo)).max() == 0
+    with pytest.raises(ShapeError, match="transports"):
+        connection_laplacian(T[:-1], geo)
+    bad = T.copy()
+    bad[4, 0, 0] = np.nan
+    with pytest.raises(NonFiniteError, match="row 4"):
+        connection_laplacian(bad, geo)
+    with pytest.raises(TypeError, match="EuclideanComplex"):
+        connection_laplacian(T, X)
+
+
 def test_connection_mass():
     X, geo = geometry(2, 3, 0)
     M = connection_mass(geo, 2)

@@ -24,6 +24,7 @@ from dhlb.fields import direction_vectors, field_indices
 from dhlb.geometry import EuclideanComplex
 from dhlb.linalg import SolverOptions
 from dhlb.mesh import tangent_bundle
+from dhlb.mesh import validate_surface as validate
 from dhlb.stripes import StripeOptions, stripe_form, stripe_matrices, stripe_pattern, texture_coordinates
 from dhlb.topology.complex import SimplicialComplex
 from tests.surface_meshes import grid, icosphere, torus
@@ -165,6 +166,56 @@ def test_direction_field_input():
     assert np.array_equal(res2.branch_faces, res.branch_faces)
     with pytest.raises(InvalidParameterError, match="line field"):
         stripe_pattern(V, F, fld, spacing=5.0, n=1)
+
+
+@pytest.mark.parametrize("n", [1, 2])
+def test_a_field_on_the_same_arrays_lends_its_mesh_and_its_angles(n, monkeypatch):
+    import dataclasses
+
+    import dhlb.stripes.pattern as pattern
+
+    V, F = icosphere(2)
+    V, F = np.vstack([[9.0, 9, 9], V]), F + 1      # row 0 unused: the mesh is compacted
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fld = surface.direction_field(V, F, n=n)
+    calls = []
+    monkeypatch.setattr(pattern, "validate_surface", lambda *a, **k: calls.append(1) or validate(*a, **k))
+    res = stripe_pattern(V, F, fld, spacing=5.0)
+    assert not calls and res.form.mesh is fld.mesh               # validated once, by direction_field
+    assert (res.form.tangent is fld.tangent) == (n == 1)
+    # the angles arg u / n of the section, not a round trip through 3D vectors: the same pattern
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ref = stripe_pattern(V, F, fld.input_directions(), spacing=5.0, n=n)
+    assert calls == [1] and ref.form.mesh is not fld.mesh
+    d = np.mod(res.form.angles - ref.form.angles + np.pi, 2 * np.pi) - np.pi
+    assert np.abs(d).max() <= 1e-12 and np.abs(res.form.directions - ref.form.directions).max() <= 1e-12
+    assert np.array_equal(res.branch_faces, ref.branch_faces) and np.array_equal(res.zero_faces, ref.zero_faces)
+    assert np.abs(res.psi - ref.psi).max() <= 1e-8
+    W = V.copy()
+    W[5] += 1e-3                                                  # other arrays: validated again
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert stripe_pattern(W, F, fld, spacing=5.0).form.mesh is not fld.mesh
+    assert calls == [1, 1]
+    u = fld.u.copy()
+    u[3] = 0
+    with pytest.raises(SectionZeroError, match="vertex 4 is zero"):
+        stripe_pattern(V, F, dataclasses.replace(fld, u=u), spacing=5.0)
+
+
+@pytest.mark.parametrize("kind", ["unit", "power", "eigenvector"])
+def test_the_section_reuses_the_eigensolvers_factorization(kind):
+    from dhlb.stripes import SectionOptions
+
+    V, F = icosphere(2)
+    res = stripe_pattern(V, F, surface.direction_field(V, F, n=1), spacing=5.0,
+                         options=StripeOptions(section=SectionOptions(kind=kind)), solver="superlu")
+    st = res.solver
+    assert st["factorizations"] == 1 and st["solves"] >= 1 and st["section_factorizations"] == 0
+    assert st["section_solves"] == (0 if kind == "eigenvector" else res.iteration.iterations)
+    assert kind == "eigenvector" or st["section_solves"] >= 1
 
 
 # ---------------------------------------------------------------------- App. A: conjugate symmetry

@@ -17,8 +17,9 @@ branch triangles of a stripe pattern, seed part 2, §3.2). Expanding the square:
 * off-diagonal blocks ``A[j, i] = −w_ij η_ij`` and ``A[i, j] = −w_ij η_ijᴴ`` (for ``k = 1``
   exactly the entries of ``docs/conventions.md``);
 * diagonal blocks ``A[i, i] = Σ_{j>i} w_ij η_ijᴴ η_ij + Σ_{j<i} w_ji I``. If every transport is
-  orthogonal / unitary this is ``(Σ_σ s_σ c^σ_ii) I``, which is how it is computed then (so that
-  the trivial bundle of rank 1 gives exactly :meth:`EuclideanComplex.stiffness_matrix`).
+  orthogonal / unitary this is ``(Σ_σ s_σ c^σ_ii) I``, and then the whole matrix is computed edge by
+  edge from the weighted P1 stiffness ``K`` (the sums of :meth:`EuclideanComplex.stiffness_matrix`):
+  ``K_ii I`` and ``K_ij η`` (so that the trivial bundle of rank 1 gives exactly the stiffness matrix).
 
 Unlike :func:`dhlb.fem.dirichlet_matrix` (the curvature-corrected finite elements of a line
 bundle) this is the plain "discrete connection" energy: exact for flat bundles, and the energy
@@ -111,21 +112,40 @@ def _simplex_weights(weights, X) -> np.ndarray:
     return w
 
 
-def _transports(bundle) -> tuple[np.ndarray, bool]:
-    """``(n_1, k, k)`` transports (float or complex) and whether they are all orthogonal / unitary."""
+def _transports(bundle, geometry) -> tuple[np.ndarray, bool, object]:
+    """``(n_1, k, k)`` transports (float or complex), whether they are all orthogonal / unitary, and the complex."""
+    if isinstance(bundle, np.ndarray):
+        X = getattr(geometry, "complex", None)
+        if X is None:
+            _check_geometry(X, geometry)   # raises the TypeError
+        T = bundle.reshape(-1, 1, 1) if bundle.ndim == 1 else bundle
+        n1 = X.n_simplices(1)
+        if T.ndim != 3 or T.shape[0] != n1 or T.shape[1] != T.shape[2] or T.shape[1] == 0:
+            raise ShapeError(f"transports must have shape (n_1, k, k) or (n_1,) with n_1 = {n1} edges of "
+                             f"geometry.complex, got shape {bundle.shape}")
+        if not np.all(np.isfinite(T)):
+            e = int(np.argmax(~np.isfinite(T.reshape(n1, -1)).all(axis=1)))
+            raise NonFiniteError(f"the transport of edge {X.simplices(1)[e].tolist()} (row {e}) is not finite")
+        T = T.astype(np.complex128 if np.iscomplexobj(T) else np.float64, copy=False)
+        return T, _is_orthogonal(T), X
     if hasattr(bundle, "connection") and hasattr(bundle, "curvature") and not hasattr(bundle, "transports"):
-        return np.asarray(bundle.connection, np.complex128).reshape(-1, 1, 1), True
+        return np.asarray(bundle.connection, np.complex128).reshape(-1, 1, 1), True, bundle.X
     if not hasattr(bundle, "transports"):
-        raise TypeError(f"bundle must be a VectorBundle or a HermitianLineBundle, got {type(bundle).__name__}")
+        raise TypeError(f"bundle must be a VectorBundle, a HermitianLineBundle or an array of transports, got "
+                        f"{type(bundle).__name__}")
     field = bundle.field
     if field not in ("R", "C"):
         raise InvalidParameterError(f"the connection Laplacian needs a bundle over R or C, got the field {field!r}")
     T = np.asarray(bundle.transports, np.float64 if field == "R" else np.complex128)
-    if bundle.metric:
-        return T, True
+    return T, bool(bundle.metric) or _is_orthogonal(T), bundle.X
+
+
+def _is_orthogonal(T: np.ndarray) -> bool:
+    """All ``ηᴴη = I`` to 16 ulp (entry by entry of the Gram matrices: k² vector sums, no small matmuls)."""
     k = T.shape[1]
-    gram = np.einsum("eba,ebc->eac", T.conj(), T)
-    return T, bool(np.all(np.abs(gram - np.eye(k)) <= 16 * np.finfo(float).eps))
+    Tc = T.conj()
+    return all(bool(np.all(np.abs(np.sum(Tc[:, :, a] * T[:, :, c], axis=1) - (a == c)) <= 16 * np.finfo(float).eps))
+               for a in range(k) for c in range(k))
 
 
 def cotan_edge_weights(geometry: EuclideanComplex, *, simplex_weights: ArrayLike | None = None) -> np.ndarray:
@@ -180,8 +200,9 @@ def connection_laplacian(
 
     Parameters
     ----------
-    bundle : VectorBundle (field ``"R"`` or ``"C"``, rank k) or HermitianLineBundle (k = 1)
-        Transports ``η_ij`` per canonical edge of ``geometry.complex``.
+    bundle : VectorBundle (field ``"R"`` or ``"C"``, rank k), HermitianLineBundle (k = 1), or (n_1, k, k) / (n_1,) array
+        Transports ``η_ij`` per canonical edge of ``geometry.complex``; an array (float or complex) is
+        taken as they are, without building a bundle (the row order of ``geometry.complex.simplices(1)``).
     geometry : EuclideanComplex
         The metric of a pure complex of any dimension n >= 1 (the same complex as the bundle).
     simplex_weights : float or (n_top,) array of numbers >= 0, optional
@@ -196,12 +217,14 @@ def connection_laplacian(
     Raises
     ------
     ShapeError
-        Bundle and geometry on different complexes, a non-pure complex, bad ``simplex_weights`` shape.
+        Bundle and geometry on different complexes, a non-pure complex, bad ``simplex_weights`` shape,
+        an array of transports of the wrong shape.
     NonFiniteError, InvalidParameterError
-        NaN/inf or negative ``simplex_weights`` (naming the top simplex); a bundle over a finite field.
+        NaN/inf or negative ``simplex_weights`` (naming the top simplex), NaN/inf transports (naming the
+        edge); a bundle over a finite field.
     TypeError
-        ``bundle`` is neither a VectorBundle nor a HermitianLineBundle, or ``geometry`` is not an
-        EuclideanComplex.
+        ``bundle`` is neither a VectorBundle, a HermitianLineBundle nor an array, or ``geometry`` is not
+        an EuclideanComplex.
 
     Examples
     --------
@@ -219,9 +242,10 @@ def connection_laplacian(
     >>> psi = np.exp(0.7j * P[:, 0])
     >>> abs(complex(psi.conj() @ A @ psi)) < 1e-14
     True
+    >>> bool(abs(connection_laplacian(L.connection, EuclideanComplex(X, points=P)) - A).max() == 0)   # the array
+    True
     """
-    T, orthogonal = _transports(bundle)
-    X = bundle.X
+    T, orthogonal, X = _transports(bundle, geometry)
     _check_geometry(X, geometry)
     sw = _simplex_weights(simplex_weights, X)
     k = T.shape[1]
@@ -229,31 +253,68 @@ def connection_laplacian(
     n = X.dim
     if n == 0 or X.n_simplices(1) == 0:
         return sp.csr_matrix((N * k, N * k), dtype=T.dtype)
-    S = X.simplices(n)
-    m = S.shape[0]
     c = np.asarray(geometry.cotan_weights, dtype=np.float64) * sw[:, None, None]  # c_ab = −w contribution
-    L = np.zeros((m, n + 1, n + 1, k, k), dtype=T.dtype)
+    if not orthogonal:
+        return _general_laplacian(X, T, c)
+    # the weighted P1 stiffness K (the sums of EuclideanComplex.stiffness_matrix), then K_ij ↦ K_ij η per edge
+    S = X.simplices(n)
+    rows = np.broadcast_to(S[:, :, None], c.shape).ravel()
+    cols = np.broadcast_to(S[:, None, :], c.shape).ravel()
+    K = sp.coo_matrix((c.ravel(), (rows, cols)), shape=(N, N)).tocsr()   # canonical: sorted, explicit zeros kept
+    indptr, idx, val = K.indptr, K.indices, K.data
+    row = np.repeat(np.arange(N, dtype=idx.dtype), np.diff(indptr))
+    upper, lower = idx > row, idx < row
+    # K has exactly the edges of the pure complex off the diagonal: its upper triangle in CSR order is the
+    # canonical edge order, and the (symmetric) pattern of the transpose maps each lower entry to its mirror
+    edge = np.zeros(K.nnz, np.int64)
+    edge[upper] = np.arange(X.n_simplices(1))
+    mirror = sp.csr_matrix((np.arange(K.nnz), idx, indptr), shape=(N, N)).T.tocsr().data
+    edge[lower] = edge[mirror[lower]]
+    if k == 1:
+        eta = T[edge, 0, 0]
+        return sp.csr_matrix((val * np.where(upper, eta.conj(), np.where(lower, eta, 1.0)), idx, indptr), shape=(N, N))
+    return _expand_blocks(K, row, upper, lower, T, edge)
+
+
+def _expand_blocks(K, row, upper, lower, T, edge) -> sp.csr_matrix:
+    """The csr matrix with the blocks ``K_ii I`` (diagonal only, no stored zeros), ``K_ij ηᴴ`` (i < j), ``K_ij η``."""
+    N, k = K.shape[0], T.shape[1]
+    indptr, idx, val = K.indptr, K.indices, K.data
+    eta = T[edge]
+    blocks = np.where(upper[:, None, None], np.swapaxes(eta, 1, 2).conj(), eta)
+    diag = ~(upper | lower)
+    blocks[diag] = np.eye(k)
+    B = sp.bsr_matrix((val[:, None, None] * blocks, idx, indptr), shape=(N * k, N * k)).tocsr()
+    # drop the off-diagonal entries of the diagonal blocks: k − 1 per row, at known places (each row of K
+    # has its diagonal entry, the complex being pure; row i k + a of B lists the blocks of row i of K in order)
+    t = np.flatnonzero(diag)
+    i = row[t].astype(np.int64)
+    ak = np.arange(k)
+    start = B.indptr[(i * k)[:, None] + ak] + (k * (t - indptr[i]))[:, None]
+    drop = (start[:, :, None] + ak)[:, ~np.eye(k, dtype=bool)]
+    keep = np.ones(B.nnz, bool)
+    keep[drop.ravel()] = False
+    ptr = B.indptr - (k - 1) * np.arange(N * k + 1, dtype=B.indptr.dtype)
+    return sp.csr_matrix((B.data[keep], B.indices[keep], ptr), shape=(N * k, N * k))
+
+
+def _general_laplacian(X, T: np.ndarray, c: np.ndarray) -> sp.csr_matrix:
+    """The connection Laplacian of non-orthogonal transports, simplex by simplex (diagonal blocks ``Σ w ηᴴη``)."""
+    k, N, n = T.shape[1], X.n_vertices, X.dim
+    S = X.simplices(n)
+    L = np.zeros((S.shape[0], n + 1, n + 1, k, k), dtype=T.dtype)
     eye = np.eye(k)
-    pairs = _keys.combination_columns(n + 1, 2)
     edges = subfaces(X, n, 1)
-    for p, (a, b) in enumerate(pairs.tolist()):
+    for p, (a, b) in enumerate(_keys.combination_columns(n + 1, 2).tolist()):
         eta = T[edges[:, p]]
         cab = c[:, a, b, None, None]
         L[:, a, b] = cab * np.swapaxes(eta, 1, 2).conj()  # A[i, j] = −w ηᴴ   (i = v_a < j = v_b)
         L[:, b, a] = cab * eta  # A[j, i] = −w η
-        if not orthogonal:
-            L[:, a, a] -= cab * np.einsum("sba,sbc->sac", eta.conj(), eta)
-            L[:, b, b] -= cab * eye
-    if orthogonal:
-        for a in range(n + 1):
-            L[:, a, a] = c[:, a, a, None, None] * eye
+        L[:, a, a] -= cab * np.einsum("sba,sbc->sac", eta.conj(), eta)
+        L[:, b, b] -= cab * eye
     off = np.arange(k)
     rows = np.broadcast_to(S[:, :, None, None, None] * k + off[:, None], L.shape)
     cols = np.broadcast_to(S[:, None, :, None, None] * k + off[None, :], L.shape)
-    if orthogonal and k > 1:  # the diagonal blocks are multiples of I: store no explicit zeros
-        keep = np.broadcast_to(~(np.eye(n + 1, dtype=bool)[:, :, None, None] & ~np.eye(k, dtype=bool)), L.shape[1:])
-        keep = np.broadcast_to(keep, L.shape)
-        return sp.coo_matrix((L[keep], (rows[keep], cols[keep])), shape=(N * k, N * k)).tocsr()
     return sp.coo_matrix((L.ravel(), (rows.ravel(), cols.ravel())), shape=(N * k, N * k)).tocsr()
 
 

@@ -56,9 +56,38 @@ def per_vertex_positive(mesh: SurfaceMesh, value, what: str) -> np.ndarray:
     return arr.astype(np.float64)
 
 
+def _field_section(tb: TangentBundle, directions):
+    """``(u, n)`` of a direction-field result computed on ``tb.mesh`` itself, else None."""
+    u, fn = getattr(directions, "u", None), getattr(directions, "n", None)
+    if u is None or fn is None or getattr(directions, "mesh", None) is not tb.mesh:
+        return None
+    return np.asarray(u), int(fn)
+
+
 def checked_directions(tb: TangentBundle, directions, method: str) -> tuple[np.ndarray, np.ndarray]:
-    """Unit tangent directions ``(N, 3)`` and their rescaled angles ``(N,)`` (``method``: see ``stripe_form``)."""
+    """Unit tangent directions ``(N, 3)`` and their rescaled angles ``(N,)`` (``method``: see ``stripe_form``).
+
+    ``directions`` is one 3D vector per vertex, or a direction-field result (``.u``, ``.n``,
+    ``.directions``): its first direction, whose rescaled angle ``arg u / n`` is read from the section
+    when the field lives on ``tb.mesh`` (no round trip through 3D vectors).
+    """
     mesh = tb.mesh
+    field = _field_section(tb, directions)
+    if field is not None:
+        u, fn = field
+        zero = u == 0
+        if np.any(zero):
+            raise SectionZeroError(f"the direction at {vertex_name(mesh, int(np.argmax(zero)))} is zero "
+                                   f"({int(zero.sum())} such vertices); stripes need a nonzero tangent direction at "
+                                   "every vertex")
+        theta = np.mod(np.angle(u) / fn, 2 * np.pi)
+        W = np.asarray(directions.directions)[:, 0, :]   # = tb.angles_to_vectors(v, theta): the field's own
+        if method == "extrinsic":
+            return _tangent_unit(tb, W), theta
+        return np.array(W, dtype=np.float64), theta
+    if hasattr(directions, "directions") and hasattr(directions, "mesh"):   # a field without u, or on another mesh
+        other = directions.mesh is not mesh and hasattr(directions, "input_directions")
+        directions = directions.input_directions() if other else directions.directions   # input order / compact
     try:
         W = np.asarray(directions, dtype=np.float64)
     except (TypeError, ValueError):
@@ -82,7 +111,12 @@ def checked_directions(tb: TangentBundle, directions, method: str) -> tuple[np.n
         raise SectionZeroError(f"the direction at {vertex_name(mesh, v)} {what} ({int(zero.sum())} such vertices); "
                                "stripes need a nonzero tangent direction at every vertex")
     if method == "extrinsic":
-        Nv = tb.normals
-        T = W - np.sum(W * Nv, axis=1, keepdims=True) * Nv
-        return T / np.linalg.norm(T, axis=1, keepdims=True), theta
+        return _tangent_unit(tb, W), theta
     return tb.angles_to_vectors(np.arange(mesh.n_vertices), theta), theta
+
+
+def _tangent_unit(tb: TangentBundle, W: np.ndarray) -> np.ndarray:
+    """The tangential parts of ``W`` (one row per vertex), normalized."""
+    Nv = tb.normals
+    T = W - np.sum(W * Nv, axis=1, keepdims=True) * Nv
+    return T / np.linalg.norm(T, axis=1, keepdims=True)

@@ -71,9 +71,11 @@ def _cotan(form, lumped: bool, branch_weight: float, complex_form: bool):
                       DhlbWarning, stacklevel=3)
     sw = np.empty(mesh.n_faces)
     sw[mesh.triangle_of_face] = face_w
+    # the transports as arrays: no bundle object (with its checks) is built for the energy
     if complex_form:
-        return connection_laplacian(form.line_bundle, geo, simplex_weights=sw), connection_mass(geo, 1, lumped=lumped)
-    return connection_laplacian(form.bundle, geo, simplex_weights=sw), connection_mass(geo, 2, lumped=lumped)
+        eta = np.exp(1j * form.omega)     # the connection of form.line_bundle
+        return connection_laplacian(eta, geo, simplex_weights=sw), connection_mass(geo, 1, lumped=lumped)
+    return connection_laplacian(form.transports, geo, simplex_weights=sw), connection_mass(geo, 2, lumped=lumped)
 
 
 def _fem(form, lumped: bool, complex_form: bool):

@@ -198,12 +198,18 @@ class StripeForm:
 
     # ------------------------------------------------------------------ bundles
     @cached_property
-    def bundle(self) -> VectorBundle:
-        """The real rank-2 Euclidean bundle of conjugate-symmetric functions: ``R(ω̂)`` or ``C R(ω̂)``."""
+    def transports(self) -> np.ndarray:
+        """``(n_1, 2, 2)`` read-only: the transports ``R(ω̂)`` (s = +1) or ``C R(ω̂)`` (s = −1) of :attr:`bundle`."""
         c, sn = np.cos(self.omega), np.sin(self.omega)
         s = self.edge_sign.astype(np.float64)
         eta = np.stack([np.stack([c, -sn], -1), np.stack([s * sn, s * c], -1)], axis=1)
-        return VectorBundle(self.mesh.complex, eta, "R", metric=True)
+        eta.setflags(write=False)
+        return eta
+
+    @cached_property
+    def bundle(self) -> VectorBundle:
+        """The real rank-2 Euclidean bundle of conjugate-symmetric functions: ``R(ω̂)`` or ``C R(ω̂)``."""
+        return VectorBundle(self.mesh.complex, self.transports, "R", metric=True)
 
     @cached_property
     def line_bundle(self) -> HermitianLineBundle:
@@ -271,9 +277,10 @@ def stripe_form(
     surface : SurfaceMesh or TangentBundle
         The validated mesh (:func:`dhlb.mesh.validate_surface`); a TangentBundle of any power
         is used for its mesh (the stripe form uses the power-1 frames).
-    directions : (N, 3) float (or (N, k, 3): the first direction is used)
+    directions : (N, 3) float (or (N, k, 3): the first direction is used), or a direction-field result
         One tangent direction per compact vertex or per row of the input V; its tangential part
-        is used and normalized.
+        is used and normalized. Of a direction field (:func:`dhlb.fields.direction_field`) the first
+        direction is used; on this very mesh its rescaled angle is ``arg u / n`` of the field's section.
     n : {1, 2}
         1: oriented directions (vector field); 2: lines (``X`` and ``−X`` are the same).
     frequency : float or (N,) float, > 0

@@ -76,7 +76,7 @@ def _is_field(obj) -> bool:
     return all(hasattr(obj, a) for a in ("mesh", "n", "directions")) and isinstance(obj.mesh, SurfaceMesh)
 
 
-def _surface(V, F, reorient, components):
+def _surface(V, F, reorient, components, fld=None):
     if isinstance(V, TangentBundle):
         V = V.mesh
     if isinstance(V, SurfaceMesh):
@@ -85,11 +85,29 @@ def _surface(V, F, reorient, components):
         return V
     if F is None:
         raise InvalidParameterError("stripe_pattern needs the face array F (or a SurfaceMesh / direction field as V)")
+    if fld is not None and _validated_from(fld.mesh, V, F, components):
+        return fld.mesh
     return validate_surface(V, F, reorient=reorient, components=components)
 
 
-def _field_directions(fld, mesh, n):
-    """The first direction per vertex of a direction-field result, and the n to use."""
+def _validated_from(mesh: SurfaceMesh, V, F, components: str) -> bool:
+    """Whether ``validate_surface(V, F)`` gives ``mesh`` again: the same arrays, no face dropped or flipped.
+
+    Then the direction field's mesh (with its cached fans, angles, frames) is used as it is, and the
+    checks and warnings (unreferenced vertices), which it passed on these arrays, are not repeated.
+    """
+    if not (isinstance(V, np.ndarray) and isinstance(F, np.ndarray)):
+        return False
+    if V.dtype.kind not in "fiu" or F.dtype.kind not in "iu" or V.shape != (mesh.n_input_vertices, 3):
+        return False
+    if F.shape != mesh.faces.shape or np.any(mesh.flipped) or (components == "largest" and mesh.components[0] > 1):
+        return False
+    labels = mesh.vertex_labels
+    return bool(np.array_equal(F, labels[mesh.faces]) and np.array_equal(V[labels], mesh.points))
+
+
+def _field_n(fld, n):
+    """The directions (the field itself, which stripe_form reads) and the n to use with a direction field."""
     fn = int(fld.n)
     if fn not in (1, 2):
         raise InvalidParameterError(f"stripes need a vector field (n = 1) or a line field (n = 2); the direction "
@@ -99,11 +117,7 @@ def _field_directions(fld, mesh, n):
     elif n < fn:
         raise InvalidParameterError("the direction field is a line field (n = 2): its directions have no consistent "
                                     "orientation, so it cannot drive an oriented (n = 1) pattern; use n=2")
-    if mesh is fld.mesh:
-        return np.asarray(fld.directions)[:, 0, :], n
-    if hasattr(fld, "input_directions"):
-        return np.asarray(fld.input_directions())[:, 0, :], n
-    return np.asarray(fld.directions)[:, 0, :], n
+    return fld, n
 
 
 def _indefinite(A, M, solver):
@@ -121,23 +135,35 @@ def _indefinite(A, M, solver):
 
 
 def _factor_solve(res, A, M, tol):
-    """``K⁻¹`` for ``K = A − shift·M`` positive definite.
+    """``(K⁻¹, factorizations)`` for ``K = A − shift·M`` positive definite.
 
-    The eigensolver's factor, or (iterative backends, no factor) one direct factorization of the floor
-    shift, warm-started from the eigenvector.
+    The eigensolver's factor (no new factorization), or (iterative backends, no factor) one direct
+    factorization of the floor shift, warm-started from the eigenvector.
     """
     if res.factor is not None:
-        return res.factor.solve
+        return res.factor.solve, 0
     direct = select_backend(A.shape[0], A.nnz, eigen=True, shifted=True)
     again = smallest_eigenpairs(A, M, 1, v0=res.eigenvectors[:, 0],
                                 solver=SolverOptions(backend=direct, tol=tol, factor_shift="floor"))
-    return again.factor.solve
+    return again.factor.solve, int(again.factorizations)
+
+
+def _counted(solve):
+    """``solve`` and a list whose length is the number of right-hand sides it was called with."""
+    calls = []
+
+    def counted(b):
+        calls.append(1 if np.ndim(b) == 1 else np.shape(b)[1])
+        return solve(b)
+    return counted, calls
 
 
 def _section(sec: SectionOptions, A, M, x, res, cplx, tol):
+    """``(x, iteration, solves, factorizations)`` of the section after the eigenvector."""
     if sec.kind == "eigenvector":
-        return x, None
-    solve = _factor_solve(res, A, M, tol)
+        return x, None, 0, 0
+    solve, factorizations = _factor_solve(res, A, M, tol)
+    solve, calls = _counted(solve)
     if sec.kind == "power":
         it = power_section(A, M, solve, POWER_ITERATIONS if sec.iterations is None else sec.iterations, seed=sec.seed,
                            complex_form=cplx)
@@ -145,7 +171,7 @@ def _section(sec: SectionOptions, A, M, x, res, cplx, tol):
         it = unit_section(A, M, solve, x, complex_form=cplx,
                           options=sec.replace(iterations=MAX_UNIT_ITERATIONS if sec.iterations is None
                                               else sec.iterations, seed=0 if sec.seed is None else sec.seed))
-    return it.x, it
+    return it.x, it, sum(calls), factorizations
 
 
 def _solve(form, opts: StripeOptions, solver: SolverOptions):
@@ -161,13 +187,15 @@ def _solve(form, opts: StripeOptions, solver: SolverOptions):
     except NotSemidefiniteError:
         res, indefinite = _indefinite(A, M, solver), True
     t2 = time.perf_counter()
-    x, it = _section(opts.section, A, M, res.eigenvectors[:, 0], res, cplx, solver.tol)
+    x, it, sec_solves, sec_factors = _section(opts.section, A, M, res.eigenvectors[:, 0], res, cplx, solver.tol)
     t3 = time.perf_counter()
     rho = it.unit_energy if it is not None else unit_energy(A, M, normalize_per_vertex(x, cplx))
     psi = x if cplx else x[0::2] + 1j * x[1::2]
     stats = {"backend": res.backend, "iterations": int(res.iterations), "residual": float(res.residuals[0]),
              "converged": bool(res.converged), "shift": float(res.shift), "block_size": int(res.block_size),
-             "unknowns": int(A.shape[0]), "complex": cplx, "indefinite": indefinite}
+             "unknowns": int(A.shape[0]), "complex": cplx, "indefinite": indefinite,
+             "factorizations": int(res.factorizations), "solves": int(res.solves),
+             "section_solves": sec_solves, "section_factorizations": sec_factors}
     return (np.ascontiguousarray(psi, np.complex128), float(res.eigenvalues[0]), stats, t1 - t0, t3 - t1,
             t3 - t2, it, rho)
 
@@ -216,6 +244,8 @@ def stripe_pattern(
     directions : (k, 3) or (N, 3) array, (…, j, 3) array (first direction used), or a direction-field
         result with ``n`` = 1 or 2 (its first direction per vertex)
         One tangent direction per vertex (rows of V or compact vertices); its tangential part is used.
+        A field computed on these very arrays V, F lends its validated mesh and tangent bundle (the
+        mesh is validated once, by the field; its warnings are not repeated) and the angles of its section.
     frequency : float or per-vertex array, > 0
         Stripes per unit length.
     spacing : float or per-vertex array, > 0
@@ -285,12 +315,13 @@ def stripe_pattern(
         raise InvalidParameterError(f"n must be 1 (vector field) or 2 (line field), got {n!r}")
     if fld is not None and F is None and not isinstance(V, (SurfaceMesh, TangentBundle)):
         V = fld.mesh
-    mesh = _surface(V, F, opts.reorient, opts.components)
+    mesh = _surface(V, F, opts.reorient, opts.components, fld)
     if fld is not None:
-        X, n = _field_directions(fld, mesh, n)
+        X, n = _field_n(fld, n)
     else:
         X, n = directions, 1 if n is None else int(n)
-    tb = V if isinstance(V, TangentBundle) and V.n == 1 else TangentBundle(mesh, 1)
+    tb = next((t for t in (V, getattr(fld, "tangent", None)) if isinstance(t, TangentBundle) and t.n == 1
+               and t.mesh is mesh), None) or TangentBundle(mesh, 1)
     t_mesh = time.perf_counter() - t0
     from dhlb._progress import progress_bar
 

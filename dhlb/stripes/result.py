@@ -51,7 +51,10 @@ class StripePattern(Result):
         ``"cotan"`` or ``"fem"``.
     solver : dict
         ``backend``, ``iterations``, ``residual`` (backward error), ``converged``, ``shift``,
-        ``block_size``, ``unknowns``, ``complex`` (solved as the complex N × N problem).
+        ``block_size``, ``unknowns``, ``complex`` (solved as the complex N × N problem),
+        ``indefinite``, ``factorizations`` and ``solves`` (right-hand sides) of the eigensolver,
+        ``section_solves`` (right-hand sides of the section iteration) and ``section_factorizations``
+        (0 when it reused the eigensolver's factorization).
     timings : dict
         Seconds: ``setup`` (mesh, form, matrices), ``solve`` (eigenpair and section iteration),
         ``section`` (the iteration alone), ``texture``, ``total``.
