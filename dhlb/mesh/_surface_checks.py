@@ -2,9 +2,9 @@
 
 Valid meshes take a fast path: duplicate faces are found by one sort of integer face keys, and a
 mesh whose directed half-edges are all distinct has at most two faces per edge, consistently
-oriented, so only the vertex fans remain to be checked (:func:`fast_topology`). Only when a fast
-check finds a problem do the general checks of :mod:`dhlb.topology.manifold` run, to say exactly
-what is wrong and where.
+oriented, so only the vertex fans remain to be checked (:func:`dhlb.mesh.halfedge.halfedge_pairs`
+finds that with the sort that pairs the half-edges). Only when a fast check finds a problem do the
+general checks of :mod:`dhlb.topology.manifold` run, to say exactly what is wrong and where.
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ from dhlb.mesh.arrays import check_cells, check_row_lengths
 from dhlb.topology.complex import SimplicialComplex
 from dhlb.topology.manifold import interior_pairs, is_consistently_oriented, manifold_report
 
-__all__ = ["check_faces", "check_geometry", "check_manifold", "fast_topology", "length_scale", "orient", "parse"]
+__all__ = ["check_faces", "check_geometry", "check_manifold", "length_scale", "orient", "parse"]
 
 
 def _face(F, r) -> str:
@@ -179,19 +179,6 @@ def check_manifold(X, T, rows) -> None:
             raise NonManifoldError(f"non-manifold vertex {v}: its faces form more than one fan (e.g. two "
                                    "surfaces touching at a point); split the vertex")
         raise NonManifoldError(f"not a surface: {o}")
-
-
-def fast_topology(T, n_points: int) -> bool:
-    """True if the directed half-edges of ``T`` are all distinct.
-
-    Then every edge has at most two faces, traversing it in opposite directions: the faces are
-    edge-manifold and consistently oriented (so the surface is orientable). Only the vertex fans
-    remain to be checked. False means that one of the general checks will find something.
-    """
-    n = max(int(n_points), 1)
-    key = (T * n + np.roll(T, -1, axis=1)).ravel()
-    key.sort()
-    return not np.any(key[1:] == key[:-1])
 
 
 def orient(X, T, rows, reorient: bool) -> np.ndarray:

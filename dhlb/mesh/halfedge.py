@@ -172,14 +172,13 @@ class AngleMap:
             return out
         qv, qx = vertex[use], x[use]
         lo, hi = self._offsets[qv], self._offsets[qv + 1] - 1  # src[lo] = 0 <= x < src[hi] = 2π
-        while True:  # bisection inside each vertex's breakpoints (sorted, strictly increasing)
-            wide = np.nonzero(hi - lo > 1)[0]
-            if wide.size == 0:
-                break
-            mid = (lo[wide] + hi[wide]) // 2
-            go = src[mid] <= qx[wide]
-            lo[wide] = np.where(go, mid, lo[wide])
-            hi[wide] = np.where(go, hi[wide], mid)
+        # bisection inside each vertex's breakpoints (sorted, strictly increasing), all queries in step:
+        # once hi = lo + 1, mid = lo and src[lo] <= x keep the bracket fixed
+        for _ in range(int(np.max(hi - lo)).bit_length()):
+            mid = (lo + hi) >> 1
+            go = np.take(src, mid) <= qx
+            lo = np.where(go, mid, lo)
+            hi = np.where(go, hi, mid)
         x0, x1, y0, y1 = src[lo], src[lo + 1], dst[lo], dst[lo + 1]
         out[use] = y0 + (qx - x0) * (y1 - y0) / (x1 - x0)
         return out

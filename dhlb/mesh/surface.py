@@ -37,8 +37,17 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import DhlbWarning, InvalidParameterError, NonManifoldError, ShapeError, UnreferencedVertexWarning
+from dhlb.errors import (
+    DhlbError,
+    DhlbWarning,
+    InvalidParameterError,
+    NonManifoldError,
+    ShapeError,
+    UnreferencedVertexWarning,
+)
+from dhlb.geometry.euclidean import EuclideanComplex
 from dhlb.mesh import _surface_checks as checks
+from dhlb.mesh import _vec3 as vec3
 from dhlb.mesh.compact import _renumber
 from dhlb.mesh.halfedge import Fans, halfedge_pairs, vertex_fans
 from dhlb.topology.complex import SimplicialComplex
@@ -147,11 +156,19 @@ class SurfaceMesh:
     @cached_property
     def corner_angles(self) -> np.ndarray:
         """``(m, 3)`` Euclidean angle at each corner of each (oriented) face."""
-        Q = self.unit_points[self.faces]  # angles are scale free; unit points avoid under/overflow
-        E = np.roll(Q, -1, axis=1) - Q  # E[:, p]: the edge from corner p to corner p + 1
-        twice_area = np.linalg.norm(np.cross(E[:, 0], E[:, 1]), axis=-1)  # |e1 × e2| at every corner
-        dot = -np.einsum("fpk,fpk->fp", E, np.roll(E, 1, axis=1))  # <E[p], -E[p - 1]>
-        return np.arctan2(np.broadcast_to(twice_area[:, None], dot.shape), dot)
+        Ut, F = self.unit_points.T, self.faces  # angles are scale free; unit points avoid under/overflow
+        Q = [np.take(Ut, F[:, p], axis=1) for p in range(3)]
+        E = [Q[1] - Q[0], Q[2] - Q[1], Q[0] - Q[2]]  # E[p]: the edge from corner p to corner p + 1
+        twice_area = vec3.norm(vec3.cross(E[0], E[1]))  # |e1 × e2| at every corner
+        dots = np.empty((F.shape[0], 3))
+        for p in range(3):
+            dots[:, p] = -vec3.dot(E[p], E[p - 1])  # <E[p], -E[p - 1]>
+        return np.arctan2(twice_area[:, None], dots)
+
+    @cached_property
+    def geometry(self) -> EuclideanComplex:
+        """The Euclidean complex of the mesh (points in compact vertex order), for the finite elements."""
+        return EuclideanComplex(self.complex, points=self.points)
 
     @cached_property
     def halfedge_twin(self) -> np.ndarray:
@@ -282,6 +299,60 @@ class SurfaceMesh:
                 f"chi={self.euler_characteristic}, boundary_edges={len(self.boundary_halfedges)})")
 
 
+def _distinct_halfedges(F: np.ndarray, n_vertices: int):
+    """:func:`~dhlb.mesh.halfedge.halfedge_pairs` of ``F``, or None when two directed half-edges coincide.
+
+    Distinct directed half-edges mean an edge-manifold, consistently oriented surface (only the fans
+    remain to be checked); otherwise the general checks of :func:`validate_surface` say what is wrong.
+    """
+    try:
+        return halfedge_pairs(F, n_vertices)
+    except NonManifoldError:
+        return None
+
+
+def _surface_complex(F: np.ndarray, labels: np.ndarray, pairs) -> tuple[SimplicialComplex, np.ndarray]:
+    """The complex of the faces ``F`` (compact numbers; input vertex ``labels``) from their half-edges.
+
+    ``pairs`` is :func:`~dhlb.mesh.halfedge.halfedge_pairs` of ``F``: its edge rows are those of the
+    complex. The key of a triangle ``s0 < s1 < s2`` is ``row of (s0, s1) * n + s2``, and the edge
+    ``(s0, s1)`` of a face is its half-edge that does not touch ``s2``, so one sort gives the
+    triangles, the row of each face (:attr:`SurfaceMesh.triangle_of_face`) and the edges of each
+    triangle (``complex.faces(2)``).
+    """
+    n, m = labels.size, F.shape[0]
+    _, edge, n_edges = pairs
+    ekeys = np.empty(n_edges, np.int64)
+    a, b = F.ravel(), np.roll(F, -1, axis=1).ravel()
+    ekeys[edge] = np.minimum(a, b) * n + np.maximum(a, b)
+    top = np.argmax(F, axis=1)
+    tkeys = edge[3 * np.arange(m) + (top + 1) % 3] * n + F[np.arange(m), top]
+    order = np.argsort(tkeys)
+    tri = np.empty(m, np.int64)
+    tri[order] = np.arange(m)
+    # faces(2): the edge omitting corner p of a face is its half-edge p + 1; corners by increasing vertex
+    low = np.argmin(F, axis=1)
+    corners = np.stack([low, 3 - low - top, top], axis=1)[order]
+    faces = edge[3 * order[:, None] + (corners + 1) % 3]
+    return SimplicialComplex._from_keys(labels, [ekeys, tkeys[order]], faces), tri
+
+
+def _checked_geometry(X: SimplicialComplex, P: np.ndarray, kept: np.ndarray, T: np.ndarray, rows: np.ndarray):
+    """The Euclidean complex of the mesh (:attr:`SurfaceMesh.geometry`), or None if it cannot be built.
+
+    Finite coordinates and faces of nonzero area (:func:`~dhlb.mesh._surface_checks.check_geometry`, whose
+    message names the face by its input row); the geometry's own test is the same one, so it is run once,
+    and the named check only when the geometry refuses the points. (The check works in units of the mesh
+    size and passes meshes in 1e-150 units the geometry may refuse: then it is None here and
+    :attr:`SurfaceMesh.geometry` raises when asked for.)
+    """
+    try:
+        return EuclideanComplex(X, points=np.ascontiguousarray(P[kept]))
+    except DhlbError:
+        checks.check_geometry(P, T, rows)
+        return None
+
+
 def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, components: str = "all") -> SurfaceMesh:
     """Check a triangle mesh and return it as an oriented :class:`SurfaceMesh`.
 
@@ -345,8 +416,9 @@ def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, comp
     checks.check_faces(P, T)
     rows = np.arange(len(T), dtype=np.int64)
     T0 = T
-    X = SimplicialComplex(T)
+    X = None
     if components == "largest":
+        X = SimplicialComplex(T)
         ncomp, comp = X.connected_components()
         if ncomp > 1:
             fc = comp[np.searchsorted(X.vertex_labels, T[:, 0])]
@@ -354,23 +426,35 @@ def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, comp
             warnings.warn(f"kept the largest of {ncomp} components ({int(keep.sum())} faces); "
                           f"{int((~keep).sum())} faces dropped", DhlbWarning, stacklevel=2)
             T, rows = T[keep], rows[keep]
-            X = SimplicialComplex(T)
-    checks.check_geometry(P, T, rows)
+            X = None
+    kept, compact = _renumber(len(P), T)
+    Fc = compact[T]
+    pairs = _distinct_halfedges(Fc, kept.size)
+    tri = None
+    if pairs is not None:  # the complex from the half-edges: no second sort of the edges
+        X, tri = _surface_complex(Fc, kept, pairs)
+    elif X is None:
+        X = SimplicialComplex(T)
+    geometry = _checked_geometry(X, P, kept, T, rows)
     unused = np.flatnonzero(_renumber(len(P), T0)[1] < 0)  # not counting dropped components
     if unused.size:
         warnings.warn(UnreferencedVertexWarning(
             f"{unused.size} vertices of V are used by no face and were dropped (first: "
             f"{', '.join(str(int(v)) for v in unused[:5])}); mesh.vertex_labels maps compact vertices to rows of V",
             dropped=unused, cell="face"), stacklevel=2)
-    fast = checks.fast_topology(T, len(P))
-    if fast:
+    if pairs is not None:
         flip = np.zeros(len(T), bool)
     else:
         checks.check_manifold(X, T, rows)
         flip = checks.orient(X, T, rows, reorient)
         T = np.where(flip[:, None], T[:, [0, 2, 1]], T)
-    kept, compact = _renumber(len(P), T)  # kept == X.vertex_labels
-    mesh = SurfaceMesh(np.ascontiguousarray(P[kept]), compact[T], X, rows, flip, len(P))
+        Fc = compact[T]
+    mesh = SurfaceMesh(np.ascontiguousarray(P[kept]), Fc, X, rows, flip, len(P))
+    # what was computed on the way (the cached properties compute the same from the mesh)
+    if pairs is not None:
+        mesh.__dict__.update(_pairs=pairs, triangle_of_face=tri)
+    if geometry is not None:
+        mesh.__dict__["geometry"] = geometry
     try:
         _ = mesh.fans  # one fan per vertex (cached: the tangent bundle uses it)
     except NonManifoldError:

@@ -50,6 +50,7 @@ from dhlb._coerce import check_int
 from dhlb.bundles.hermitian import HermitianLineBundle
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.geometry.euclidean import EuclideanComplex
+from dhlb.mesh._vec3 import cross, dot, unit
 from dhlb.mesh.halfedge import TWO_PI, AngleMap
 from dhlb.mesh.surface import SurfaceMesh, validate_surface
 
@@ -57,14 +58,6 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
 __all__ = ["TangentBundle", "tangent_bundle"]
-
-
-def _unit(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``(x / |x|, |x|)`` per row, scaled by the largest entry first: no overflow or underflow of ``|x|²``."""
-    m = np.max(np.abs(x), axis=-1)
-    y = x / np.where(m > 0, m, 1.0)[..., None]
-    r = np.linalg.norm(y, axis=-1)
-    return y / np.where(r > 0, r, 1.0)[..., None], r * m
 
 
 class TangentBundle:
@@ -117,8 +110,20 @@ class TangentBundle:
     @cached_property
     def face_normals(self) -> np.ndarray:
         """``(m, 3)`` unit normals of the oriented faces (right-hand rule)."""
-        P, F = self.mesh.points, self.mesh.faces
-        return _unit(np.cross(P[F[:, 1]] - P[F[:, 0]], P[F[:, 2]] - P[F[:, 0]]))[0]
+        return np.ascontiguousarray(self._face_normals_t.T)
+
+    @cached_property
+    def _face_normals_t(self) -> np.ndarray:
+        """``(3, m)`` :attr:`face_normals`, coordinates in rows."""
+        E = self._corner_edges
+        return unit(cross(E[0], -E[2]))[0]
+
+    @cached_property
+    def _corner_edges(self) -> np.ndarray:
+        """``(3, 3, m)``: ``[p, :, f]`` the first edge ``P[F[f, p+1]] − P[F[f, p]]`` of corner ``(f, p)``."""
+        Pt, F = self.mesh.points.T, self.mesh.faces
+        Q = [np.take(Pt, F[:, p], axis=1) for p in range(3)]
+        return np.stack([Q[1] - Q[0], Q[2] - Q[1], Q[0] - Q[2]])
 
     @property
     def _fans(self):
@@ -154,32 +159,47 @@ class TangentBundle:
     @cached_property
     def reference_vectors(self) -> np.ndarray:
         """``(N, 3)`` X_i: unit 3D vector along the reference edge (rescaled angle 0)."""
-        P = self.mesh.points
-        return _unit(P[self.reference_neighbors] - P)[0]
+        return np.ascontiguousarray(self._reference_vectors_t.T)
+
+    @cached_property
+    def _reference_vectors_t(self) -> np.ndarray:
+        """``(3, N)`` :attr:`reference_vectors`, coordinates in rows."""
+        Pt = self.mesh.points.T
+        return unit(np.take(Pt, self.reference_neighbors, axis=1) - Pt)[0]
 
     @cached_property
     def normals(self) -> np.ndarray:
         """``(N, 3)`` unit vertex normals, the corner-angle-weighted mean of the face normals."""
-        w = (self.corner_angles[..., None] * self.face_normals[:, None, :]).reshape(-1, 3)
+        return np.ascontiguousarray(self._frames_t[2].T)
+
+    def _normals_t(self) -> np.ndarray:
+        """``(3, N)`` :attr:`normals`, coordinates in rows."""
+        alpha, fn = self.corner_angles, self._face_normals_t
         idx, nv = self.mesh.faces.ravel(), self.mesh.n_vertices
-        N = np.stack([np.bincount(idx, weights=w[:, k], minlength=nv) for k in range(3)], axis=1)
-        N, nrm = _unit(N)
+        N = np.stack([np.bincount(idx, weights=(alpha * fn[k][:, None]).ravel(), minlength=nv) for k in range(3)])
+        N, nrm = unit(N)
         weak = nrm <= 1e-12 * np.max(nrm)
         if np.any(weak):  # cancelling fan normals: use the face of the reference corner
-            N[weak] = self.face_normals[self._fans.start[weak] // 3]
+            N[:, weak] = fn[:, self._fans.start[weak] // 3]
         return N
 
     @cached_property
     def frames(self) -> np.ndarray:
         """``(N, 3, 3)`` orthonormal frames: rows T1 (projected reference edge), T2 = N × T1, N."""
-        N = self.normals
-        X = self.reference_vectors
-        T1, nrm = _unit(X - np.sum(X * N, axis=1, keepdims=True) * N)
+        return np.ascontiguousarray(self._frames_t.transpose(2, 0, 1))
+
+    @cached_property
+    def _frames_t(self) -> np.ndarray:
+        """``(3, 3, N)``: ``[k, :, i]`` the frame vector k (T1, T2, N) at vertex i, coordinates in the middle axis."""
+        N = self._normals_t()
+        X = self._reference_vectors_t
+        T1, nrm = unit(X - (X[0] * N[0] + X[1] * N[1] + X[2] * N[2]) * N)
         weak = nrm <= 1e-9
         if np.any(weak):  # reference edge parallel to the normal: any unit vector orthogonal to N
-            alt = np.where(np.abs(N[weak, :1]) < 0.9, [[1.0, 0, 0]], [[0, 1.0, 0]])
-            T1[weak] = _unit(np.cross(N[weak], alt))[0]
-        return np.stack([T1, np.cross(N, T1), N], axis=1)
+            Nw = N[:, weak]
+            alt = np.where(np.abs(Nw[:1]) < 0.9, [[1.0], [0], [0]], [[0], [1.0], [0]])
+            T1[:, weak] = unit(cross(Nw, alt))[0]
+        return np.stack([T1, cross(N, T1), N])
 
     @cached_property
     def boundary_turning(self) -> np.ndarray:
@@ -238,8 +258,8 @@ class TangentBundle:
 
     @cached_property
     def geometry(self) -> EuclideanComplex:
-        """The Euclidean complex (vertex positions in compact order)."""
-        return EuclideanComplex(self.mesh.complex, points=self.mesh.points)
+        """The Euclidean complex (vertex positions in compact order): :attr:`SurfaceMesh.geometry`."""
+        return self.mesh.geometry
 
     @cached_property
     def total_curvature(self) -> float:
@@ -255,7 +275,7 @@ class TangentBundle:
     @cached_property
     def angle_map(self) -> AngleMap:
         """The piecewise-linear map between rescaled angles and polar angles in the vertex frames."""
-        fa, P, T = self._fans, self.mesh.points, self.frames
+        fa, Pt, T = self._fans, self.mesh.points.T, self._frames_t
         N = self.mesh.n_vertices
         ang = self.corner_edge_angles.reshape(-1, 2)
         bnd = np.nonzero(fa.boundary)[0]
@@ -266,10 +286,11 @@ class TangentBundle:
         np.cumsum(size, out=off[1:])
         pos = np.concatenate([off[fa.vertex] + fa.rank, off[bnd] + fa.count[bnd], off[1:] - 1])
         verts = np.concatenate([fa.vertex, bnd])
-        ends = np.concatenate([fa.first, fa.second[fa.last[bnd]]])
-        d = P[ends] - P[verts]
-        T1, T2 = np.ascontiguousarray(T[:, 0]), np.ascontiguousarray(T[:, 1])
-        psi = np.mod(np.arctan2(np.einsum("ij,ij->i", d, T2[verts]), np.einsum("ij,ij->i", d, T1[verts])), TWO_PI)
+        d = np.concatenate([self._corner_edges.transpose(1, 2, 0).reshape(3, -1),
+                            np.take(Pt, fa.second[fa.last[bnd]], axis=1) - np.take(Pt, bnd, axis=1)], axis=1)
+        T1, T2 = np.take(T[0], verts, axis=1), np.take(T[1], verts, axis=1)
+        psi = np.arctan2(dot(d, T2), dot(d, T1))
+        psi = np.mod(psi, TWO_PI, out=psi)
         psi[: fa.vertex.size][fa.rank == 0] = 0.0
         vv, th, ps = np.empty(off[-1], np.int64), np.empty(off[-1]), np.empty(off[-1])
         vv[pos] = np.concatenate([verts, np.arange(N)])
@@ -308,9 +329,13 @@ class TangentBundle:
         [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
         """
         v, th = np.broadcast_arrays(np.asarray(vertices, np.int64), np.asarray(angles, np.float64))
-        psi = self.angle_map.to_polar(v.ravel(), th.ravel()).reshape(v.shape)
-        T1, T2 = np.ascontiguousarray(self.frames[:, 0]), np.ascontiguousarray(self.frames[:, 1])
-        return np.cos(psi)[..., None] * T1[v] + np.sin(psi)[..., None] * T2[v]
+        psi = self.angle_map.to_polar(v.ravel(), th.ravel())
+        T = self._frames_t
+        c, s = np.cos(psi), np.sin(psi)
+        out = np.empty(v.size * 3)
+        for k in range(3):
+            out[k::3] = c * np.take(T[0, k], v.ravel()) + s * np.take(T[1, k], v.ravel())
+        return out.reshape(v.shape + (3,))
 
     def vectors_to_angles(self, vectors: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """Rescaled angle and length of the tangential part of one 3D vector per vertex.

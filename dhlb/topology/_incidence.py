@@ -87,18 +87,33 @@ def maximal_rows(rows: Sequence[np.ndarray], faces: dict[int, np.ndarray]) -> li
 
 
 def vertex_adjacency(N: int, E: np.ndarray) -> VertexAdjacency:
-    """CSR pattern (read-only arrays) of N vertices and the canonical edges ``E`` (rows ``i < j``)."""
-    i = np.concatenate([np.arange(N), E[:, 0], E[:, 1]])
-    j = np.concatenate([np.arange(N), E[:, 1], E[:, 0]])
-    order = np.argsort(i * N + j)  # distinct keys: no stable sort needed
-    pos = np.empty(i.size, np.int64)
-    pos[order] = np.arange(i.size)
-    indptr = np.zeros(N + 1, np.int64)
-    np.cumsum(np.bincount(i, minlength=N), out=indptr[1:])
+    """CSR pattern (read-only arrays) of N vertices and the canonical edges ``E`` (rows ``i < j``, sorted).
+
+    Row ``v`` holds, by increasing column, the edges ``(u, v)`` with ``u < v``, the diagonal and the edges
+    ``(v, w)`` with ``w > v``. The latter are consecutive rows of the sorted ``E``; the former are found by
+    one sort of the edges by their second vertex.
+    """
     n1 = E.shape[0]
-    out = VertexAdjacency(indptr, j[order], pos[:N], pos[N:N + n1], pos[N + n1:])
-    for a in out:
-        a.setflags(write=False)
+    a, b = E[:, 0], E[:, 1]
+    up, down = np.bincount(a, minlength=N), np.bincount(b, minlength=N)
+    indptr = np.zeros(N + 1, np.int64)
+    np.cumsum(up + down + 1, out=indptr[1:])
+    diagonal = indptr[:-1] + down
+    e = np.arange(n1, dtype=np.int64)
+    first_up = np.cumsum(up) - up  # first edge (v, ·) in E
+    upper = diagonal[a] + 1 + (e - first_up[a])
+    by_b = np.argsort(b * N + a)  # distinct keys: no stable sort needed
+    first_down = np.cumsum(down) - down
+    bb = b[by_b]
+    lower = np.empty(n1, np.int64)
+    lower[by_b] = indptr[bb] + (e - first_down[bb])
+    indices = np.empty(int(indptr[-1]), np.int64)
+    indices[diagonal] = np.arange(N)
+    indices[upper] = b
+    indices[lower] = a
+    out = VertexAdjacency(indptr, indices, diagonal, upper, lower)
+    for arr in out:
+        arr.setflags(write=False)
     return out
 
 

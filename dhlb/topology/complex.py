@@ -97,14 +97,45 @@ class SimplicialComplex:
                     cands.append(block[:, cols])
             cand = np.concatenate(cands) if len(cands) > 1 else cands[0]
             ukeys = np.sort(self._key_of(k, cand))  # (np.unique hashes, which is slower here)
-            ukeys = ukeys[np.r_[True, ukeys[1:] != ukeys[:-1]]]
-            rows = np.empty((ukeys.size, k + 1), np.int64)  # decode the keys: prefix row * n + last vertex
-            prefix, rows[:, k] = np.divmod(ukeys, n)
-            rows[:, :k] = prefix[:, None] if k == 1 else self._rows[k - 1][prefix]
-            rows.setflags(write=False)
-            self._rows.append(rows)
-            self._key_list.append(ukeys)
+            self._append_keys(ukeys[np.r_[True, ukeys[1:] != ukeys[:-1]]])
         self._rows[0].setflags(write=False)
+
+    def _append_keys(self, ukeys: np.ndarray) -> None:
+        """Add the next dimension k from its sorted, distinct keys ``prefix row * n + last vertex``."""
+        k, n = len(self._rows), self._n
+        rows = np.empty((ukeys.size, k + 1), np.int64)  # decode the keys
+        prefix, rows[:, k] = np.divmod(ukeys, n)
+        rows[:, :k] = prefix[:, None] if k == 1 else self._rows[k - 1][prefix]
+        rows.setflags(write=False)
+        self._rows.append(rows)
+        self._key_list.append(ukeys)
+
+    @classmethod
+    def _from_keys(cls, labels: np.ndarray, keys: list[np.ndarray], top_faces: np.ndarray | None = None
+                   ) -> SimplicialComplex:
+        """The complex on the sorted vertex ``labels`` whose k-simplices have the keys ``keys[k - 1]``.
+
+        For callers that already sorted the simplices (:func:`dhlb.mesh.validate_surface` gets the edges
+        and triangles of a surface from its half-edges): the keys of each dimension must be sorted and
+        distinct, ``prefix row * n + last vertex`` as in the constructor (:meth:`_key_of`), and the
+        complex closed under faces; nothing is checked. ``top_faces``, if given, is :meth:`faces` of the
+        top dimension (at least 2; the lower ones are computed when asked for).
+        """
+        X = cls.__new__(cls)
+        X._labels = np.asarray(labels)
+        X._labels.setflags(write=False)
+        X._n = int(labels.size)
+        X._dim = len(keys)
+        X._rows = [np.arange(X._n, dtype=np.int64).reshape(-1, 1)]
+        X._key_list = [np.arange(X._n, dtype=np.int64)]
+        for ukeys in keys:
+            X._append_keys(ukeys)
+        X._rows[0].setflags(write=False)
+        if top_faces is not None:
+            faces = _incidence.face_tables(X._rows[:-1], X._key_list[:-1], X._n, X._row_index)
+            top_faces.setflags(write=False)
+            X.__dict__["_faces"] = {**faces, X._dim: top_faces}
+        return X
 
     # ------------------------------------------------------------------ keys and look-up
     def _key_of(self, k: int, rows: np.ndarray) -> np.ndarray:
