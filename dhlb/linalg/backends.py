@@ -156,8 +156,8 @@ class _PermutedLU:
 
     name = "superlu"
 
-    def __init__(self, lu, q=None):
-        self.lu, self.q = lu, q
+    def __init__(self, lu, q=None, dtype=np.float64):
+        self.lu, self.q, self.dtype = lu, q, np.dtype(dtype)   # not lu.L.dtype: SuperLU copies L on every access
         self._neg = -1
 
     @property
@@ -169,7 +169,7 @@ class _PermutedLU:
 
     def solve(self, B):
         B = np.asarray(B)
-        dtype = np.result_type(B.dtype, self.lu.L.dtype)
+        dtype = np.result_type(B.dtype, self.dtype)
         if self.q is None:
             return self.lu.solve(np.ascontiguousarray(B, dtype=dtype))
         X = np.empty(B.shape, dtype=dtype)
@@ -223,7 +223,7 @@ class SuperLUBackend:
                 f"{need / 2**30:.2f} GiB, {available_bytes() / 2**30:.2f} GiB available now); use an iterative "
                 "backend (backend='amg-lobpcg', pip install pyamg) or a machine with more memory",
                 needed=need, available=available_bytes()) from err
-        fac = _PermutedLU(lu, q)
+        fac = _PermutedLU(lu, q, K.dtype)
         if positive_definite and n <= PIVOT_CHECK_MAX and np.array_equal(lu.perm_r, lu.perm_c):
             piv = lu.U.diagonal().real
             fac._neg = int(np.sum(piv < 0))
