@@ -24,7 +24,7 @@ One command; every size runs in a fresh child process (peak memory = the child's
   (kind, backend), over the sizes >= ``--fit-from`` (default 50,000 elements).
 
 Writes ``bench_scale.json`` and ``bench_scale.png`` next to this file (``--out`` prefix).
-Run:  python benchmarks/bench_scale.py [--max-faces 1200000] [--max-tets 1100000] [--quick]
+Run:  python benchmarks/bench_scale.py [--max-faces 1200000] [--max-tets 1100000] [--quick] [--issue15] [--issue30]
 """
 from __future__ import annotations
 
@@ -223,7 +223,27 @@ def child_icosphere(level, order, backend):
     return {"kind": "icosphere", "label": f"ico{level} {order}", "size": len(F), "backend": res.solver["backend"],
             "e2e": total, "setup": res.timings["setup"], "solve": res.timings["solve"],
             "indices": res.timings["indices"], "peak_mb": rss, "L_ref": lref, "solves": res.solver.get("solves"),
-            "note": res.solver.get("note", ""), "index_sum": int(res.index_sum)}
+            "factorizations": res.solver.get("factorizations"), "note": res.solver.get("note", ""),
+            "index_sum": int(res.index_sum)}
+
+
+def issue30(timeout):
+    """Issue 30's row: the n = 4 field on the 1.31M-face icosphere (level 8, subdivision order), default backend."""
+    r = run_child(["icosphere", "8", "subdivision", "auto"], timeout)
+    avg = os.getloadavg()
+    print(f"issue 30 (load average {avg[0]:.2f} {avg[1]:.2f} {avg[2]:.2f}; each run in a fresh process):", flush=True)
+    print(f"{'case':<44}{'now':>34}{'target':>18}{'met':>5}")
+    if "error" in r:
+        print(f"{'icosphere level 8 n = 4 field':<44}  FAILED: {r['error']}")
+        return r
+    ok = r["e2e"] < 25.0 and r["peak_mb"] < 4 * 1024
+    now = f"{r['e2e']:.1f} s, peak {r['peak_mb'] / 1024:.2f} GB"
+    case = f"icosphere level 8 ({r['size'] / 1e6:.2f}M faces) n = 4 field"
+    print(f"{case:<44}"
+          f"{now:>34}{'< 25 s, < 4 GB':>18}{'yes' if ok else 'NO':>5}")
+    print(f"  setup {r['setup']:.2f} s, solve {r['solve']:.2f} s ({r['factorizations']} factorization, {r['solves']} "
+          f"solves, backend {r['backend']}), indices {r['indices']:.2f} s; L_ref {r['L_ref']:.2f} s", flush=True)
+    return r
 
 
 def issue15(timeout, memory_limit="2.5G"):
@@ -319,9 +339,13 @@ def main(argv=None):
     ap.add_argument("--out", default=os.path.join(HERE, "bench_scale"), help="prefix of the .json/.png outputs")
     ap.add_argument("--child", nargs="+", help=argparse.SUPPRESS)
     ap.add_argument("--issue15", action="store_true", help="only the icosphere table of issue 15")
+    ap.add_argument("--issue30", action="store_true", help="only the 1.31M-face row of issue 30")
     args = ap.parse_args(argv)
     if args.issue15:
         issue15(args.timeout)
+        return 0
+    if args.issue30:
+        issue30(args.timeout)
         return 0
     if args.child:
         kind, *rest = args.child

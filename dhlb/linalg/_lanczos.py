@@ -127,6 +127,7 @@ def lanczos(solve, A, M, nev: int, v, *, shift: float, solver: SolverOptions) ->
     tol, maxiter, ncv = solver.tol, solver.maxiter, solver.block_size
     ncv = max(1, min(n - 1, max(2 * nev + 1, nev + 24) if ncv is None else int(ncv)))
     dtype = np.result_type(np.asarray(v).dtype, A.dtype, M.dtype, np.float64)
+    A, M = A.astype(dtype, copy=False), M.astype(dtype, copy=False)   # a real M times complex x: cast once
     Q = np.empty((n, ncv + 1), dtype=dtype, order="F")
     H = np.zeros((ncv + 1, ncv + 1), dtype=dtype)       # Qᴴ M K⁻¹ M Q: the Lanczos matrix of W = K⁻¹M
     P = np.zeros((ncv + 1, ncv + 1), dtype=dtype)       # Qᴴ A Q and Qᴴ M Q (≈ I): Rayleigh–Ritz on the pencil
