@@ -13,11 +13,11 @@ compacted away), and a box tet mesh (``--m`` cells per axis; 32 gives 196,608 te
 bundle of a vortex ring's velocity field.  For an iterative backend ``real``/``cplx`` are the
 AMG setup plus one preconditioned CG solve to 1e-12.
 
-Then, side by side in the same run (issue 15): ARPACK (``dhlb.linalg``) against the hand-written
-thick-restart Lanczos it replaced, on the bunny with k = 1 and k = 6 and on a Landau level of
-multiplicity 12 (flat torus, degree 12, k = 12), both on SuperLU with tol = 1e-10.  The old
-solver is taken from git history (commit ``LANCZOS_COMMIT``) into a temporary package, so the
-package itself carries no dead code.
+Then, side by side in the same run (issue 30): dhlb's shift-and-invert Lanczos
+(:mod:`dhlb.linalg._lanczos`) against ARPACK, which it replaced, on the bunny with k = 1 and k = 6
+and on a Landau level of multiplicity 12 (flat torus, degree 12, k = 12), both on SuperLU with
+tol = 1e-10.  The ARPACK solver is dhlb.linalg as of commit ``ARPACK_COMMIT``, taken from git
+history into a temporary package, so the package itself carries no dead code.
 
 Run:  python benchmarks/bench_solvers.py [--m 32] [--skip-direct-3d] [--json PATH] [--only-compare]
 """
@@ -116,48 +116,50 @@ def run_problem(label, A, M, L, M0, backends, repeat):
     return rows, auto
 
 
-LANCZOS_COMMIT = "ef6e07a"
-_OLD = ("backends.py", "solvers.py", "_eigen_steps.py", "_krylov.py", "_checks.py")
+ARPACK_COMMIT = "6991b1b"  # the last commit whose dhlb.linalg ran ARPACK
 
 
-def old_solver():
-    """``smallest_eigenpairs`` of the hand-written Lanczos, from git history, as a throw-away package."""
+def arpack_solver():
+    """``smallest_eigenpairs``, ``SolverOptions``, ``clear_cache`` of dhlb 0.3 (ARPACK), as a throw-away package."""
+    import importlib
     import subprocess
     import tempfile
 
     root = os.path.join(os.path.dirname(__file__), "..")
     tmp = tempfile.mkdtemp()
-    pkg = os.path.join(tmp, "_old_fem")
+    pkg = os.path.join(tmp, "_arpack_linalg")
     os.makedirs(pkg)
-    open(os.path.join(pkg, "__init__.py"), "w").close()
-    for name in _OLD:
-        src = subprocess.run(["git", "-C", root, "show", f"{LANCZOS_COMMIT}:dhlb/fem/{name}"], check=True,
+    names = subprocess.run(["git", "-C", root, "ls-tree", "--name-only", ARPACK_COMMIT, "dhlb/linalg/"], check=True,
+                           capture_output=True, text=True).stdout.split()
+    for path in names:
+        src = subprocess.run(["git", "-C", root, "show", f"{ARPACK_COMMIT}:{path}"], check=True,
                              capture_output=True, text=True).stdout
-        with open(os.path.join(pkg, name), "w") as fh:
-            fh.write(src.replace("dhlb.fem.", "_old_fem."))
+        with open(os.path.join(pkg, os.path.basename(path)), "w") as fh:
+            fh.write(src.replace("dhlb.linalg.", "_arpack_linalg.").replace("from dhlb.linalg import",
+                                                                             "from _arpack_linalg import"))
     sys.path.insert(0, tmp)
-    import importlib
-
-    return importlib.import_module("_old_fem.solvers").smallest_eigenpairs
+    return (importlib.import_module("_arpack_linalg.eigen").smallest_eigenpairs,
+            importlib.import_module("_arpack_linalg.options").SolverOptions,
+            importlib.import_module("_arpack_linalg.backends").clear_cache)
 
 
 def compare_lanczos(repeat):
-    """ARPACK vs the old Lanczos on bunny k = 1, 6 and a 12-fold Landau level; prints and returns the rows."""
+    """Lanczos (dhlb) vs ARPACK (dhlb 0.3) on bunny k = 1, 6 and a 12-fold Landau level; prints and returns rows."""
     sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
     from tests.fem_fixtures import flat_torus_landau
 
-    old = old_solver()
+    old, OldOptions, old_clear_cache = arpack_solver()
     _, A, M, *_ = bunny_problem()
     L, geo, _ = flat_torus_landau(2, 60, 12)
     Al, Ml = bundle_matrices(L, geo)
     cases = {"bunny k=1": (A, M, 1), "bunny k=6": (A, M, 6), "Landau d=12, k=12": (Al, Ml, 12)}
     rows = []
-    print(f"\nARPACK vs hand-written Lanczos (git {LANCZOS_COMMIT}), SuperLU, tol 1e-10, best of {repeat}")
-    print(f"{'case':<20}{'n':>8}{'Lanczos s':>11}{'solves':>8}{'ARPACK s':>10}{'solves':>8}{'max |Δλ|/λ':>12}")
+    print(f"\nLanczos (dhlb) vs ARPACK (git {ARPACK_COMMIT}), SuperLU, tol 1e-10, best of {repeat}")
+    print(f"{'case':<20}{'n':>8}{'ARPACK s':>10}{'solves':>8}{'Lanczos s':>11}{'solves':>8}{'max |Δλ|/λ':>12}")
     for label, (AA, MM, k) in cases.items():
         def run_old(AA=AA, MM=MM, k=k):
-            clear_cache()
-            return old(AA, MM, k, tol=1e-10, backend="superlu")
+            old_clear_cache()   # its own ordering cache: both start cold
+            return old(AA, MM, k, solver=OldOptions(tol=1e-10, backend="superlu"))
 
         def run_new(AA=AA, MM=MM, k=k):
             clear_cache()
@@ -166,10 +168,10 @@ def compare_lanczos(repeat):
         t_old, r_old = best_of(run_old, repeat)
         t_new, r_new = best_of(run_new, repeat)
         d = float(np.max(np.abs(r_old.eigenvalues - r_new.eigenvalues) / np.abs(r_new.eigenvalues).clip(1e-300)))
-        rows.append({"case": label, "n": AA.shape[0], "lanczos": t_old, "lanczos_solves": int(r_old.iterations
-                     * r_old.block_size), "arpack": t_new, "arpack_solves": int(r_new.solves), "rel_diff": d})
-        print(f"{label:<20}{AA.shape[0]:>8}{t_old:>11.3f}{rows[-1]['lanczos_solves']:>8}{t_new:>10.3f}"
-              f"{r_new.solves:>8}{d:>12.1e}", flush=True)
+        rows.append({"case": label, "n": AA.shape[0], "arpack": t_old, "arpack_solves": int(r_old.solves),
+                     "lanczos": t_new, "lanczos_solves": int(r_new.solves), "rel_diff": d})
+        print(f"{label:<20}{AA.shape[0]:>8}{t_old:>10.3f}{r_old.solves:>8}{t_new:>11.3f}{r_new.solves:>8}{d:>12.1e}",
+              flush=True)
     return rows
 
 
@@ -179,7 +181,7 @@ def main(argv=None):
     ap.add_argument("--repeat", type=int, default=2, help="best of this many runs")
     ap.add_argument("--skip-direct-3d", action="store_true", help="only the iterative backend on the tet box")
     ap.add_argument("--json", default=os.path.join(os.path.dirname(__file__), "bench_solvers.json"))
-    ap.add_argument("--only-compare", action="store_true", help="only the ARPACK vs Lanczos table")
+    ap.add_argument("--only-compare", action="store_true", help="only the Lanczos vs ARPACK table")
     args = ap.parse_args(argv)
     if args.only_compare:
         compare_lanczos(args.repeat)
@@ -196,7 +198,7 @@ def main(argv=None):
         rows, auto = run_problem(label, A, M, L, M0, bes, args.repeat)
         out["results"] += rows
         out["auto"][label] = auto
-    out["arpack_vs_lanczos"] = compare_lanczos(args.repeat)
+    out["lanczos_vs_arpack"] = compare_lanczos(args.repeat)
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh, indent=1)
