@@ -31,7 +31,15 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["ND_MIN", "nested_dissection"]
+__all__ = ["METIS_OPTIONS", "ND_MIN", "nested_dissection"]
+
+METIS_OPTIONS = {"niter": 1, "ufactor": 300}
+"""METIS's options for the ordering: one refinement pass per level (default 10), separators up to 30 % unbalanced.
+
+Measured (one BLAS thread) on the bunny's cross field (34,834 unknowns) and on the level-7
+icosphere (163,842): the ordering takes 12 % and 9 % less time and the factor has the same fill
+(+0.1 %, −0.5 %) as with METIS's defaults.
+"""
 
 ND_MIN = 2_000
 """Fewer unknowns than this are ordered by SuperLU's own minimum degree (:func:`nested_dissection` returns ``None``)."""
@@ -69,5 +77,5 @@ def nested_dissection(K) -> np.ndarray | None:
     G.eliminate_zeros()
     G.sort_indices()
     adjacency = pymetis.CSRAdjacency(G.indptr.astype(np.int32), G.indices.astype(np.int32))
-    perm, _ = pymetis.nested_dissection(adjacency)
+    perm, _ = pymetis.nested_dissection(adjacency, options=pymetis.Options(**METIS_OPTIONS))
     return np.asarray(perm, dtype=np.int64)
