@@ -347,7 +347,8 @@ def _checked_geometry(X: SimplicialComplex, P: np.ndarray, kept: np.ndarray, T: 
     :attr:`SurfaceMesh.geometry` raises when asked for.)
     """
     try:
-        return EuclideanComplex(X, points=np.ascontiguousarray(P[kept]))
+        with np.errstate(all="ignore"):   # coordinates near 1e±300 overflow inside; the refusal is what counts
+            return EuclideanComplex(X, points=np.ascontiguousarray(P[kept]))
     except DhlbError:
         checks.check_geometry(P, T, rows)
         return None
