@@ -141,7 +141,7 @@ def test_auto_selection_rules(torus_problem, monkeypatch):
     assert B.select_backend(30_000, 450_000, dimension=2.6) == three_d          # 3-D, >= 10k: not SuperLU's rule
     assert B.select_backend(50_000, 750_000, shifted=True) == direct            # σ given: direct
     assert B.select_backend(50_000, 750_000, eigen=False) == direct             # linear solve: direct
-    assert B.select_backend(3_000_000, 21_000_000) == three_d                   # huge: iterative
+    assert B.select_backend(3_000_000, 21_000_000) == direct                    # a huge surface: still direct
     # availability is honoured: with only SuperLU installed everything goes to SuperLU
     monkeypatch.setattr(B, "available_backends", lambda: ["superlu"])
     assert B.select_backend(50_000, 750_000) == B.select_backend(3_000_000, 2e7) == "superlu"

@@ -334,8 +334,6 @@ even at 38k unknowns, and CHOLMOD is 1.5× faster at 150k.
 """
 ITERATIVE_3D = 10_000
 """From this many unknowns on, a 3-D-like pattern (>= 10 nonzeros per row) goes to ``amg-lobpcg``."""
-ITERATIVE_ANY = 2_000_000
-"""From this many unknowns on, any smallest-eigenpair problem goes to ``amg-lobpcg``."""
 
 
 def pattern_dimension(A, seeds: int = 4, radius: int = 3) -> float:
@@ -373,9 +371,12 @@ def select_backend(n: int, nnz: int, *, eigen: bool = True, shifted: bool = Fals
     * ``eigen`` (smallest eigenpairs, no ``sigma``) of a 3-D-like pattern (``nnz / n >= 10``: P1 on
       tetrahedra has ~15 per row, on triangles ~7; and, when ``dimension`` — the
       :func:`pattern_dimension` of the matrix — is given, ``dimension >= 2.2``, which excludes
-      surfaces with 2 × 2 blocks per vertex) with ``n >= ITERATIVE_3D``, or of any pattern
-      with ``n >= ITERATIVE_ANY``: ``amg-lobpcg`` if pyamg is installed (direct factorizations of
-      3-D meshes fill in badly: measured 25× slower on a 36k-vertex tet grid);
+      surfaces with 2 × 2 blocks per vertex) with ``n >= ITERATIVE_3D``: ``amg-lobpcg`` if pyamg
+      is installed (direct factorizations of 3-D meshes fill in badly: measured 25× slower on a
+      36k-vertex tet grid).  Surfaces stay direct at every size: on the 1.31M-face icosphere's cross
+      field (655k unknowns) LOBPCG with an AMG preconditioner broke down at a residual of 2e-2,
+      where SuperLU's factorization and 13 solves took 21 s in 3.8 GB (issue 30); a factorization
+      that does not fit in memory still falls back to ``amg-lobpcg``, and says so;
     * ``n < SMALL``, or a 2-D pattern with ``n < SURFACE_SUPERLU``: ``superlu``;
     * otherwise ``cholmod`` if installed, else ``superlu`` (cholespy needs the 2N real embedding
       of complex matrices and measured slower than SuperLU; choose it explicitly).
@@ -408,7 +409,7 @@ def select_backend(n: int, nnz: int, *, eigen: bool = True, shifted: bool = Fals
     """
     avail = available_backends()
     three_d = nnz >= 10 * n and (dimension is None or (dimension() if callable(dimension) else dimension) >= 2.2)
-    big = n >= ITERATIVE_ANY or (n >= ITERATIVE_3D and nnz >= 10 * n and three_d)
+    big = n >= ITERATIVE_3D and nnz >= 10 * n and three_d
     if eigen and not shifted and big and "amg-lobpcg" in avail:
         return "amg-lobpcg"
     if n < SMALL or (n < SURFACE_SUPERLU and not three_d):
