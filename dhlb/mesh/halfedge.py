@@ -158,8 +158,10 @@ class AngleMap:
         ends = ~nxt_same
         bad[vertex[ends & ((theta != TWO_PI) | (psi != TWO_PI))]] = True
         self.fallback = bad
-        keep = ~bad[vertex]
-        self._v, self._t, self._p = vertex[keep], theta[keep], psi[keep]
+        if np.any(bad):
+            keep = ~bad[vertex]
+            vertex, theta, psi = vertex[keep], theta[keep], psi[keep]
+        self._v, self._t, self._p = vertex, theta, psi
         self._offsets = np.searchsorted(self._v, np.arange(N + 1))
 
     def _apply(self, vertex, x, src, dst) -> np.ndarray:

@@ -284,18 +284,20 @@ class TangentBundle:
         size = fa.count + fa.boundary + 1
         off = np.zeros(N + 1, np.int64)
         np.cumsum(size, out=off[1:])
-        pos = np.concatenate([off[fa.vertex] + fa.rank, off[bnd] + fa.count[bnd], off[1:] - 1])
+        nc, nb = fa.vertex.size, bnd.size
         verts = np.concatenate([fa.vertex, bnd])
-        d = np.concatenate([self._corner_edges.transpose(1, 2, 0).reshape(3, -1),
-                            np.take(Pt, fa.second[fa.last[bnd]], axis=1) - np.take(Pt, bnd, axis=1)], axis=1)
+        d = np.empty((3, nc + nb))                          # the first edge of every corner, the last boundary edges
+        d[:, :nc] = self._corner_edges.transpose(1, 2, 0).reshape(3, -1)
+        d[:, nc:] = np.take(Pt, fa.second[fa.last[bnd]], axis=1) - np.take(Pt, bnd, axis=1)
         T1, T2 = np.take(T[0], verts, axis=1), np.take(T[1], verts, axis=1)
         psi = np.arctan2(dot(d, T2), dot(d, T1))
         psi = np.mod(psi, TWO_PI, out=psi)
-        psi[: fa.vertex.size][fa.rank == 0] = 0.0
+        psi[:nc][fa.rank == 0] = 0.0
         vv, th, ps = np.empty(off[-1], np.int64), np.empty(off[-1]), np.empty(off[-1])
-        vv[pos] = np.concatenate([verts, np.arange(N)])
-        th[pos] = np.concatenate([ang[:, 0], ang[fa.last[bnd], 1], np.full(N, TWO_PI)])
-        ps[pos] = np.concatenate([psi, np.full(N, TWO_PI)])
+        at_corner, at_last, at_end = off[fa.vertex] + fa.rank, off[bnd] + fa.count[bnd], off[1:] - 1
+        vv[at_corner], vv[at_last], vv[at_end] = fa.vertex, bnd, np.arange(N)
+        th[at_corner], th[at_last], th[at_end] = ang[:, 0], ang[fa.last[bnd], 1], TWO_PI
+        ps[at_corner], ps[at_last], ps[at_end] = psi[:nc], psi[nc:], TWO_PI
         return AngleMap(vv, th, ps, N)
 
     def half_edge_transport(self, a: ArrayLike, b: ArrayLike) -> np.ndarray:
