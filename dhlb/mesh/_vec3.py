@@ -19,9 +19,12 @@ import numpy as np
 __all__ = ["cross", "dot", "norm", "unit"]
 
 
-def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """``a × b`` per column of ``(3, k)`` arrays."""
-    return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+def cross(a: np.ndarray, b: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+    """``a × b`` per column of ``(3, k)`` arrays (into ``out`` if given: no stacked copy)."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape), np.result_type(a, b)) if out is None else out
+    for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+        np.subtract(a[j] * b[k], a[k] * b[j], out=out[i])
+    return out
 
 
 def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:

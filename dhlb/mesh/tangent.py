@@ -123,7 +123,10 @@ class TangentBundle:
         """``(3, 3, m)``: ``[p, :, f]`` the first edge ``P[F[f, p+1]] − P[F[f, p]]`` of corner ``(f, p)``."""
         Pt, F = self.mesh.points.T, self.mesh.faces
         Q = [np.take(Pt, F[:, p], axis=1) for p in range(3)]
-        return np.stack([Q[1] - Q[0], Q[2] - Q[1], Q[0] - Q[2]])
+        E = np.empty((3,) + Q[0].shape)
+        for p in range(3):
+            np.subtract(Q[(p + 1) % 3], Q[p], out=E[p])
+        return E
 
     @property
     def _fans(self):
@@ -199,7 +202,10 @@ class TangentBundle:
             Nw = N[:, weak]
             alt = np.where(np.abs(Nw[:1]) < 0.9, [[1.0], [0], [0]], [[0], [1.0], [0]])
             T1[:, weak] = unit(cross(Nw, alt))[0]
-        return np.stack([T1, cross(N, T1), N])
+        out = np.empty((3,) + N.shape)
+        out[0], out[2] = T1, N
+        cross(N, T1, out=out[1])
+        return out
 
     @cached_property
     def boundary_turning(self) -> np.ndarray:
