@@ -223,7 +223,8 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
             eigs.append(float(res.eigenvalues[0]))
             stats.append({"backend": res.backend, "iterations": int(res.iterations),
                           "residual": float(res.residuals[0]), "converged": bool(res.converged),
-                          "factorizations": int(res.factorizations), "solves": int(res.solves), "note": res.note})
+                          "factorizations": int(res.factorizations), "solves": int(res.solves),
+                          "shift": float(res.shift), "note": res.note})
         else:
             q = guide.values[idx]
             qn = float(np.sqrt(max((q.conj() @ (Mc @ q)).real, 0.0)))
@@ -236,7 +237,7 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
             ts.append(1.0 / (1.0 + norm))
             used = get_backend(backend, n=Ac.shape[0], nnz=Ac.nnz, eigen=False).name   # what solve() used
             stats.append({"backend": used, "iterations": 0, "residual": None, "converged": True,
-                          "factorizations": 1, "solves": 1, "note": ""})
+                          "factorizations": 1, "solves": 1, "shift": float(lam), "note": ""})
         share = np.asarray(tb.geometry.volumes(2))[_faces_of(tb, idx)].sum() / area if len(comps) > 1 else 1.0
         u[idx] = uc * np.sqrt(share)
     t2 = time.perf_counter()

@@ -50,7 +50,7 @@ class DirectionField(Result):
         One per connected component (smoothest field).
     solver : dict
         What the eigensolver reported: backend, iterations, residual, converged, factorizations,
-        solves and note.
+        solves, the factorized shift σ (``A − σM``) and note.
     timings : dict
         Seconds per phase (setup, solve, indices, total).
 
