@@ -93,6 +93,25 @@ class HermitianLineBundle:
 
     # ------------------------------------------------------------------ construction
     @classmethod
+    def _from_checked(cls, X: SimplicialComplex, connection: np.ndarray, curvature: np.ndarray,
+                      *, atol: float = 1e-8) -> HermitianLineBundle:
+        """Unchecked construction from data consistent by construction (e.g. a mesh's tangent bundle).
+
+        ``connection`` is a finite complex ``(n_1,)`` array of modulus 1 up to rounding (normalized here as
+        by the checked constructor), ``curvature`` a finite real ``(n_2,)`` array matching its holonomy.
+        """
+        self = cls.__new__(cls)
+        self._X = X
+        self._atol = float(atol)
+        r = np.asarray(connection, np.complex128).reshape(-1)
+        r = r / np.abs(r)
+        Om = np.array(curvature, np.float64).reshape(-1)
+        r.setflags(write=False)
+        Om.setflags(write=False)
+        self._r, self._Om = r, Om
+        return self
+
+    @classmethod
     def from_angles(
         cls, X: SimplicialComplex, angles: ArrayLike, curvature: ArrayLike, **kw: Any
     ) -> HermitianLineBundle:

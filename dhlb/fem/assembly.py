@@ -69,16 +69,18 @@ def _scatter(X, geometry, off: np.ndarray, diag: np.ndarray) -> sp.csr_matrix:
     """
     adj = X.vertex_adjacency
     edges = geometry.top_faces(1).T.ravel()              # (local edge, simplex), the layout of `off`
-    n1 = X.n_simplices(1)
+    n1, N = X.n_simplices(1), X.n_vertices
     off = off.ravel()
-    data = np.empty(adj.indices.size, complex)
-    low = data[adj.lower]
+    low = np.empty(n1, complex)
     low.real = np.bincount(edges, weights=off.real, minlength=n1)
     low.imag = np.bincount(edges, weights=off.imag, minlength=n1)
+    data = np.empty(adj.indices.size, complex)
     data[adj.lower] = low
-    data[adj.upper] = low.conj()
-    data[adj.diagonal] = np.bincount(X.simplices(X.dim).T.ravel(), weights=diag.ravel(), minlength=X.n_vertices)
-    return sp.csr_matrix((data, adj.indices.copy(), adj.indptr.copy()), shape=(X.n_vertices, X.n_vertices))
+    data[adj.upper] = np.conjugate(low, out=low)
+    data[adj.diagonal] = np.bincount(X.simplices(X.dim).T.ravel(), weights=diag.ravel(), minlength=N)
+    # scipy keeps int32 indices as they are (int64 ones it scans and narrows when they fit)
+    idx = np.int32 if max(N, data.size) < np.iinfo(np.int32).max else np.int64
+    return sp.csr_matrix((data, adj.indices.astype(idx), adj.indptr.astype(idx)), shape=(N, N))
 
 
 def _weights(weights, m: int) -> np.ndarray:

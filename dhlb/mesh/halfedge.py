@@ -16,7 +16,7 @@ import numpy as np
 
 from dhlb.errors import NonManifoldError
 
-__all__ = ["AngleMap", "Fans", "halfedge_pairs", "vertex_fans"]
+__all__ = ["AngleMap", "Fans", "argsort_keys", "halfedge_pairs", "vertex_fans"]
 
 TWO_PI = 2.0 * np.pi
 
@@ -39,6 +39,26 @@ class Fans:
     last: np.ndarray  # (N,) last corner of each fan
 
 
+def argsort_keys(key: np.ndarray, bound: int) -> np.ndarray:
+    """``np.argsort(key)`` for int64 keys in ``[0, bound)``, equal keys by position (a stable order).
+
+    Sorts the values ``key * size + position`` when they fit into int64 (a value sort is several
+    times faster than an index sort), else ``np.argsort(key, kind="stable")``.
+
+    Examples
+    --------
+    >>> argsort_keys(np.array([5, 1, 5, 0]), 6).tolist()
+    [3, 1, 0, 2]
+    """
+    size = key.size
+    if size == 0 or int(bound) * size >= np.iinfo(np.int64).max:
+        return np.argsort(key, kind="stable")
+    comb = key * size
+    comb += np.arange(size)
+    comb.sort()
+    return np.remainder(comb, size, out=comb)
+
+
 def halfedge_pairs(F: np.ndarray, n_vertices: int) -> tuple[np.ndarray, np.ndarray, int]:
     """Twins and edges of the half-edges ``h = 3 f + k`` (``F[f, k] → F[f, k+1]``) by one sort.
 
@@ -58,7 +78,7 @@ def halfedge_pairs(F: np.ndarray, n_vertices: int) -> tuple[np.ndarray, np.ndarr
     a = F.ravel()
     b = np.roll(F, -1, axis=1).ravel()
     key = np.minimum(a, b) * N + np.maximum(a, b)
-    order = np.argsort(key)
+    order = argsort_keys(key, N * N)
     sk = key[order]
     same = sk[1:] == sk[:-1]
     if same.size > 1 and np.any(same[1:] & same[:-1]):
@@ -92,7 +112,7 @@ def vertex_fans(F: np.ndarray, n_vertices: int, alpha: np.ndarray, pairs=None) -
     twin = (pairs if pairs is not None else halfedge_pairs(F, N))[0]
     # corner c = half-edge c (its first edge); its second edge v → b reverses the half-edge b → v of the
     # same face, whose twin is the first edge of the next corner counterclockwise
-    prev = 3 * (np.arange(v.size) // 3) + (np.arange(v.size) + 2) % 3
+    prev = np.arange(v.size).reshape(-1, 3)[:, [2, 0, 1]].ravel()
     succ = twin[prev]
     nc = v.size
     pred = np.full(nc, -1, np.int64)
@@ -110,14 +130,16 @@ def vertex_fans(F: np.ndarray, n_vertices: int, alpha: np.ndarray, pairs=None) -
     val = alpha.ravel().astype(np.float64).copy()
     cnt = np.ones(nc, np.int64)
     nxt = succ.copy()
+    act = np.nonzero(nxt >= 0)[0]
     for _ in range(int(np.ceil(np.log2(nc + 1))) + 1):  # pointer jumping: suffix sums along each chain
-        act = np.nonzero(nxt >= 0)[0]
         if act.size == 0:
             break
         j = nxt[act]
         val[act] = val[act] + val[j]
         cnt[act] = cnt[act] + cnt[j]
-        nxt[act] = nxt[j]
+        j = nxt[j]
+        nxt[act] = j
+        act = act[j >= 0]  # the corners whose chain goes on
     total = val[start]
     count = cnt[start]
     per_vertex = np.bincount(v, minlength=N)
@@ -158,30 +180,65 @@ class AngleMap:
         ends = ~nxt_same
         bad[vertex[ends & ((theta != TWO_PI) | (psi != TWO_PI))]] = True
         self.fallback = bad
-        if np.any(bad):
-            keep = ~bad[vertex]
-            vertex, theta, psi = vertex[keep], theta[keep], psi[keep]
-        self._v, self._t, self._p = vertex, theta, psi
-        self._offsets = np.searchsorted(self._v, np.arange(N + 1))
+        keep = ~bad[vertex]
+        self._t, self._p = theta[keep], psi[keep]
+        self._offsets = np.searchsorted(vertex[keep], np.arange(N + 1))
+
+    @classmethod
+    def from_offsets(cls, offsets: np.ndarray, theta: np.ndarray, psi: np.ndarray) -> AngleMap:
+        """The map with the breakpoints of vertex v at ``offsets[v] : offsets[v + 1]`` (vertices in order).
+
+        The same map as ``AngleMap(np.repeat(np.arange(N), np.diff(offsets)), theta, psi, N)``, without
+        the vertex of each breakpoint when the angles of every vertex are already in increasing order.
+        """
+        N = offsets.size - 1
+        if offsets[0] != 0 or np.any(offsets[1:] <= offsets[:-1]):
+            return cls(np.repeat(np.arange(N), np.diff(offsets)), theta, psi, N)
+        inner = np.ones(theta.size - 1, bool)  # breakpoint i and i + 1 belong to the same vertex
+        inner[offsets[1:-1] - 1] = False
+        up = theta[1:] >= theta[:-1]
+        if not np.all(up | ~inner):
+            return cls(np.repeat(np.arange(N), np.diff(offsets)), theta, psi, N)
+        np.greater(theta[1:], theta[:-1], out=up)
+        up &= psi[1:] > psi[:-1]
+        bad_step = np.nonzero(inner & ~up)[0]
+        first, last = offsets[:-1], offsets[1:] - 1
+        bad = (theta[first] != 0) | (psi[first] != 0) | (theta[last] != TWO_PI) | (psi[last] != TWO_PI)
+        bad[np.searchsorted(offsets, bad_step, side="right") - 1] = True
+        self = cls.__new__(cls)
+        self.fallback = bad
+        if not np.any(bad):
+            self._t, self._p, self._offsets = theta, psi, offsets
+            return self
+        size = np.where(bad, 0, np.diff(offsets))
+        keep = np.repeat(~bad, np.diff(offsets))
+        self._t, self._p = theta[keep], psi[keep]
+        self._offsets = np.zeros(N + 1, np.int64)
+        np.cumsum(size, out=self._offsets[1:])
+        return self
 
     def _apply(self, vertex, x, src, dst) -> np.ndarray:
         vertex = np.asarray(vertex, np.int64)
         x = np.mod(np.asarray(x, np.float64), TWO_PI)
-        x = np.where(x >= TWO_PI, 0.0, x)
-        out = x.copy()
+        x[x >= TWO_PI] = 0.0
         use = ~self.fallback[vertex]
-        if not np.any(use) or self._v.size == 0:
-            return out
-        qv, qx = vertex[use], x[use]
+        if not np.any(use) or self._t.size == 0:
+            return x
+        out = x
+        qv, qx = (vertex, x) if use.all() else (vertex[use], x[use])
         lo, hi = self._offsets[qv], self._offsets[qv + 1] - 1  # src[lo] = 0 <= x < src[hi] = 2π
         # bisection inside each vertex's breakpoints (sorted, strictly increasing), all queries in step:
         # once hi = lo + 1, mid = lo and src[lo] <= x keep the bracket fixed
+        mid, go, val = np.empty_like(lo), np.empty(lo.size, bool), np.empty(lo.size)
         for _ in range(int(np.max(hi - lo)).bit_length()):
-            mid = (lo + hi) >> 1
-            go = np.take(src, mid) <= qx
-            lo = np.where(go, mid, lo)
-            hi = np.where(go, hi, mid)
-        x0, x1, y0, y1 = src[lo], src[lo + 1], dst[lo], dst[lo + 1]
+            np.add(lo, hi, out=mid)
+            mid >>= 1
+            np.less_equal(np.take(src, mid, out=val), qx, out=go)
+            np.copyto(lo, mid, where=go)
+            np.logical_not(go, out=go)
+            np.copyto(hi, mid, where=go)
+        hi = lo + 1
+        x0, x1, y0, y1 = src[lo], src[hi], dst[lo], dst[hi]
         out[use] = y0 + (qx - x0) * (y1 - y0) / (x1 - x0)
         return out
 

@@ -49,7 +49,7 @@ from dhlb.geometry.euclidean import EuclideanComplex
 from dhlb.mesh import _surface_checks as checks
 from dhlb.mesh import _vec3 as vec3
 from dhlb.mesh.compact import _renumber
-from dhlb.mesh.halfedge import Fans, halfedge_pairs, vertex_fans
+from dhlb.mesh.halfedge import Fans, argsort_keys, halfedge_pairs, vertex_fans
 from dhlb.topology.complex import SimplicialComplex
 
 if TYPE_CHECKING:
@@ -200,7 +200,8 @@ class SurfaceMesh:
         F, m = self.faces, self.n_faces
         top = np.argmax(F, axis=1)
         prefix = self.halfedge_edge[3 * np.arange(m) + (top + 1) % 3]
-        order = np.argsort(prefix * self.n_vertices + F[np.arange(m), top])
+        order = argsort_keys(prefix * self.n_vertices + F[np.arange(m), top],
+                             self.complex.n_simplices(1) * self.n_vertices)
         out = np.empty(m, np.int64)
         out[order] = np.arange(m)
         return out
@@ -327,7 +328,7 @@ def _surface_complex(F: np.ndarray, labels: np.ndarray, pairs) -> tuple[Simplici
     ekeys[edge] = np.minimum(a, b) * n + np.maximum(a, b)
     top = np.argmax(F, axis=1)
     tkeys = edge[3 * np.arange(m) + (top + 1) % 3] * n + F[np.arange(m), top]
-    order = np.argsort(tkeys)
+    order = argsort_keys(tkeys, n_edges * n)
     tri = np.empty(m, np.int64)
     tri[order] = np.arange(m)
     # faces(2): the edge omitting corner p of a face is its half-edge p + 1; corners by increasing vertex

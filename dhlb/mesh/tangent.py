@@ -260,7 +260,9 @@ class TangentBundle:
     @cached_property
     def bundle(self) -> HermitianLineBundle:
         """The hermitian line bundle with connection ``exp(iρ)`` and curvature Ω on ``mesh.complex``."""
-        return HermitianLineBundle(self.mesh.complex, np.exp(1j * self.transport_angles), self.curvature)
+        # finite angles give a unit connection whose holonomy is exp(iΩ) by construction (module docstring)
+        return HermitianLineBundle._from_checked(self.mesh.complex, np.exp(1j * self.transport_angles),
+                                                 self.curvature)
 
     @cached_property
     def geometry(self) -> EuclideanComplex:
@@ -281,30 +283,38 @@ class TangentBundle:
     @cached_property
     def angle_map(self) -> AngleMap:
         """The piecewise-linear map between rescaled angles and polar angles in the vertex frames."""
-        fa, Pt, T = self._fans, self.mesh.points.T, self._frames_t
-        N = self.mesh.n_vertices
-        ang = self.corner_edge_angles.reshape(-1, 2)
+        fa, Pt, F = self._fans, self.mesh.points.T, self.mesh.faces
+        N, m = self.mesh.n_vertices, F.shape[0]
         bnd = np.nonzero(fa.boundary)[0]
         # breakpoints in fan order, placed directly (no sort): per vertex its corners' first edges by
         # rank, the last boundary edge at a boundary vertex, and the closing 2π
         size = fa.count + fa.boundary + 1
         off = np.zeros(N + 1, np.int64)
         np.cumsum(size, out=off[1:])
-        nc, nb = fa.vertex.size, bnd.size
-        verts = np.concatenate([fa.vertex, bnd])
-        d = np.empty((3, nc + nb))                          # the first edge of every corner, the last boundary edges
-        d[:, :nc] = self._corner_edges.transpose(1, 2, 0).reshape(3, -1)
-        d[:, nc:] = np.take(Pt, fa.second[fa.last[bnd]], axis=1) - np.take(Pt, bnd, axis=1)
-        T1, T2 = np.take(T[0], verts, axis=1), np.take(T[1], verts, axis=1)
+        th, ps = np.empty(off[-1]), np.empty(off[-1])
+        th[off[1:] - 1] = TWO_PI
+        ps[off[1:] - 1] = TWO_PI
+        pos = np.take(off, fa.vertex)
+        pos += fa.rank
+        th[pos] = self.corner_edge_angles[:, :, 0].ravel()
+        pos_b = off[bnd] + fa.count[bnd]
+        th[pos_b] = self.corner_edge_angles.reshape(-1, 2)[fa.last[bnd], 1]
+        # polar angle of each first edge in the frame of its vertex, one corner p of all faces at a time
+        E, pos = self._corner_edges, pos.reshape(m, 3)
+        rank = fa.rank.reshape(m, 3)
+        for p in range(3):
+            psi = self._polar(E[p], F[:, p])
+            psi[rank[:, p] == 0] = 0.0
+            ps[pos[:, p]] = psi
+        ps[pos_b] = self._polar(np.take(Pt, fa.second[fa.last[bnd]], axis=1) - np.take(Pt, bnd, axis=1), bnd)
+        return AngleMap.from_offsets(off, th, ps)
+
+    def _polar(self, d: np.ndarray, verts: np.ndarray) -> np.ndarray:
+        """Polar angle in ``[0, 2π)`` of the ``(3, k)`` vectors ``d`` in the frames ``(T1, T2)`` of ``verts``."""
+        T = self._frames_t
+        T1, T2 = [np.take(T[0, k], verts) for k in range(3)], [np.take(T[1, k], verts) for k in range(3)]
         psi = np.arctan2(dot(d, T2), dot(d, T1))
-        psi = np.mod(psi, TWO_PI, out=psi)
-        psi[:nc][fa.rank == 0] = 0.0
-        vv, th, ps = np.empty(off[-1], np.int64), np.empty(off[-1]), np.empty(off[-1])
-        at_corner, at_last, at_end = off[fa.vertex] + fa.rank, off[bnd] + fa.count[bnd], off[1:] - 1
-        vv[at_corner], vv[at_last], vv[at_end] = fa.vertex, bnd, np.arange(N)
-        th[at_corner], th[at_last], th[at_end] = ang[:, 0], ang[fa.last[bnd], 1], TWO_PI
-        ps[at_corner], ps[at_last], ps[at_end] = psi[:nc], psi[nc:], TWO_PI
-        return AngleMap(vv, th, ps, N)
+        return np.mod(psi, TWO_PI, out=psi)
 
     def half_edge_transport(self, a: ArrayLike, b: ArrayLike) -> np.ndarray:
         """``r_ab`` for the half-edges ``a → b`` (``conj(r_ba)`` of the canonical edge when ``a > b``).
