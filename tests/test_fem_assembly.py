@@ -155,3 +155,19 @@ def test_one_dimensional_complexes():
     A, M = bundle_matrices(L, geo)
     lam = smallest_eigenpairs(A, M, k=1).eigenvalues[0]
     assert abs(lam - (theta / (2 * np.pi)) ** 2) < 1e-4
+
+
+def test_matrices_own_their_sorted_pattern():
+    """A and M get their own writable index arrays (not the cached read-only adjacency), sorted by column."""
+    X, P = cube_nd(2, 3, return_points=True)
+    A, M = bundle_matrices(HermitianLineBundle.trivial(X), EuclideanComplex(X, points=P))
+    adj = X.vertex_adjacency
+    for K in (A, M):
+        assert K.indices.flags.writeable and K.indptr.flags.writeable
+        other = M if K is A else A
+        assert not np.shares_memory(K.indices, adj.indices) and not np.shares_memory(K.indices, other.indices)
+        assert np.array_equal(K.indices, adj.indices) and np.array_equal(K.indptr, adj.indptr)
+        assert np.all(np.diff(K.indices)[np.diff(np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))) == 0] > 0)
+    A.data[:] = 0.0
+    A.eliminate_zeros()                      # in-place structural change leaves M intact
+    assert A.nnz == 0 and M.nnz == adj.indices.size

@@ -202,6 +202,30 @@ def test_several_blocks_and_entries(n, monkeypatch):
         assert not np.diagonal(X, axis1=1, axis2=2).imag.any()
 
 
+@pytest.mark.parametrize("n", [2, 3])
+@pytest.mark.parametrize("request_", [(True, True), (True, False), (False, True)])
+def test_split_entries_are_the_kernel_entries_to_the_bit(n, request_, monkeypatch):
+    """The real/imaginary split of the assembly, with the connection gathered per block, is the kernel's output."""
+    mass, dirichlet = request_
+    rng = np.random.default_rng(11)
+    gram, vol = _simplices(rng, n, 23)
+    om = _curvature(rng, n, 23, 10.0 ** rng.uniform(-6, 1.5, 23), rng.integers(0, 6, 23))
+    r = _random_gauge(rng, om, n)
+    monkeypatch.setitem(kernels_closed._CHUNKS, n, 5)
+    ref = KERNELS[n](gram, vol, om, r, mass=mass, dirichlet=dirichlet)
+    rows = rng.permutation(r.size).reshape(r.shape)                    # r as per-edge values of a complex
+    per_edge = np.empty(r.size, complex)
+    per_edge[rows] = r
+    for got in (kernels_closed.split_entries(n, gram, vol, om, r, mass=mass, dirichlet=dirichlet),
+                kernels_closed.split_entries(n, gram, vol, om, per_edge, mass=mass, dirichlet=dirichlet, rows=rows)):
+        for i, (x, y) in enumerate(zip(ref, got)):
+            assert (x is None) == (y is None) == (not (mass if i < 2 else dirichlet))
+            if x is not None and i % 2 == 0:
+                assert y.shape == (2, *x.shape) and np.array_equal(x.real, y[0]) and np.array_equal(x.imag, y[1])
+            elif x is not None:
+                assert np.array_equal(x, y)
+
+
 def test_empty_batch_and_gram_layouts():
     """No simplices; a Gram stack stored simplex axis last (as EuclideanComplex keeps it) gives the same."""
     for n in (2, 3):

@@ -8,7 +8,9 @@ from dhlb.geometry._small import (
     cholesky_3,
     eigvalsh_small,
     factor_from_edges,
+    gradient_gram_2,
     gradients_from_factor,
+    gram_of_columns,
     surely_definite_3,
 )
 from dhlb.geometry.simplex import SimplexStack
@@ -127,3 +129,14 @@ def test_tetrahedra_closed_forms_match_the_lapack_route(seed):
     L = SimplexStack.from_squared_lengths(S.squared_lengths)   # lengths: the Cholesky frame
     np.testing.assert_allclose(np.swapaxes(L.barycentric_gradients[ok][:, :, 1:], 1, 2) @ L.factor[ok], eye, atol=1e-8)
     np.testing.assert_allclose(L.barycentric_gradient_gram[ok], G, rtol=1e-6, atol=1e-9 * np.abs(G).max())
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=st.integers(0, 2**31), d=st.integers(2, 4), squash=st.sampled_from([1.0, 1e-6]),
+       scale=st.sampled_from([1.0, 1e-60, 1e60]))   # beyond 1e±75 the edge factor itself overflows
+def test_gradient_gram_2_is_the_gram_of_the_gradients_to_the_bit(seed, d, squash, scale):
+    R, _ = factor_from_edges(scale * _edges(seed, 50, d, 2, squash))
+    G = gradient_gram_2(R)
+    assert np.array_equal(G, gram_of_columns(gradients_from_factor(R)))
+    S = SimplexStack.from_points(np.random.default_rng(seed).standard_normal((30, 3, d)))
+    assert np.array_equal(S.barycentric_gradient_gram, gram_of_columns(S.barycentric_gradients))

@@ -67,24 +67,26 @@ def checked_connection(X: SimplicialComplex, connection: ArrayLike, atol: float)
     n1 = X.n_simplices(1)
     r = np.asarray(connection)
     try:
-        r = r.astype(np.complex128).reshape(-1)
+        r = r.astype(np.complex128, copy=False).reshape(-1)
     except (TypeError, ValueError):
         raise InvalidConnectionError(f"the connection must be a complex array of length n_1 = {n1}") from None
     if r.size != n1:
         raise InvalidConnectionError(
             f"the connection needs one unit complex number per edge: length n_1 = {n1}, got {r.size}"
         )
-    if not np.all(np.isfinite(r)):
-        bad_edge = simplex_name(X, 1, int(np.argmin(np.isfinite(r))))
-        raise NonFiniteError(f"the connection contains NaN or infinity (edge {bad_edge})")
-    dev = np.abs(np.abs(r) - 1.0)
-    if np.any(dev > atol):
+    modulus = np.abs(r)
+    dev = np.abs(modulus - 1.0)
+    finite = np.all(np.isfinite(modulus))    # |r| is NaN or infinite where r is (or overflows)
+    if not finite or np.any(dev > atol):
+        if not np.all(np.isfinite(r)):
+            bad_edge = simplex_name(X, 1, int(np.argmin(np.isfinite(r))))
+            raise NonFiniteError(f"the connection contains NaN or infinity (edge {bad_edge})")
         e = int(np.argmax(dev))
         raise InvalidConnectionError(
             f"the connection on edge {simplex_name(X, 1, e)} is not unitary: |r| = {abs(r[e]):.6g}; "
             "a hermitian connection needs |r_ij| = 1"
         )
-    return r / np.abs(r)
+    return r / modulus
 
 
 def checked_curvature(X: SimplicialComplex, r: np.ndarray, curvature: ArrayLike, atol: float) -> np.ndarray:

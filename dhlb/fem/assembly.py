@@ -27,7 +27,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from dhlb.errors import NonFiniteError, ShapeError
-from dhlb.fem.kernels import element_kernel
+from dhlb.fem.kernels import KERNELS, element_kernel
+from dhlb.fem.kernels_closed import split_entries
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -51,36 +52,57 @@ def _check_pair(bundle, geometry):
 
 
 def _entries(bundle, geometry, *, mass: bool, dirichlet: bool):
-    """``(X, LocalEntries)`` of the top simplices from the element kernel of their dimension."""
+    """``(X, LocalEntries)`` of the top simplices from the element kernel of their dimension.
+
+    The off-diagonal entries come as ``(2, C(n+1, 2), m)`` float arrays, real then imaginary parts.
+    """
     X = _check_pair(bundle, geometry)
     n = X.dim
     vol = geometry.volumes(n)
     omega = bundle.curvature[geometry.top_faces(2)] if n >= 2 else np.zeros((vol.size, 0))
-    r = bundle.connection[geometry.top_faces(1)]
     gram = geometry.barycentric_gradient_gram if dirichlet else None
-    return X, element_kernel(n)(gram, vol, omega, r, mass=mass, dirichlet=dirichlet)
+    kernel = element_kernel(n)
+    if kernel is KERNELS.get(n) and n in (2, 3):
+        return X, split_entries(n, gram, vol, omega, bundle.connection, mass=mass, dirichlet=dirichlet,
+                                rows=geometry.top_faces(1))
+    out = kernel(gram, vol, omega, bundle.connection[geometry.top_faces(1)], mass=mass, dirichlet=dirichlet)
+    return X, tuple(np.stack([x.real, x.imag]) if i % 2 == 0 and x is not None else x for i, x in enumerate(out))
 
 
-def _scatter(X, geometry, off: np.ndarray, diag: np.ndarray) -> sp.csr_matrix:
-    """Sum compact local entries (layout of :mod:`dhlb.fem.kernels`) into the vertex-adjacency CSR pattern.
+class _Pattern:
+    """The scatter indices of a complex: per local entry its canonical edge or vertex, and the CSR pattern."""
 
-    ``off[p, s] = K_s[b, a]`` is summed per canonical edge ``(v_a < v_b)`` into the lower entry
-    ``K[v_b, v_a]`` (the upper one is its conjugate), ``diag`` per vertex.
-    """
-    adj = X.vertex_adjacency
-    edges = geometry.top_faces(1).T.ravel()              # (local edge, simplex), the layout of `off`
-    n1, N = X.n_simplices(1), X.n_vertices
-    off = off.ravel()
-    low = np.empty(n1, complex)
-    low.real = np.bincount(edges, weights=off.real, minlength=n1)
-    low.imag = np.bincount(edges, weights=off.imag, minlength=n1)
-    data = np.empty(adj.indices.size, complex)
-    data[adj.lower] = low
-    data[adj.upper] = np.conjugate(low, out=low)
-    data[adj.diagonal] = np.bincount(X.simplices(X.dim).T.ravel(), weights=diag.ravel(), minlength=N)
-    # scipy keeps int32 indices as they are (int64 ones it scans and narrows when they fit)
-    idx = np.int32 if max(N, data.size) < np.iinfo(np.int32).max else np.int64
-    return sp.csr_matrix((data, adj.indices.astype(idx), adj.indptr.astype(idx)), shape=(N, N))
+    def __init__(self, X, geometry):
+        self.X = X
+        self.adj = X.vertex_adjacency
+        self.edges = geometry.top_faces(1).T.ravel()           # (local edge, simplex), the layout of `off`
+        self.vertices = X.simplices(X.dim).T.ravel()
+        n1 = X.n_simplices(1)
+        self.n1 = n1
+        big = self.adj.indices.size >= 2**31 or X.n_vertices >= 2**31
+        self.index_type = np.int64 if big else np.int32
+
+    def scatter(self, off: np.ndarray, diag: np.ndarray) -> sp.csr_matrix:
+        """Sum compact local entries (layout of :mod:`dhlb.fem.kernels`) into the vertex-adjacency CSR pattern.
+
+        ``off[:, p, s]`` (real, imaginary part of ``K_s[b, a]``) is summed per canonical edge ``(v_a < v_b)``
+        into the lower entry ``K[v_b, v_a]`` (the upper one is its conjugate), ``diag`` per vertex.
+        """
+        adj, N = self.adj, self.X.n_vertices
+        re = np.bincount(self.edges, weights=off[0].ravel(), minlength=self.n1)
+        im = np.bincount(self.edges, weights=off[1].ravel(), minlength=self.n1)
+        data = np.empty(adj.indices.size, complex)
+        d_re, d_im = data.real, data.imag
+        d_re[adj.lower] = re
+        d_im[adj.lower] = im
+        d_re[adj.upper] = re
+        d_im[adj.upper] = np.negative(im, out=im)
+        d_re[adj.diagonal] = np.bincount(self.vertices, weights=diag.ravel(), minlength=N)
+        d_im[adj.diagonal] = 0.0
+        A = sp.csr_matrix((data, adj.indices.astype(self.index_type), adj.indptr.astype(self.index_type)),
+                          shape=(N, N))
+        A.has_sorted_indices = True
+        return A
 
 
 def _weights(weights, m: int) -> np.ndarray:
@@ -133,7 +155,7 @@ def mass_matrix(
     if weights is not None:
         w = _weights(weights, diag.shape[1])
         off, diag = off * w, diag * w
-    return _scatter(X, geometry, off, diag)
+    return _Pattern(X, geometry).scatter(off, diag)
 
 
 def dirichlet_matrix(bundle: HermitianLineBundle, geometry: EuclideanComplex) -> sp.csr_matrix:
@@ -167,7 +189,7 @@ def dirichlet_matrix(bundle: HermitianLineBundle, geometry: EuclideanComplex) ->
     True
     """
     X, (_, _, off, diag) = _entries(bundle, geometry, mass=False, dirichlet=True)
-    return _scatter(X, geometry, off, diag)
+    return _Pattern(X, geometry).scatter(off, diag)
 
 
 def bundle_matrices(
@@ -206,8 +228,9 @@ def bundle_matrices(
     True
     """
     X, (m_off, m_diag, a_off, a_diag) = _entries(bundle, geometry, mass=not lumped, dirichlet=True)
-    A = _scatter(X, geometry, a_off, a_diag)
-    return A, (mass_matrix(bundle, geometry, lumped=True) if lumped else _scatter(X, geometry, m_off, m_diag))
+    pattern = _Pattern(X, geometry)
+    A = pattern.scatter(a_off, a_diag)
+    return A, (mass_matrix(bundle, geometry, lumped=True) if lumped else pattern.scatter(m_off, m_diag))
 
 
 def lumped_mass(geometry: EuclideanComplex) -> np.ndarray:

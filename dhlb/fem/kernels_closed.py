@@ -40,7 +40,7 @@ import numpy as np
 from dhlb.fem._fast_moments import moments_3d, phi_2d
 from dhlb.fem._local_data import local_edges, local_triangles
 
-__all__ = ["kernel_2d", "kernel_3d"]
+__all__ = ["kernel_2d", "kernel_3d", "split_entries"]
 
 _CHUNKS = {2: 16384, 3: 4096}   # simplices per block: the per-pair arrays stay in cache
 
@@ -81,11 +81,12 @@ def _tables(n: int):
 
 
 def _off(out, xr, xi, re, im):
-    """``out = r vol (re + i im)`` (complex, (pairs, mc))."""
-    np.multiply(xr, re, out=out.real)
-    out.real -= xi * im
-    np.multiply(xr, im, out=out.imag)
-    out.imag += xi * re
+    """``out = r vol (re + i im)``; ``out`` the pair (real part, imaginary part) of ``(pairs, mc)`` arrays."""
+    o_re, o_im = out
+    np.multiply(xr, re, out=o_re)
+    o_re -= xi * im
+    np.multiply(xr, im, out=o_im)
+    o_im += xi * re
 
 
 def _block_2d(G, vol, om, rr, ri, out):
@@ -173,13 +174,19 @@ def _block_3d(G, vol, om, rr, ri, out):
     ad[:] = vol * (Ga + q / 420.0)
 
 
-def _closed_kernel(n, gram, volume, omega, connection, mass, dirichlet):
+def _closed_kernel(n, gram, volume, omega, connection, mass, dirichlet, split=False, rows=None):
+    """The kernel of n = 2, 3; with ``split`` the off-diagonal entries are ``(2, pairs, m)`` float (real, imaginary).
+
+    With ``rows`` the connection is given per edge of the complex, ``connection[rows]`` per simplex.
+    """
     m, k, ne = volume.size, n + 1, comb(n + 1, 2)
     gauge = [(p, *_tri_index(n, 0, int(a), int(b))) for p, (a, b) in enumerate(local_edges(n)) if a > 0]
-    out = [np.empty((ne, m), dtype=complex), np.empty((k, m))] if mass else [None, None]
-    out += [np.empty((ne, m), dtype=complex), np.empty((k, m))] if dirichlet else [None, None]
+    off_shape, off_type = ((2, ne, m), float) if split else ((ne, m), complex)
+    out = [np.empty(off_shape, off_type), np.empty((k, m))] if mass else [None, None]
+    out += [np.empty(off_shape, off_type), np.empty((k, m))] if dirichlet else [None, None]
     if not (mass or dirichlet):
         return tuple(out)
+    parts = [None if x is None else ((x[0], x[1]) if split else (x.real, x.imag)) for x in out[0::2]]
     step, ch = (_block_2d if n == 2 else _block_3d), _CHUNKS[n]
     # gram (m, k, k) as a view of a (k, k, m) array (what EuclideanComplex stores) costs no copy here
     gt = None if gram is None else np.moveaxis(gram, 0, -1).reshape(k * k, m)
@@ -193,9 +200,12 @@ def _closed_kernel(n, gram, volume, omega, connection, mass, dirichlet):
                 ang[p] = sg * om[t]
             rr, ri = np.cos(ang), np.sin(ang)
         else:
-            rt = np.ascontiguousarray(np.ascontiguousarray(connection[sl], dtype=complex).view(float).T)
+            r = connection[sl] if rows is None else connection[rows[sl]]
+            rt = np.ascontiguousarray(np.ascontiguousarray(r, dtype=complex).view(float).T)
             rr, ri = rt[0::2], rt[1::2]
-        step(G, volume[sl], om, rr, ri, [None if x is None else x[:, sl] for x in out])
+        blk = [None if p is None else (p[0][:, sl], p[1][:, sl]) for p in parts]
+        step(G, volume[sl], om, rr, ri, [blk[0], None if blk[0] is None else out[1][:, sl],
+                                         blk[1], None if blk[1] is None else out[3][:, sl]])
     return tuple(out)
 
 
@@ -224,3 +234,35 @@ def kernel_3d(gram, volume, omega, connection=None, *, mass=True, dirichlet=True
     ([0.3, 0.3, 0.3, 0.3, 0.3, 0.3], [0.6, 0.6, 0.6, 0.6], True)
     """
     return _closed_kernel(3, gram, volume, omega, connection, mass, dirichlet)
+
+
+def split_entries(n, gram, volume, omega, connection=None, *, mass=True, dirichlet=True, rows=None):
+    """The closed-form kernel of n-simplices (n = 2, 3) with the off-diagonal entries as real and imaginary parts.
+
+    What the assembly sums (one ``bincount`` per part, no strided copy of a complex array).
+
+    Parameters
+    ----------
+    n : {2, 3}
+        The dimension of the simplices.
+    gram, volume, omega, connection, mass, dirichlet :
+        As for :func:`kernel_2d` (interface of :func:`dhlb.fem.kernels.generic_kernel`).
+    rows : (m, C(n+1, 2)) int array, optional
+        With it ``connection`` is one value per edge of the complex and ``connection[rows]`` that of the
+        local edges, gathered block by block (no ``(m, C(n+1, 2))`` complex copy).
+
+    Returns
+    -------
+    mass_off, mass_diag, dirichlet_off, dirichlet_diag : arrays or None
+        As :func:`kernel_2d`, but each ``off`` is ``(2, C(n+1, 2), m)`` float: ``off[0] + i off[1]`` is the
+        complex entry, to the bit.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> G = np.array([[[2., -1, -1], [-1, 1, 0], [-1, 0, 1]]])
+    >>> Mo, Md, Ao, Ad = split_entries(2, G, np.array([0.5]), np.array([[0.0]]))
+    >>> Ao.shape, Ao[0].ravel().tolist()
+    ((2, 3, 1), [-0.5, -0.5, 0.0])
+    """
+    return _closed_kernel(n, gram, volume, omega, connection, mass, dirichlet, split=True, rows=rows)

@@ -18,7 +18,8 @@ cost ~1 µs per tiny matrix, for ``n <= 3``:
   ``λ_min/λ_max >= det g/λ_max³ >= det g / tr(g)³ > t`` (``λ_min = det g/(λ_mid λ_max)``), so only
   the simplices it cannot certify need eigenvalues;
 * ``Y = R⁻ᵀ [−1 | I]`` from the explicit inverse of a lower-triangular matrix of order <= 3
-  (forward substitution written out).
+  (forward substitution written out), and for triangles its Gram matrix ``YᵀY`` straight from
+  ``R`` (the same operations, without the ``(m, 2, 3)`` stack ``Y``).
 
 Each formula is checked against the LAPACK route in ``tests/test_geometry_small.py``.
 """
@@ -28,7 +29,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["soa_empty", "eigvalsh_small", "factor_from_edges", "cholesky_3", "surely_definite_3",
-           "gradients_from_factor", "gram_of_columns"]
+           "gradients_from_factor", "gram_of_columns", "gradient_gram_2"]
 
 
 def soa_empty(m: int, *shape: int) -> np.ndarray:
@@ -195,6 +196,30 @@ def gram_of_columns(Y: np.ndarray) -> np.ndarray:
             acc = Y[:, 0, a] * Y[:, 0, b]
             for q in range(1, n):
                 acc += Y[:, q, a] * Y[:, q, b]
+            G[:, a, b] = acc
+            G[:, b, a] = acc
+    return G
+
+
+def gradient_gram_2(R: np.ndarray) -> np.ndarray:
+    """``YᵀY`` ``(m, 3, 3)`` of ``Y = R⁻ᵀ [−1 | I]`` for upper-triangular ``R`` ``(m, 2, 2)`` (nonsingular).
+
+    Bit for bit ``gram_of_columns(gradients_from_factor(R))``, with ``(m,)`` temporaries only.
+
+    Examples
+    --------
+    >>> R = np.array([[[1.0, 0.5], [0.0, 2.0]]])
+    >>> bool(np.array_equal(gradient_gram_2(R), gram_of_columns(gradients_from_factor(R))))
+    True
+    """
+    z00 = 1.0 / R[:, 0, 0]
+    z11 = 1.0 / R[:, 1, 1]
+    z10 = -R[:, 0, 1] * z00 * z11
+    y = ((-z00, z00, 0.0), (-z10 - z11, z10, z11))        # the rows of Y
+    G = soa_empty(R.shape[0], 3, 3)
+    for a in range(3):
+        for b in range(a, 3):
+            acc = y[0][a] * y[0][b] + y[1][a] * y[1][b]
             G[:, a, b] = acc
             G[:, b, a] = acc
     return G

@@ -37,6 +37,7 @@ from dhlb.geometry._small import (
     cholesky_3,
     eigvalsh_small,
     factor_from_edges,
+    gradient_gram_2,
     gradients_from_factor,
     gram_of_columns,
     soa_empty,
@@ -360,8 +361,13 @@ class SimplexStack:
         """Upper-triangular ``R`` with ``g = RᵀR`` (``nan`` where ``g`` is not positive definite)."""
         n = self.n
         if self._factor_given is not None:
+            ok = self.positive_definite
+            if ok.all():   # nothing to blank out: the given factor, read-only (no copy)
+                R = self._factor_given.view()
+                R.setflags(write=False)
+                return R
             R = self._factor_given.copy()
-            R[~self.positive_definite] = np.nan
+            R[~ok] = np.nan
             return R
         if n == 3:
             R = self._cholesky_3.copy()
@@ -423,6 +429,8 @@ class SimplexStack:
     @cached_property
     def barycentric_gradient_gram(self) -> np.ndarray:
         """``G_ij = <∇λ_i, ∇λ_j>`` ``(m, n+1, n+1)``, symmetric positive semidefinite, rows sum to 0."""
+        if self.n == 2 and "barycentric_gradients" not in self.__dict__ and self.positive_definite.all():
+            return gradient_gram_2(self.factor)  # the same numbers, without the stack Y
         Y = self.barycentric_gradients
         if 1 <= self.n <= 3:  # symmetric by construction
             return gram_of_columns(Y)
