@@ -103,7 +103,10 @@ def default_shift(A: sp.csr_matrix, M: sp.csr_matrix) -> float:
     True
     """
     s = 1.0 / np.sqrt(M.diagonal().real)
-    rho = float(abs(sp.diags(s) @ A @ sp.diags(s)).sum(axis=1).max())
+    A = sp.csr_matrix(A)
+    rows = np.repeat(np.arange(A.shape[0]), np.diff(A.indptr))
+    scaled = sp.csr_matrix((np.abs(A.data * s[rows] * s[A.indices]), A.indices, A.indptr), shape=A.shape)
+    rho = float(scaled.sum(axis=1).max())       # |D^-1/2 A D^-1/2| row sums, without two sparse products
     return float(np.sqrt(_EPS) * (rho if rho > 0 else 1.0))
 
 

@@ -159,7 +159,8 @@ def check_factorization_memory(n: int, nnz: int, *, complex_: bool, dimension, b
                                alternatives=(), triangles: int = 2) -> int:
     """Raise :class:`InsufficientMemoryError` if the factorization would not fit; return the estimate.
 
-    ``dimension`` may be a callable (computed only when the problem is large enough to matter);
+    ``dimension`` may be a callable (computed only when the problem is large enough to matter, and
+    then only when a volume's fill would not fit: the estimate returned is then that bound);
     ``alternatives`` names the backends that would fit (e.g. ``("amg-lobpcg",)``), for the message.
 
     Examples
@@ -169,9 +170,13 @@ def check_factorization_memory(n: int, nnz: int, *, complex_: bool, dimension, b
     """
     if n < 20_000 and _LIMIT is None and _env_limit() is None:  # small: never the problem, skip the look-ups
         return factor_bytes(n, nnz, complex_=complex_, dimension=2.0, triangles=triangles)
+    have = available_bytes()
+    if callable(dimension):
+        worst = factor_bytes(n, nnz, complex_=complex_, dimension=3.0, triangles=triangles)
+        if worst <= have:   # fits even with a volume's fill: the pattern's dimension is not needed
+            return worst
     d = dimension() if callable(dimension) else dimension
     need = factor_bytes(n, nnz, complex_=complex_, dimension=d, triangles=triangles)
-    have = available_bytes()
     if need > have:
         alt = (f"; the iterative backend {', '.join(map(repr, alternatives))} needs O(n) memory and would fit"
                if alternatives else "; an iterative backend needs O(n) memory: pip install pyamg, then "

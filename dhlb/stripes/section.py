@@ -291,6 +291,8 @@ def unit_section(
     if not (np.isfinite(kick) and kick >= 0):
         raise InvalidParameterError(f"kick must be a number >= 0 (radians), got {kick!r}")
     x = normalize_per_vertex(x0, complex_form)
+    dtype = np.result_type(A.dtype, M.dtype, x.dtype)
+    A, M = A.astype(dtype, copy=False), M.astype(dtype, copy=False)   # cast once, not in every product
     rho = unit_energy(A, M, x)
     energies, best, best_x = [rho], 0, x
     if kick and maxiter:
