@@ -17,12 +17,8 @@ import math
 import os
 import sys
 import warnings
-from typing import TYPE_CHECKING
 
 from dhlb.errors import DhlbError, MeshParseError, UnreferencedVertexWarning
-
-if TYPE_CHECKING:
-    from dhlb.cli._outputs import OutputSpec
 
 __all__ = ["UsageError", "add_command", "common_options", "run_command", "write_output", "resolve_input",
            "finite_float", "int_in_range", "number_tuple", "nonempty_text", "PIXEL_SIZE", "check_outputs",
@@ -211,11 +207,13 @@ def common_options() -> argparse.ArgumentParser:
 
 
 def add_command(subparsers, name: str, summary: str, description: str, examples: str,
-                outputs: OutputSpec | None = None) -> argparse.ArgumentParser:
+                outputs=None) -> argparse.ArgumentParser:
     """Create the parser of a subcommand with the common options and an examples epilog.
 
     Its ``type=float`` options accept finite numbers only (NaN/inf are usage errors). With ``outputs``
-    (a command that writes result files) the help of ``-o`` and the epilog state the ``-o`` convention.
+    (a command that writes result files: its :class:`~dhlb.cli._outputs.OutputSpec`, which builds on
+    this module, so it is not imported here) the help of ``-o`` and the epilog state the ``-o``
+    convention.
     """
     epilog = "examples:\n" + examples.rstrip() + "\n\n"
     if outputs is not None:
