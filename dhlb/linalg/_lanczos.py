@@ -48,6 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
+from dhlb.linalg._checks import eta as _eta
 from dhlb.linalg._checks import norm1
 from dhlb.linalg.options import SolverOptions
 
@@ -61,7 +62,7 @@ class LanczosResult:
     Parameters
     ----------
     eigenvalues : (nev,) float array
-        The Ritz values ``λ = σ + 1/θ``, nearest the shift first.
+        The Rayleigh quotients of the Ritz vectors nearest the shift, ascending.
     vectors : (n, nev) array
         The Ritz vectors, M-orthonormal.
     solves : int
@@ -151,7 +152,7 @@ def lanczos(solve, A, M, nev: int, v, *, shift: float, solver: SolverOptions) ->
         H[m, :m + 1] = h.conj()
         theta, S = _dominant(H[:m + 1, :m + 1])
         if not beta > 1e-13 * abs(theta[0]):   # an invariant subspace: go on in a fresh direction
-            x, Mx, beta = _fresh(Q[:, :m + 1], M, rng, dtype)
+            x, Mx = _fresh(Q[:, :m + 1], M, rng, dtype)
             beta = 0.0
         else:
             x, Mx = x / beta, Mx / beta
@@ -210,11 +211,9 @@ def _pencil_ritz(A, M, Q, P, nev, shift, normA, normM):
     X = Q @ C[:, pick]
     AX, MX = A @ X, M @ X
     lam = np.sum(X.conj() * AX, axis=0).real / np.sum(X.conj() * MX, axis=0).real   # explicit Rayleigh quotients
-    R = AX - MX * lam[None, :]
-    scale = (normA + np.abs(lam) * normM) * np.linalg.norm(X, axis=0)
     order = np.argsort(lam, kind="stable")
-    eta = np.linalg.norm(R, axis=0) / np.where(scale > 0, scale, np.inf)
-    return lam[order], X[:, order], eta[order]
+    lam, X = lam[order], X[:, order]
+    return lam, X, _eta(AX[:, order] - MX[:, order] * lam[None, :], lam, X, normA, normM)
 
 
 def _orthogonalize(Q, x, M):
@@ -237,12 +236,10 @@ def _orthogonalize(Q, x, M):
 
 
 def _fresh(Q, M, rng, dtype):
-    """A random unit vector M-orthogonal to ``Q`` (after a breakdown)."""
+    """A random M-unit vector M-orthogonal to ``Q`` and its image under ``M`` (after a breakdown)."""
     n = Q.shape[0]
     x = rng.standard_normal(n)
     if np.dtype(dtype).kind == "c":
         x = x + 1j * rng.standard_normal(n)
-    for _ in range(2):
-        x, _, b, Mx = _orthogonalize(Q, x.astype(dtype), M)
-        x, Mx = x / b, Mx / b
-    return x, Mx, 1.0
+    x, _, b, Mx = _orthogonalize(Q, x.astype(dtype), M)
+    return x / b, Mx / b

@@ -447,7 +447,6 @@ def _shift_invert(fac, A, M, k, shift, tol, maxiter, v, ncv, default, name):
     """
     n = A.shape[0]
     op = _CountingInverse(fac)
-    normA, normM = _norm1(A), _norm1(M)
     out = lanczos(op, A, M, k, v, shift=shift, solver=SolverOptions(tol=tol, maxiter=maxiter, block_size=ncv))
     lam, U, eta = out.eigenvalues, out.vectors, out.residuals
     found, passes = U, 0
@@ -460,7 +459,7 @@ def _shift_invert(fac, A, M, k, shift, tol, maxiter, v, ncv, default, name):
         if not (extra.converged and np.any(extra.eigenvalues < lam[-1])):
             break
         union, _, lam2, U2, eta2 = _rayleigh_ritz(A, M, np.concatenate([found, extra.vectors], axis=1), k, shift,
-                                                  normA, normM)
+                                                  _norm1(A), _norm1(M))
         if not np.sum(lam2) < np.sum(lam) - 1e-8 * (abs(lam[-1]) + abs(shift)):   # nothing missed: a copy again
             break
         found, lam, U, eta = union, lam2, U2, eta2
