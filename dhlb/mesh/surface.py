@@ -126,6 +126,45 @@ class SurfaceMesh:
         """Input row in V of each compact vertex."""
         return self.complex.vertex_labels
 
+    def is_validation_of(self, V, F, components: str = "all") -> bool:
+        """Whether ``validate_surface(V, F, components=components)`` gives this mesh again.
+
+        True when ``V`` and ``F`` are the arrays it was built from (equal values), no face was
+        flipped and, with ``components="largest"``, there was only one component.  An application
+        given a mesh and the arrays again (e.g. a direction field and its ``V, F``) can then use the
+        mesh as it is, with its cached fans, angles and frames, instead of validating once more.
+
+        Parameters
+        ----------
+        V : (n, 3) float array
+            Vertex positions.
+        F : (m, 3) int array
+            Triangles as rows of V.
+        components : {"all", "largest"}, optional
+            The ``components`` the validation would be asked for.
+
+        Returns
+        -------
+        bool
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from dhlb.mesh import validate_surface
+        >>> V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]); F = np.array([[0, 1, 2]])
+        >>> mesh = validate_surface(V, F)
+        >>> mesh.is_validation_of(V, F), mesh.is_validation_of(V + 1.0, F), mesh.is_validation_of(V, F[:, ::-1])
+        (True, False, False)
+        """
+        if not (isinstance(V, np.ndarray) and isinstance(F, np.ndarray)):
+            return False
+        if V.dtype.kind not in "fiu" or F.dtype.kind not in "iu" or V.shape != (self.n_input_vertices, 3):
+            return False
+        if F.shape != self.faces.shape or np.any(self.flipped) or (components == "largest" and self.components[0] > 1):
+            return False
+        labels = self.vertex_labels
+        return bool(np.array_equal(F, labels[self.faces]) and np.array_equal(V[labels], self.points))
+
     @cached_property
     def length_scale(self) -> float:
         """A power of two near the half-size of the mesh's bounding box (the internal length unit).

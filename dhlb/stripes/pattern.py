@@ -85,25 +85,9 @@ def _surface(V, F, reorient, components, fld=None):
         return V
     if F is None:
         raise InvalidParameterError("stripe_pattern needs the face array F (or a SurfaceMesh / direction field as V)")
-    if fld is not None and _validated_from(fld.mesh, V, F, components):
+    if fld is not None and fld.mesh.is_validation_of(V, F, components):
         return fld.mesh
     return validate_surface(V, F, reorient=reorient, components=components)
-
-
-def _validated_from(mesh: SurfaceMesh, V, F, components: str) -> bool:
-    """Whether ``validate_surface(V, F)`` gives ``mesh`` again: the same arrays, no face dropped or flipped.
-
-    Then the direction field's mesh (with its cached fans, angles, frames) is used as it is, and the
-    checks and warnings (unreferenced vertices), which it passed on these arrays, are not repeated.
-    """
-    if not (isinstance(V, np.ndarray) and isinstance(F, np.ndarray)):
-        return False
-    if V.dtype.kind not in "fiu" or F.dtype.kind not in "iu" or V.shape != (mesh.n_input_vertices, 3):
-        return False
-    if F.shape != mesh.faces.shape or np.any(mesh.flipped) or (components == "largest" and mesh.components[0] > 1):
-        return False
-    labels = mesh.vertex_labels
-    return bool(np.array_equal(F, labels[mesh.faces]) and np.array_equal(V[labels], mesh.points))
 
 
 def _field_n(fld, n):
