@@ -168,6 +168,16 @@ def simplex_volume(P):
     return sp.Abs(E.det()) / sp.factorial(P.shape[1])
 
 
+def qmul(p, q):
+    """The quaternion product of ``p = (w, x, y, z)`` and ``q`` (Hamilton: ij = k), componentwise."""
+    pw, px, py, pz = p
+    qw, qx, qy, qz = q
+    return (pw * qw - px * qx - py * qy - pz * qz,
+            pw * qx + px * qw + py * qz - pz * qy,
+            pw * qy - px * qz + py * qw + pz * qx,
+            pw * qz + px * qy - py * qx + pz * qw)
+
+
 def summary(name: str, lines) -> None:
     print(f"{name}: OK")
     for line in lines:
