@@ -15,8 +15,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from dhlb.errors import NonManifoldError
+from dhlb.topology._keys import argsort_keys
 
-__all__ = ["AngleMap", "Fans", "argsort_keys", "halfedge_pairs", "vertex_fans"]
+__all__ = ["AngleMap", "Fans", "halfedge_pairs", "vertex_fans"]
 
 TWO_PI = 2.0 * np.pi
 
@@ -37,26 +38,6 @@ class Fans:
     total: np.ndarray  # (N,) Θ_v, the sum of the corner angles at v
     count: np.ndarray  # (N,) number of corners at v
     last: np.ndarray  # (N,) last corner of each fan
-
-
-def argsort_keys(key: np.ndarray, bound: int) -> np.ndarray:
-    """``np.argsort(key)`` for int64 keys in ``[0, bound)``, equal keys by position (a stable order).
-
-    Sorts the values ``key * size + position`` when they fit into int64 (a value sort is several
-    times faster than an index sort), else ``np.argsort(key, kind="stable")``.
-
-    Examples
-    --------
-    >>> argsort_keys(np.array([5, 1, 5, 0]), 6).tolist()
-    [3, 1, 0, 2]
-    """
-    size = key.size
-    if size == 0 or int(bound) * size >= np.iinfo(np.int64).max:
-        return np.argsort(key, kind="stable")
-    comb = key * size
-    comb += np.arange(size)
-    comb.sort()
-    return np.remainder(comb, size, out=comb)
 
 
 def halfedge_pairs(F: np.ndarray, n_vertices: int) -> tuple[np.ndarray, np.ndarray, int]:

@@ -49,7 +49,8 @@ from dhlb.geometry.euclidean import EuclideanComplex
 from dhlb.mesh import _surface_checks as checks
 from dhlb.mesh import _vec3 as vec3
 from dhlb.mesh.compact import _renumber
-from dhlb.mesh.halfedge import Fans, argsort_keys, halfedge_pairs, vertex_fans
+from dhlb.mesh.halfedge import Fans, halfedge_pairs, vertex_fans
+from dhlb.topology._keys import argsort_keys
 from dhlb.topology.complex import SimplicialComplex
 
 if TYPE_CHECKING:
