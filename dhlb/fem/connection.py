@@ -264,12 +264,11 @@ def connection_laplacian(
     indptr, idx, val = K.indptr, K.indices, K.data
     row = np.repeat(np.arange(N, dtype=idx.dtype), np.diff(indptr))
     upper, lower = idx > row, idx < row
-    # K has exactly the edges of the pure complex off the diagonal: its upper triangle in CSR order is the
-    # canonical edge order, and the (symmetric) pattern of the transpose maps each lower entry to its mirror
+    # K has exactly the edges of the pure complex off the diagonal and the diagonal: the pattern of
+    # X.vertex_adjacency, which names the two entries of each canonical edge
+    adj = X.vertex_adjacency
     edge = np.zeros(K.nnz, np.int64)
-    edge[upper] = np.arange(X.n_simplices(1))
-    mirror = sp.csr_matrix((np.arange(K.nnz), idx, indptr), shape=(N, N)).T.tocsr().data
-    edge[lower] = edge[mirror[lower]]
+    edge[adj.upper] = edge[adj.lower] = np.arange(X.n_simplices(1))
     if k == 1:
         eta = T[edge, 0, 0]
         return sp.csr_matrix((val * np.where(upper, eta.conj(), np.where(lower, eta, 1.0)), idx, indptr), shape=(N, N))
