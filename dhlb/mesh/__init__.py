@@ -11,7 +11,10 @@ surfaces and ``(V, T)`` for tetrahedral meshes (libigl, gpytoolbox):
 * what every application calls first: :func:`as_surface`, :func:`as_tangent_bundle`, :func:`as_tet_mesh`
   (arrays or a mesh object → a validated mesh);
 * arrays: :func:`mesh_complex` (the complex of ``(V, cells)`` with the input orientation),
-  :func:`compact_mesh` (drop unreferenced vertices), :func:`signed_volumes`.
+  :func:`compact_mesh` (drop unreferenced vertices), :func:`signed_volumes`;
+* distributed assembly (:mod:`dhlb.mesh.partition`): :func:`partition_vertices` (METIS),
+  :func:`vertex_layout`, the local meshes :func:`surface_part`, :func:`tet_part` (→ :class:`MeshPart`)
+  and :func:`owned_rows`.
 
 Examples
 --------
@@ -30,6 +33,8 @@ _ATTRS = {
     "arrays": ["MeshComplex", "mesh_arrays", "mesh_complex"],
     "coerce": ["as_surface", "as_tangent_bundle", "as_tet_mesh"],
     "compact": ["compact_mesh"],
+    "partition": ["MeshPart", "VertexLayout", "owned_rows", "partition_vertices", "surface_part", "tet_part",
+                  "vertex_layout"],
     "surface": ["SurfaceMesh", "validate_surface"],
     "tangent": ["TangentBundle", "tangent_bundle"],
     "tet": ["TetMesh", "ball_tet_mesh", "box_tet_mesh", "check_tet_mesh", "signed_volumes"],
@@ -41,4 +46,5 @@ __all__ = [
     "TetMesh", "check_tet_mesh", "box_tet_mesh", "ball_tet_mesh", "signed_volumes",
     "MeshComplex", "mesh_complex", "mesh_arrays", "compact_mesh",
     "as_surface", "as_tangent_bundle", "as_tet_mesh",
+    "partition_vertices", "vertex_layout", "VertexLayout", "surface_part", "tet_part", "MeshPart", "owned_rows",
 ]

@@ -85,6 +85,52 @@ class TetMesh(NamedTuple):
     index: np.ndarray
     flipped: np.ndarray
 
+    @classmethod
+    def from_validated(cls, points: ArrayLike, tets: ArrayLike) -> TetMesh:
+        """The mesh of tetrahedra that :func:`check_tet_mesh` already validated, built without checks.
+
+        For a patch of a validated mesh (e.g. the local mesh of a rank, :func:`dhlb.mesh.partition.tet_part`):
+        its tetrahedra are positively oriented and non-degenerate, but at the edge of the patch a
+        vertex or an edge may have a disconnected star, which :func:`check_tet_mesh` (rightly)
+        refuses as a 3-manifold. Nothing is checked or reoriented here; give only cells that passed
+        :func:`check_tet_mesh` (its ``tets``, or a subset of them, renumbered).
+
+        Parameters
+        ----------
+        points : (N, 3) float array
+            Vertex coordinates; every row is used by some tetrahedron.
+        tets : (m, 4) int array
+            Positively oriented tetrahedra as rows of ``points`` (0 .. N-1, all used).
+
+        Returns
+        -------
+        TetMesh
+            ``tets`` as given, ``flipped`` all False, ``complex.vertex_labels == arange(N)``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> mesh = box_tet_mesh(2)
+        >>> T = mesh.tets[np.any((mesh.tets == 0) | (mesh.tets == 2), axis=1)]   # the tets at two corners
+        >>> used = np.unique(T)
+        >>> V, T = mesh.points[used], np.searchsorted(used, T)                    # pinched at vertex 1
+        >>> try:
+        ...     check_tet_mesh(V, T)
+        ... except NonManifoldError as err:
+        ...     print(str(err)[:67])
+        not a tetrahedral 3-manifold mesh: the vertex (1,) (input labels) h
+        >>> patch = TetMesh.from_validated(V, T)
+        >>> patch.tets.shape, bool((patch.volumes > 0).all()), patch.complex.n_vertices == used.size
+        ((8, 4), True, True)
+        """
+        P = np.asarray(points, dtype=np.float64)
+        T = np.asarray(tets, dtype=np.int64)
+        X = SimplicialComplex(T)
+        flipped = np.zeros(T.shape[0], bool)
+        for a in (T, flipped):
+            a.setflags(write=False)
+        return cls(P, T, X, X.index(3, T), flipped)
+
     @property
     def volumes(self) -> np.ndarray:
         """Volume of each tetrahedron (positive), in the row order of :attr:`tets`."""
