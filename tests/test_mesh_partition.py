@@ -275,17 +275,9 @@ def test_tet_element_data_of_owned_rows_are_serial(name, P):
         assert np.array_equal(Gg.barycentric_gradient_gram[rows], Gl.barycentric_gradient_gram)
 
 
-# The closed-form tet kernel (dhlb.fem._fast_moments) evaluates its series with one BLAS product over all
-# elements of a class; OpenBLAS rounds the last columns of a product whose width is 1..4 mod 8 differently
-# (another micro-kernel), so a tetrahedron's entries depend on its position in the batch. With the
-# products replaced by column-independent sums, every case below is bitwise equal.
-_POSITION_DEPENDENT = pytest.mark.xfail(strict=True, raises=AssertionError,
-                                        reason="the tet kernel's BLAS products round by column position")
-
-
-@pytest.mark.parametrize("name,P", [("box", 3), pytest.param("box", 2, marks=_POSITION_DEPENDENT),
-                                    pytest.param("torus", 2, marks=_POSITION_DEPENDENT),
-                                    pytest.param("torus", 3, marks=_POSITION_DEPENDENT)])
+# The tet kernel (dhlb.fem._fast_moments) gives each element the series degree of its own curvature and
+# pads its BLAS products to a fixed column multiple, so an element's entries do not depend on its batch.
+@pytest.mark.parametrize("name,P", [("box", 3), ("box", 2), ("torus", 2), ("torus", 3)])
 def test_tet_owned_rows_are_bitwise_serial(name, P):
     V, T = _tets(name)
     layout, Vn, Tn = _layout(V, T, P)
@@ -295,3 +287,20 @@ def test_tet_owned_rows_are_bitwise_serial(name, P):
         Al, Ml = bundle_matrices(*_vortex(Vn[p.vertices], p.local_cells))
         _assert_bitwise(owned_rows(Ml, p), _serial_rows(M, *p.owned_range), f"M rank {r}")
         _assert_bitwise(owned_rows(Al, p), _serial_rows(A, *p.owned_range), f"A rank {r}")
+
+
+def test_field_indices_of_the_parts_of_a_face_partition_add_up_to_the_whole():
+    from dhlb.fields import direction_field
+
+    V, F = read_surface(DATA / "bunny-7k.obj")
+    res = direction_field(V, F, n=4)
+    tb, whole = res.tangent, res.indices
+    part = np.arange(tb.mesh.n_faces) % 3
+    pieces = [field_indices(tb, res.u, faces=part == k) for k in range(3)]
+    assert np.array_equal(sum(p.face_index for p in pieces), whole.face_index)
+    assert sum(p.total for p in pieces) == whole.total
+    assert abs(sum(p.total_curvature for p in pieces) - whole.total_curvature) < 1e-9
+    got = np.sort(np.concatenate([p.singularities.faces for p in pieces]))
+    assert np.array_equal(got, whole.singularities.faces)
+    with pytest.raises(ShapeError, match="bool mask"):
+        field_indices(tb, res.u, faces=np.ones(3, bool))

@@ -4,8 +4,10 @@ Used by :mod:`dhlb.fem.kernels_closed` (which states the reduction of the local 
 functions).  Nodes are ``z_c = -iA_c`` for real ``A_c`` (the curvatures ``Ω_abc``).
 
 * ``ρ = max |A_c| <= 4``: the Taylor series ``Σ_q h_q(nodes) / (q + N)!`` with exact
-  coefficients (real parts: even q, imaginary parts: odd q); the degree is chosen per block
-  from its largest ρ so that the tail is below 1e-17 of the leading term.  Low degree: one
+  coefficients (real parts: even q, imaginary parts: odd q); the degree is chosen per element
+  from its ρ (rounded up to a power of 2^(1/4)) so that the tail is below 1e-17 of the leading
+  term, and the products are padded to a fixed column multiple: an element's value does not depend
+  on the batch it is computed in.  Low degree: one
   matrix product with the monomials ``A1^j A2^k``; high degree (ρ >~ 0.4): the six families of
   complete homogeneous sums ``h_q^{(β,γ)}`` by their recurrences in q, then small products.
 * ``ρ > 4``: the recurrence ``z F(α, β, γ) = F(α-1, β, γ) - F(α, β-1, γ)`` upwards from
@@ -20,6 +22,7 @@ Relative accuracy against 40-digit mpmath: below 1e-14 for every real A
 
 from __future__ import annotations
 
+import itertools
 from functools import cache
 from math import comb, factorial
 
@@ -83,11 +86,6 @@ def _degree(polys: tuple, r: float) -> int:
     return best
 
 
-def _radius_key(r: float) -> float:
-    """R rounded up to a power of 2^(1/4): a bounded set of cached series degrees."""
-    return float(2.0 ** (np.ceil(4 * np.log2(max(r, 1e-12))) / 4))
-
-
 @cache
 def _even_odd_1d(key: tuple, q: int) -> np.ndarray:
     """``(2F, q+1)`` for the 1-D polynomials of ``key``: real parts in powers of A², imag parts / A."""
@@ -117,10 +115,59 @@ def _degree_1d(key: tuple, r: float) -> int:
     return _degree(_polys_1d(key), r) // 2 + 1
 
 
+def _per_degree(rho: np.ndarray, degree, fn, rows: int):
+    """``fn(idx, q)`` for each group of elements whose series degree ``q = degree(r)`` is the same.
+
+    ``r`` is the radius ``rho`` of the element rounded up to a power of 2^(1/4) (a bounded set of
+    cached degrees). Every element gets the degree of its *own* radius, not that of the batch it is
+    computed in, and its columns are computed by :func:`_padded` products: so the value of an element
+    does not depend on which other elements are computed with it (a rank of an MPI run assembles a part
+    of the mesh and must get the serial assembly's values bit for bit). Returns the real and imaginary
+    parts ``(rows, len(rho))``.
+    """
+    keys = np.ceil(4 * np.log2(np.maximum(rho, 1e-12))).astype(np.int64)
+    uk, inv = np.unique(keys, return_inverse=True)
+    q_of = np.array([degree(float(2.0 ** (k / 4))) for k in uk], np.int64)
+    deg = q_of[inv]
+    if q_of.min(initial=0) == q_of.max(initial=0):
+        return fn(slice(None), int(q_of.max(initial=1)))
+    order = np.argsort(deg, kind="stable")
+    sd = deg[order]
+    cuts = np.r_[0, np.nonzero(sd[1:] != sd[:-1])[0] + 1, sd.size]
+    re, im = np.empty((rows, rho.size)), np.empty((rows, rho.size))
+    for a, b in itertools.pairwise(cuts):
+        idx = order[a:b]
+        re[:, idx], im[:, idx] = fn(idx, int(sd[a]))
+    return re, im
+
+
+_BLOCK = 64  # column count multiple of every product (see _padded)
+
+
+def _padded(*arrays: np.ndarray) -> tuple:
+    """The arrays with zeros appended to a length that is a multiple of :data:`_BLOCK`.
+
+    A BLAS product ``C @ B`` computes the last ``K mod 8`` (or 16, …) columns of ``B`` by another
+    kernel than the others, which rounds differently (OpenBLAS: in the last bit): with a column count
+    that is a multiple of 64 every column takes the same path, so a column's result does not depend on
+    its position or on the number of columns.
+    """
+    K = arrays[0].size
+    pad = -K % _BLOCK
+    if not pad:
+        return arrays
+    return tuple(np.concatenate([a, np.zeros(pad, a.dtype)]) for a in arrays)
+
+
 def _series_1d(key: tuple, A: np.ndarray):
     """Real and imaginary parts ``(F, len(A))`` of the 1-D functions of ``key`` at ``A``, |A| <= _R."""
-    r = float(np.abs(A).max()) if A.size else 0.0
-    q = _degree_1d(key, _radius_key(r))
+    return _per_degree(np.abs(A), lambda r: _degree_1d(key, r), lambda idx, q: _series_1d_at(key, A[idx], q),
+                       len(key))
+
+
+def _series_1d_at(key: tuple, A: np.ndarray, q: int):
+    K = A.size
+    (A,) = _padded(A)
     pw = np.empty((q + 1, A.size))
     pw[0] = 1.0
     a2 = A * A
@@ -128,7 +175,7 @@ def _series_1d(key: tuple, A: np.ndarray):
         np.multiply(pw[k - 1], a2, out=pw[k])
     y = _even_odd_1d(key, q) @ pw
     nf = len(key)
-    return y[:nf], y[nf:] * A
+    return y[:nf, :K], (y[nf:] * A)[:, :K]
 
 
 # 3-D: the ten weighted moments (weight, α, β, γ) = weight · exp[0^α, z_c^β, z_d^γ].
@@ -202,13 +249,18 @@ def _series_3d_h(A1: np.ndarray, A2: np.ndarray, q: int):
 
 
 def _series_3d(A1: np.ndarray, A2: np.ndarray, pats: tuple):
-    r = float(max(np.abs(A1).max(), np.abs(A2).max())) if A1.size else 0.0
-    deg = _degree_3d(_radius_key(r))
+    rho = np.maximum(np.abs(A1), np.abs(A2))
+    return _per_degree(rho, _degree_3d, lambda idx, q: _series_3d_at(A1[idx], A2[idx], pats, q), len(pats))
+
+
+def _series_3d_at(A1: np.ndarray, A2: np.ndarray, pats: tuple, deg: int):
+    K = A1.size
+    A1, A2 = _padded(A1, A2)
     if deg > _H_MIN_DEGREE:
         re, im = np.empty((10, A1.size)), np.empty((10, A1.size))
-        for s in range(0, A1.size, 4096):
+        for s in range(0, A1.size, 4096):   # chunks of a multiple of _BLOCK columns
             re[:, s: s + 4096], im[:, s: s + 4096] = _series_3d_h(A1[s: s + 4096], A2[s: s + 4096], deg)
-        return re[list(pats)], im[list(pats)]
+        return re[list(pats), :K], im[list(pats), :K]
     even, odd, ce, co = _matrix_3d(deg)
     ce, co = ce[list(pats)], co[list(pats)]
     q = max(sum(k) for k in even + odd)
@@ -222,7 +274,7 @@ def _series_3d(A1: np.ndarray, A2: np.ndarray, pats: tuple):
         np.multiply(prev[d - 1], A1, out=cur[d])
         start[d % 2] += d + 1
         prev = cur
-    return ce @ bufs[0], co @ bufs[1]
+    return (ce @ bufs[0])[:, :K], (co @ bufs[1])[:, :K]
 
 
 # --------------------------------------------------------------------------- large phases

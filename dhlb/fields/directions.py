@@ -234,7 +234,7 @@ def _zeros_in_faces(tb: TangentBundle, z, faces) -> np.ndarray:
     return out / 3.0
 
 
-def field_indices(tb: TangentBundle, u: ArrayLike) -> FieldIndices:
+def field_indices(tb: TangentBundle, u: ArrayLike, *, faces: ArrayLike | None = None) -> FieldIndices:
     """Per-face indices, their sum, the Poincaré–Hopf terms and the singular faces of a section.
 
     Parameters
@@ -243,6 +243,11 @@ def field_indices(tb: TangentBundle, u: ArrayLike) -> FieldIndices:
         The n-th tangent power bundle the section lives in.
     u : (N,) complex array
         The section, as accepted by :func:`section_values`.
+    faces : (m,) bool array, optional
+        Count only these faces (rows of ``mesh.faces``): the others get index 0, and the sum, the
+        total curvature and the boundary rotation are those of these faces and their boundary
+        edges. The counts over the parts of a partition of the faces add up to the whole mesh's
+        (a rank of an MPI run counts its own faces, :mod:`dhlb.fields.distributed`).
 
     Returns
     -------
@@ -273,16 +278,24 @@ def field_indices(tb: TangentBundle, u: ArrayLike) -> FieldIndices:
     L = tb.bundle
     ind = index_form(L, z)
     face_index = (m.face_sign * ind[m.triangle_of_face]).astype(np.int64)
-    h = np.nonzero(m.halfedge_twin < 0)[0]  # boundary half-edges, faces[f, k] → faces[f, k+1]
+    boundary = m.halfedge_twin < 0  # boundary half-edges h = 3f + k, faces[f, k] → faces[f, k+1]
+    total_curv = tb.total_curvature
+    if faces is not None:
+        counted = np.asarray(faces, bool)
+        if counted.shape != (m.n_faces,):
+            raise ShapeError(f"faces must be a bool mask of shape ({m.n_faces},), got {counted.shape}")
+        face_index[~counted] = 0
+        boundary &= np.repeat(counted, 3)
+        total_curv = float(tb.n * tb.face_curvature[counted].sum())
+    h = np.nonzero(boundary)[0]
     rot = 0.0
     if h.size:
         xi = rotation_form(L, z)
         a, b = m.faces.ravel()[h], np.roll(m.faces, -1, axis=1).ravel()[h]
         rot = float(np.sum(np.where(a < b, 1.0, -1.0) * xi[m.halfedge_edge[h]]))
-    faces = np.nonzero(face_index)[0]
-    bary = _zeros_in_faces(tb, z, faces)
-    pts = np.einsum("kp,kpd->kd", bary, m.points[m.faces[faces]])
-    sing = Singularities(faces, m.face_rows[faces], face_index[faces], bary, pts)
-    total_curv = tb.total_curvature
+    singular = np.nonzero(face_index)[0]
+    bary = _zeros_in_faces(tb, z, singular)
+    pts = np.einsum("kp,kpd->kd", bary, m.points[m.faces[singular]])
+    sing = Singularities(singular, m.face_rows[singular], face_index[singular], bary, pts)
     return FieldIndices(face_index, int(face_index.sum()), total_curv, rot,
                         (total_curv + rot) / (2 * np.pi), sing)
