@@ -6,6 +6,8 @@
 * demo fields and curves: :class:`FilamentField` (regularized Biot–Savart), :func:`uniform_flow`,
   :func:`superpose`, :func:`vortex_ring`, :func:`hopf_link`, :func:`torus_knot`, :func:`trefoil`
 * filaments of a section: :func:`extract_filaments` → :class:`FilamentSet` of :class:`Filament`
+* filaments of a partitioned mesh: :func:`filament_pieces` per part → :class:`FilamentPieces` of
+  :class:`FilamentPiece`, joined by :func:`stitch_pieces`
 * curve topology: :func:`linking_number`, :func:`linking_matrix`, :func:`hausdorff_distance`
 * the whole pipeline: :func:`vortex_filaments` → :class:`VortexResult`
 
@@ -31,6 +33,7 @@ from dhlb.vortex.linking import (
 )
 from dhlb.vortex.options import VortexOptions
 from dhlb.vortex.pipeline import VortexResult, filament_linking_numbers, vortex_filaments
+from dhlb.vortex.stitch import FilamentPiece, FilamentPieces, filament_pieces, stitch_pieces
 from dhlb.vortex.velocity import edge_circulation, gauss_legendre, velocity_bundle
 
 __all__ = [
@@ -38,6 +41,7 @@ __all__ = [
     "FilamentField", "segment_velocity", "superpose", "uniform_flow",
     "hopf_link", "torus_knot", "trefoil", "vortex_ring",
     "Filament", "FilamentSet", "extract_filaments", "face_zeros",
+    "FilamentPiece", "FilamentPieces", "filament_pieces", "stitch_pieces",
     "gauss_linking_integral", "hausdorff_distance", "linking_matrix", "linking_number", "polyline_distance",
     "VortexResult", "VortexOptions", "filament_linking_numbers", "vortex_filaments",
 ]

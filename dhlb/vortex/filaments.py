@@ -180,7 +180,7 @@ class FilamentSet:
                 f"{self.clamped_faces.size} clamped faces)")
 
 
-# ---------------------------------------------------------------------------- input checks
+# ---------------------------------------------------------------------------- chains
 def _pair_ambiguous(flux_t, faces_t, start, face_pos):
     """(entry node, exit node) pairs in one tetrahedron, matching entries to exits by distance."""
     ins, outs = [], []
@@ -289,24 +289,60 @@ def extract_filaments(
     >>> len(fs), fs[0].closed, fs[0].points[[0, -1], 2].round(6).tolist()    # from boundary to boundary
     (1, False, [-1.0, 1.0])
     """
+    _, P, z = _check_inputs(bundle, section, points)
+    tr = _trace(bundle, z, P, None, placement)
+    ties = np.nonzero(tr.tie)[0]
+    fils = [Filament(tr.positions[nodes], closed, tr.node_face[nodes]) for nodes, closed in tr.chains()]
+    return FilamentSet(tuple(fils), tr.index, tr.ambiguous, ties, tr.crossed[tr.clamped], tr.crossed[tr.degenerate])
+
+
+@dataclass(frozen=True, eq=False)
+class _Trace:
+    """The crossings of the zero set through a set of tetrahedra and how they link (see :func:`_trace`)."""
+
+    index: np.ndarray      # (n_2,) the index form
+    tie: np.ndarray        # (n_1,) bool: rotation form π
+    crossed: np.ndarray    # (c,) crossed triangles (rows of X.simplices(2)) of the traced tetrahedra
+    clamped: np.ndarray    # (c,) bool, from face_zeros
+    degenerate: np.ndarray  # (c,) bool, from face_zeros
+    node_face: np.ndarray  # (n,) triangle of each crossing (a triangle of index ±k carries k crossings)
+    node_slot: np.ndarray  # (n,) which of the |index| crossings of its triangle, 0 .. |index| - 1
+    positions: np.ndarray  # (n, 3) point of each crossing
+    succ: np.ndarray       # (n,) the next crossing along the filament inside the traced tetrahedra, or -1
+    ambiguous: np.ndarray  # (a,) traced tetrahedra (rows of X.simplices(3)) crossed more than once
+
+    def chains(self):
+        """``(nodes, closed)`` per chain or loop, in order along the filament (:func:`_order_chains`)."""
+        if self.succ.size == 0:
+            return []
+        order, lab, closed = _order_chains(self.succ)
+        cuts = np.nonzero(np.diff(lab[order]))[0] + 1
+        return [(nodes, bool(closed[lab[nodes[0]]])) for nodes in np.split(order, cuts)]
+
+
+def _trace(bundle, z, P, tets, placement: str) -> _Trace:
+    """Crossed triangles, their points, and the links "entry → exit" through the tetrahedra ``tets``.
+
+    ``tets`` are rows of ``X.simplices(3)`` (None: all, and then every crossed triangle is a node,
+    also one that lies in no tetrahedron); the caller has checked the inputs with :func:`_check_inputs`.
+    """
     from dhlb.bundles.index import index_form, rotation_form
 
-    X, P, z = _check_inputs(bundle, section, points)
+    X = bundle.X
     if placement not in ("balanced", "vertex"):
         raise InvalidParameterError(f"placement must be 'balanced' or 'vertex', got {placement!r}")
     ind = index_form(bundle, z)
-    ties = np.nonzero(rotation_form(bundle, z) == np.pi)[0]
-    F3 = X.faces(3)
-    crossed = np.nonzero(ind)[0]
-    flux = check_tet_complex(X, P, crossed)[:, None] * np.array([1, -1, 1, -1]) * ind[F3]
+    tie = rotation_form(bundle, z) == np.pi
+    rows = np.arange(X.n_simplices(3)) if tets is None else tets
+    F3 = X.faces(3)[rows]
+    crossed = np.nonzero(ind)[0] if tets is None else np.unique(F3[ind[F3] != 0])
+    flux = check_tet_complex(X, P, crossed)[rows][:, None] * np.array([1, -1, 1, -1]) * ind[F3]
     bad = flux.sum(axis=1) != 0
     if np.any(bad):
         t = int(np.argmax(bad))
-        tet = tuple(int(v) for v in X.vertex_labels[X.simplices(3)[t]])
+        tet = tuple(int(v) for v in X.vertex_labels[X.simplices(3)[rows[t]]])
         raise CurvatureMismatchError(f"the index fluxes of the tetrahedron {tet} sum to {int(flux[t].sum())}, "
                                      "not 0: the bundle's curvature is not closed there")
-    if crossed.size == 0:
-        return FilamentSet((), ind, tie_edges=ties)
     n2 = X.n_simplices(2)
     pos, _, clamped, degenerate = face_zeros(bundle, z, P, crossed, placement=placement)
     mult = np.abs(ind[crossed])
@@ -328,11 +364,7 @@ def extract_filaments(
     if amb.size:
         warnings.warn(f"{amb.size} tetrahedra are crossed by more than one filament; entries and exits were paired "
                       "by distance there (see FilamentSet.ambiguous_tets); refine the mesh to resolve them",
-                      DhlbWarning, stacklevel=2)
-    order, lab, closed = _order_chains(succ)
-    cuts = np.nonzero(np.diff(lab[order]))[0] + 1
-    fils = []
-    for nodes in np.split(order, cuts):
-        f = node_face[nodes]
-        fils.append(Filament(face_pos[f], bool(closed[lab[nodes[0]]]), f))
-    return FilamentSet(tuple(fils), ind, amb.astype(np.int64), ties, crossed[clamped], crossed[degenerate])
+                      DhlbWarning, stacklevel=3)
+    node_slot = np.arange(node_face.size) - start[node_face]
+    return _Trace(ind, tie, crossed, clamped, degenerate, node_face, node_slot, face_pos[node_face], succ,
+                  rows[amb].astype(np.int64))
