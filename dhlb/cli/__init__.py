@@ -85,6 +85,21 @@ def _check_spelling(parser: argparse.ArgumentParser, argv: list[str]) -> None:
             sub.error(f"unrecognized arguments: {option}{did_you_mean(option, known)}")
 
 
+_MPI_SIZE_VARIABLES = ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "MPI_LOCALNRANKS")
+"""Environment variables in which mpirun / mpiexec (Open MPI, MPICH, PMIx) pass the number of ranks."""
+
+
+def _under_mpirun() -> bool:
+    """:func:`dhlb.cli.mpi.launched_by_mpirun`, without importing it (and PETSc) when no MPI variable is set."""
+    import os
+
+    if not any(k in os.environ for k in _MPI_SIZE_VARIABLES):
+        return False
+    from dhlb.cli.mpi import launched_by_mpirun
+
+    return launched_by_mpirun()
+
+
 def main(argv=None) -> int:
     """Run ``dhlb`` with ``argv`` (default ``sys.argv[1:]``); return the exit code.
 
@@ -110,6 +125,10 @@ def main(argv=None) -> int:
     """
     from dhlb.cli._common import EXIT_USAGE, run_command
 
+    if _under_mpirun():  # mpirun -n P dhlb ...: every rank runs the command, rank 0 alone writes and prints
+        from dhlb.cli.mpi import mpi_main
+
+        return mpi_main(argv)
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else [str(a) for a in argv]
     try:

@@ -89,7 +89,9 @@ def register(subparsers) -> None:
                    help="prescribe index K/n at a face (row of the file) or at the face nearest to a point; "
                         "repeatable; the result has exactly these singularities (write --singularity=-1,0,0:1 "
                         "when x is negative)")
-    p.add_argument("--backend", default=None, help="superlu, cholmod, cholespy, amg-lobpcg (default: by size, memory)")
+    p.add_argument("--backend", default=None,
+                   help="superlu, cholmod, cholespy, amg-lobpcg (default: by size, memory); petsc: distributed "
+                        "over the ranks of mpirun (docs/mpi.md)")
     p.add_argument("--reorient", action="store_true", help="flip inconsistently oriented faces")
     p.add_argument("--format", dest="fmt", metavar="FMT", help="file format if the extension does not say it")
     p.add_argument("--no-png", action="store_true", help="do not render OUT.png")
@@ -243,6 +245,8 @@ def run(args) -> int:
     sing = args.singularity or []
     if args.singularity and (align is not None or args.s != 0.0):
         raise UsageError("--singularity prescribes the field; it does not combine with --align or --s")
+    if args.backend == "petsc" and not sing and align is None:  # the smoothest field under MPI: distributed
+        return _run_distributed(args, fmt, plan, t0)
     V, F = read_surface(args.mesh, fmt)
     t1 = time.perf_counter()
     if args.singularity:
@@ -251,6 +255,30 @@ def run(args) -> int:
         res = direction_field(V, F, n=args.n, s=args.s, align=align, lam=args.lam, solver=args.backend,
                               options=FieldOptions(reorient=args.reorient, progress=not (args.quiet or args.json)))
     t2 = time.perf_counter()
+    return _report(args, res, V, F, plan, t0, t1, t2)
+
+
+def _run_distributed(args, fmt, plan, t0) -> int:
+    """``dhlb field --backend petsc``: rank 0 reads the mesh, all ranks compute, rank 0 writes and prints."""
+    from dhlb.fields import FieldOptions
+    from dhlb.fields.distributed import distributed_direction_field
+    from dhlb.io import read_surface
+    from dhlb.mesh.distribute import root_first, world
+
+    comm = world()
+    VF = root_first(lambda: read_surface(args.mesh, fmt), comm, what=f"reading {args.mesh}")
+    V, F = VF if comm.rank == 0 else (None, None)
+    t1 = time.perf_counter()
+    res = distributed_direction_field(V, F, n=args.n, s=args.s, options=FieldOptions(reorient=args.reorient),
+                                      comm=comm)
+    t2 = time.perf_counter()
+    if res is None:  # ranks other than 0: rank 0 writes and prints
+        return 0
+    return _report(args, res, V, F, plan, t0, t1, t2)
+
+
+def _report(args, res, V, F, plan, t0, t1, t2) -> int:
+    """Write the outputs of ``dhlb field`` and print its summary."""
     note = (getattr(res, "solver", None) or {}).get("note")
     if note and not args.quiet:
         print(f"dhlb field: note: {note}", file=sys.stderr)

@@ -8,12 +8,37 @@ import os
 import sys
 import tempfile
 
-from dhlb.cli import build_parser, main
+from dhlb.cli import _MPI_SIZE_VARIABLES, build_parser, main
 from dhlb.cli._common import run_command
 from dhlb.linalg.backends import _REGISTRY, register_backend
 from dhlb.linalg.backends_petsc import PetscBackend, comm_rank_size, install_abort_hook
 
-__all__ = ["mpi_main"]
+__all__ = ["launched_by_mpirun", "mpi_main"]
+
+_ACTIVE = False  # mpi_main is running (dhlb.cli.main called from it must not call it again)
+
+
+def launched_by_mpirun() -> bool:
+    """Whether this process is one of several started by ``mpirun``/``mpiexec`` (read from the environment).
+
+    ``dhlb ...`` then runs as :func:`mpi_main`; no MPI library is loaded to find out.
+
+    Examples
+    --------
+    >>> isinstance(launched_by_mpirun(), bool)
+    True
+    """
+    import os
+
+    if _ACTIVE:
+        return False
+    for name in _MPI_SIZE_VARIABLES:
+        try:
+            if int(os.environ.get(name, "1")) > 1:
+                return True
+        except ValueError:
+            continue
+    return False
 
 
 def mpi_main(argv=None) -> int:
@@ -39,8 +64,10 @@ def mpi_main(argv=None) -> int:
     dhlb ...
     0
     """
+    global _ACTIVE
     if "petsc" not in _REGISTRY:
         register_backend("petsc", PetscBackend, ("petsc4py", "slepc4py", "mpi4py"))
+    _ACTIVE = True
     rank, size = comm_rank_size()
     argv = list(sys.argv[1:] if argv is None else argv)
     if size == 1:
@@ -64,7 +91,30 @@ def mpi_main(argv=None) -> int:
                 code = 2
     from mpi4py import MPI  # present: comm_rank_size() returned size > 1
 
+    _leave_together(MPI.COMM_WORLD, int(code))
     return int(MPI.COMM_WORLD.allreduce(int(code), op=MPI.MAX))
+
+
+GRACE_SECONDS = 20.0
+"""How long a rank whose command failed waits for the others before it ends the whole run (``MPI_Abort``)."""
+
+
+def _leave_together(comm, code: int) -> None:
+    """Wait until every rank has finished its command; a failed rank ends all ranks if the others do not come.
+
+    An error found by all ranks together (bad input found on rank 0 is raised on every rank) lets every
+    rank arrive here. An error on one rank only (its local part) leaves the others waiting inside a
+    collective call: the failed rank, having printed its one error line, then calls ``MPI_Abort``.
+    """
+    import time
+
+    req = comm.Ibarrier()
+    deadline = time.monotonic() + GRACE_SECONDS
+    while not req.Test():
+        if code != 0 and time.monotonic() > deadline:
+            sys.stderr.flush()
+            comm.Abort(code)
+        time.sleep(0.005)
 
 
 if __name__ == "__main__":  # pragma: no cover

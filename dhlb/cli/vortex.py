@@ -221,17 +221,51 @@ def format_report(meta: dict, data: dict) -> str:
     return report_table(rows, timings=t, written=meta.get("written"))
 
 
+def _run_distributed(args):
+    """``dhlb vortex --backend petsc``: rank 0 builds or reads the mesh and the velocity, all ranks compute.
+
+    Returns ``(result, mesh name, velocity name, velocity)``; the result is None on ranks other than 0.
+    """
+    from dhlb.linalg import SolverOptions
+    from dhlb.mesh.distribute import root_first, world
+    from dhlb.vortex import VortexOptions
+    from dhlb.vortex.distributed import distributed_vortex_filaments
+
+    comm = world()
+
+    def read():
+        V, T, name = _mesh(args)
+        velocity, vname = _velocity(args, V, T)
+        return V, T, name, velocity, vname
+
+    got = root_first(read, comm, what="dhlb vortex")
+    V, T, name, velocity, vname = got if comm.rank == 0 else (None,) * 5
+    # a velocity field v(x) is needed on every rank; per-vertex velocities travel with the mesh
+    shared = comm.bcast((name, vname, velocity if callable(velocity) else None), root=0)
+    name, vname = shared[:2]
+    if comm.rank != 0:
+        velocity = shared[2]
+    result = distributed_vortex_filaments(V, T, velocity, args.hbar, options=VortexOptions(order=args.order),
+                                          solver=SolverOptions(tol=args.tol), comm=comm)
+    return result, name, vname, velocity
+
+
 def run(args) -> int:
     """Entry point of ``dhlb vortex``."""
     from dhlb.linalg import SolverOptions
     from dhlb.vortex import VortexOptions, vortex_filaments
 
     plan = output_plan(OUTPUTS, args)  # before the computation; never over the mesh or the velocity file
-    V, T, mesh_name = _mesh(args)
-    velocity, vname = _velocity(args, V, T)
-    result = vortex_filaments(V, T, velocity, args.hbar, options=VortexOptions(order=args.order),
-                              solver=SolverOptions(backend=args.backend, tol=args.tol),
-                              progress=not (args.quiet or args.json))
+    if args.backend == "petsc":
+        result, mesh_name, vname, velocity = _run_distributed(args)
+        if result is None:  # ranks other than 0: rank 0 writes and prints
+            return 0
+    else:
+        V, T, mesh_name = _mesh(args)
+        velocity, vname = _velocity(args, V, T)
+        result = vortex_filaments(V, T, velocity, args.hbar, options=VortexOptions(order=args.order),
+                                  solver=SolverOptions(backend=args.backend, tol=args.tol),
+                                  progress=not (args.quiet or args.json))
     meta = {"mesh": mesh_name, "velocity": vname, "hbar": float(args.hbar)}
     if plan:
         _outputs(plan, result, meta, velocity)

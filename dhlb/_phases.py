@@ -1,0 +1,77 @@
+"""Wall time and peak resident memory of each phase of a run (the per-rank figures of the MPI drivers).
+
+On Linux the peak resident set size (``VmHWM``) can be reset (``/proc/self/clear_refs``, value 5), so
+the peak *within* each phase is measured, not only the peak since the process started; elsewhere the
+process peak so far (``getrusage``) is reported for every phase.
+
+Examples
+--------
+>>> meter = PhaseMeter()
+>>> x = bytearray(50 * 2**20)
+>>> meter.mark("allocate")
+>>> sorted(meter.seconds), meter.peak_mb["allocate"] >= 50
+(['allocate'], True)
+"""
+
+from __future__ import annotations
+
+import resource
+import time
+
+__all__ = ["PhaseMeter", "peak_mb"]
+
+
+def peak_mb() -> float:
+    """The peak resident memory of this process so far, in MB (``getrusage``; Linux reports kilobytes).
+
+    Examples
+    --------
+    >>> peak_mb() > 0
+    True
+    """
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def _hwm_mb() -> float | None:
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024.0
+    except OSError:
+        return None
+    return None
+
+
+def _reset_hwm() -> bool:
+    try:
+        with open("/proc/self/clear_refs", "w", encoding="ascii") as fh:
+            fh.write("5")
+        return True
+    except OSError:
+        return False
+
+
+class PhaseMeter:
+    """Times phases and measures the peak resident memory within each (MB); :meth:`mark` ends a phase."""
+
+    def __init__(self):
+        self.seconds: dict[str, float] = {}
+        self.peak_mb: dict[str, float] = {}
+        self._resettable = _reset_hwm() and _hwm_mb() is not None
+        self._t0 = self._t = time.perf_counter()
+
+    def mark(self, name: str) -> None:
+        """End the phase ``name`` (begun at the previous mark, or at construction) and begin the next."""
+        now = time.perf_counter()
+        self.seconds[name] = self.seconds.get(name, 0.0) + now - self._t
+        peak = _hwm_mb() if self._resettable else peak_mb()
+        self.peak_mb[name] = max(self.peak_mb.get(name, 0.0), peak if peak is not None else peak_mb())
+        if self._resettable:
+            _reset_hwm()
+        self._t = time.perf_counter()
+
+    @property
+    def total(self) -> float:
+        """Seconds since construction."""
+        return time.perf_counter() - self._t0

@@ -1,0 +1,391 @@
+"""Meshes under MPI: rank 0 reads, validates and partitions; every rank gets its part and a halo.
+
+The pattern of FEniCSx and Firedrake on the tools dhlb has (:mod:`dhlb.mesh.partition`, mpi4py):
+
+1. **Rank 0** validates the whole mesh (orientation, manifoldness, components, geometry: the checks of
+   :func:`~dhlb.mesh.validate_surface` and :func:`~dhlb.mesh.check_tet_mesh`), partitions its vertices
+   with METIS (:func:`~dhlb.mesh.partition.partition_vertices`) and renumbers them part by part
+   (:func:`~dhlb.mesh.partition.vertex_layout`); rank ``r`` owns the new vertex ids
+   ``offsets[r]:offsets[r + 1]``. Cells keep their order.
+2. **Every rank** receives its :class:`~dhlb.mesh.partition.MeshPart` — owned vertices plus the halo
+   whose data enter the owned rows (surfaces: two rings of faces; tets: one layer) — and builds the
+   local mesh from it with the same mesh layer as on one process; the assembly kernels then run
+   unchanged on the local mesh, and the owned rows are those of the serial assembly, bit for bit.
+
+Bad input is found on rank 0 and raised on *every* rank as the same typed error
+(:func:`root_first`), so no rank is left waiting in a collective call.
+
+All functions here are collective over ``comm`` (default ``MPI_COMM_WORLD``); on one process (no
+mpi4py, or one rank) they do the same work without communication.
+
+Examples
+--------
+>>> from dhlb.io import read_surface, example_path
+>>> loc = distribute_surface(*read_surface(example_path("torus.obj")))   # one process: the whole mesh
+>>> loc.n_owned == loc.n_vertices, loc.rank, loc.size
+(True, 0, 1)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from dhlb.errors import DhlbError
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from dhlb.mesh.partition import MeshPart, VertexLayout
+
+__all__ = ["LocalMesh", "distribute_surface", "distribute_tets", "gather_owned", "root_first", "world"]
+
+
+class _SelfComm:
+    """The communicator of a single process (no mpi4py): the mpi4py calls used here, without communication."""
+
+    rank, size = 0, 1
+
+    def bcast(self, obj, root=0):
+        return obj
+
+    def scatter(self, objs, root=0):
+        return objs[0]
+
+    def gather(self, obj, root=0):
+        return [obj]
+
+    def allreduce(self, obj, op=None):
+        return obj
+
+    def allgather(self, obj):
+        return [obj]
+
+
+def world():
+    """``MPI.COMM_WORLD`` of mpi4py, or a one-process stand-in when mpi4py is not installed.
+
+    Returns
+    -------
+    mpi4py.MPI.Comm or a stand-in with ``rank``, ``size``, ``bcast``, ``scatter``, ``gather``, ``allreduce``
+
+    Examples
+    --------
+    >>> comm = world()
+    >>> 0 <= comm.rank < comm.size
+    True
+    """
+    try:
+        from mpi4py import MPI
+    except ImportError:
+        return _SelfComm()
+    return MPI.COMM_WORLD
+
+
+def _rebuild(kind: type, message: str) -> BaseException:
+    """An exception of class ``kind`` with ``message`` (its own constructor if it takes one string)."""
+    try:
+        err = kind(message)
+    except Exception:
+        return DhlbError(f"{kind.__name__}: {message}")
+    return err if str(err) == message else DhlbError(f"{kind.__name__}: {message}")
+
+
+def root_first(fn: Callable[[], Any], comm=None, *, what: str = "") -> Any:
+    """Run ``fn()`` on rank 0 only; if it raises, raise the same kind of error on every rank.
+
+    The value of ``fn()`` is returned on rank 0 and None elsewhere. On failure rank 0 re-raises its
+    own exception and every other rank raises one of the same class and message (prefixed with
+    ``what``, and the rank that failed), so that ``except`` clauses and exit codes agree everywhere.
+
+    Parameters
+    ----------
+    fn : callable
+        The work (no arguments) rank 0 does.
+    comm : mpi4py.MPI.Comm, optional
+        Default :func:`world`.
+    what : str, optional
+        Says what was being done, for the other ranks' message.
+
+    Returns
+    -------
+    object or None
+        ``fn()`` on rank 0, None on the other ranks.
+
+    Raises
+    ------
+    Exception
+        Of the class ``fn`` raised (a :class:`~dhlb.errors.DhlbError` if that class cannot be rebuilt
+        from a message), on every rank.
+
+    Examples
+    --------
+    >>> root_first(lambda: 42)
+    42
+    """
+    comm = world() if comm is None else comm
+    value, status = None, None
+    if comm.rank == 0:
+        try:
+            value = fn()
+        except Exception as err:
+            status = (type(err), str(err))
+            if comm.size > 1:
+                comm.bcast(status, root=0)
+            raise
+    if comm.size == 1:
+        return value
+    status = comm.bcast(status, root=0)
+    if status is not None:
+        kind, message = status
+        raise _rebuild(kind, f"{what + ': ' if what else ''}{message} (found on MPI rank 0)")
+    return value
+
+
+@dataclass(eq=False)
+class LocalMesh:
+    """The part of a distributed mesh held by one rank (made by :func:`distribute_surface` / :func:`distribute_tets`).
+
+    Parameters
+    ----------
+    mesh : SurfaceMesh or TetMesh
+        The local mesh: the owned vertices and the halo, validated locally by the mesh layer (local
+        vertex ``i`` is the new global vertex ``part.vertices[i]``; local cell ``c`` the global cell
+        ``part.cells[c]``).
+    part : MeshPart
+        Owned vertices, halo and cell ownership (:mod:`dhlb.mesh.partition`).
+    offsets : (P + 1,) int array
+        Rank ``r`` owns the new global vertex ids ``offsets[r]:offsets[r + 1]``.
+    n_vertices, n_cells : int
+        Global counts.
+    rank, size : int
+        This rank and the number of ranks.
+    global_mesh : SurfaceMesh or TetMesh or None
+        Rank 0 only: the validated whole mesh, in its own (old) numbering; None elsewhere.
+    layout : VertexLayout or None
+        Rank 0 only: old ↔ new vertex numbers; None elsewhere.
+    vertex_values : (n_local, ...) array or None
+        The local rows of per-vertex data sent with the mesh (:func:`distribute_tets`).
+    boundary_faces : (b, 3) int array or None
+        Tets: the boundary triangles of the whole mesh with all three vertices local (local vertex ids),
+        so that a face of the patch's boundary can be told from a cut between ranks.
+    """
+
+    mesh: Any
+    part: MeshPart
+    offsets: np.ndarray
+    n_vertices: int
+    n_cells: int
+    rank: int
+    size: int
+    global_mesh: Any = None
+    layout: VertexLayout | None = None
+    vertex_values: np.ndarray | None = None
+    boundary_faces: np.ndarray | None = None
+
+    @property
+    def start(self) -> int:
+        """The first owned new global vertex id."""
+        return int(self.offsets[self.rank])
+
+    @property
+    def stop(self) -> int:
+        """One past the last owned new global vertex id."""
+        return int(self.offsets[self.rank + 1])
+
+    @property
+    def n_owned(self) -> int:
+        """The number of owned vertices."""
+        return self.stop - self.start
+
+
+def _scatter_parts(comm, make_parts: Callable[[], tuple[Any, list]], what: str):
+    """Rank 0 computes ``(header, [payload per rank])``; every rank gets ``(header, its payload)``."""
+    out = root_first(make_parts, comm, what=what)
+    if comm.size == 1:
+        header, payloads = out
+        return header, payloads[0]
+    header, payloads = out if comm.rank == 0 else (None, None)
+    header = comm.bcast(header, root=0)
+    mine = comm.scatter(payloads, root=0)
+    return header, mine
+
+
+def distribute_surface(V, F, *, reorient: bool = False, components: str = "all", comm=None) -> LocalMesh:
+    """Validate a triangle mesh on rank 0 and give every rank its part with two rings of halo faces.
+
+    Parameters
+    ----------
+    V : (n, 3) float array or None
+        Vertex positions (read on rank 0 only; the other ranks may pass None).
+    F : (m, 3) int array or None
+        Triangles (rank 0; None elsewhere).
+    reorient : bool, optional
+        Flip inconsistently oriented faces (as :func:`~dhlb.mesh.validate_surface`).
+    components : {"all", "largest"}, optional
+        Keep all connected components, or only the largest (as :func:`~dhlb.mesh.validate_surface`).
+    comm : mpi4py.MPI.Comm, optional
+        Default :func:`world`.
+
+    Returns
+    -------
+    LocalMesh
+        With ``mesh`` the local :class:`~dhlb.mesh.SurfaceMesh` (owned vertices and halo).
+
+    Raises
+    ------
+    DhlbError
+        Whatever :func:`~dhlb.mesh.validate_surface` raises for the whole mesh, on every rank.
+
+    Examples
+    --------
+    >>> from dhlb.io import read_surface, example_path
+    >>> loc = distribute_surface(*read_surface(example_path("torus.obj")))
+    >>> loc.mesh.n_faces == loc.n_cells
+    True
+    """
+    from dhlb.mesh import partition
+    from dhlb.mesh.surface import validate_surface
+
+    comm = world() if comm is None else comm
+
+    def root():
+        gm = validate_surface(V, F, reorient=reorient, components=components)
+        lay = partition.vertex_layout(partition.partition_vertices(gm.n_vertices, gm.faces, comm.size), comm.size)
+        Fn = lay.inverse[gm.faces]
+        Pn = gm.points[lay.order]
+        parts = [partition.surface_part(Fn, lay, r) for r in range(comm.size)]
+        root.kept = (gm, lay)
+        return (lay.offsets, gm.n_vertices, gm.n_faces), [(p, np.ascontiguousarray(Pn[p.vertices])) for p in parts]
+
+    (offsets, nv, nf), (part, P) = _scatter_parts(comm, root, "distributing the surface")
+    # the local patch: the whole mesh was validated on rank 0, so this only builds the local structures
+    local = validate_surface(P, part.local_cells)
+    gm, lay = root.kept if comm.rank == 0 else (None, None)
+    return LocalMesh(local, part, np.asarray(offsets), int(nv), int(nf), comm.rank, comm.size, gm, lay)
+
+
+def distribute_tets(V, T, *, orientation: str = "fix", vertex_values=None, comm=None) -> LocalMesh:
+    """Validate a tetrahedral mesh on rank 0 and give every rank its part with one layer of halo tets.
+
+    Parameters
+    ----------
+    V : (n, 3) float array or TetMesh or None
+        Vertex positions, or an already validated :class:`~dhlb.mesh.TetMesh` (rank 0; None elsewhere).
+    T : (m, 4) int array or None
+        Tetrahedra (rank 0, unless ``V`` is a TetMesh).
+    orientation : {"fix", "require"}, optional
+        As :func:`~dhlb.mesh.check_tet_mesh`.
+    vertex_values : (n, ...) array or callable, optional
+        Per-vertex data given with the input rows of ``V`` (rank 0): each rank receives the rows of its
+        local vertices as ``LocalMesh.vertex_values``. A callable is called on rank 0 with the validated
+        :class:`~dhlb.mesh.TetMesh` and must return such an array (it may raise; every rank then raises).
+    comm : mpi4py.MPI.Comm, optional
+        Default :func:`world`.
+
+    Returns
+    -------
+    LocalMesh
+        With ``mesh`` the local :class:`~dhlb.mesh.TetMesh` (:meth:`~dhlb.mesh.TetMesh.from_validated`: a
+        patch may have a vertex or edge whose star is disconnected at its edge) and ``boundary_faces``.
+
+    Raises
+    ------
+    DhlbError
+        Whatever :func:`~dhlb.mesh.check_tet_mesh` raises for the whole mesh, on every rank.
+
+    Examples
+    --------
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> loc = distribute_tets(box_tet_mesh(3), None)
+    >>> loc.mesh.tets.shape[0] == loc.n_cells == 162
+    True
+    """
+    from dhlb.mesh import partition
+    from dhlb.mesh.tet import TetMesh, check_tet_mesh
+
+    comm = world() if comm is None else comm
+
+    def root():
+        gm = V if isinstance(V, TetMesh) else check_tet_mesh(V, T, orientation=orientation)
+        lay = partition.vertex_layout(partition.partition_vertices(gm.points.shape[0], gm.tets, comm.size),
+                                      comm.size)
+        values = vertex_values(gm) if callable(vertex_values) else vertex_values
+        if values is not None:  # input rows -> compact -> new numbering
+            values = np.asarray(values)[np.asarray(gm.complex.vertex_labels)][lay.order]
+        Tn = lay.inverse[gm.tets]
+        Pn = gm.points[lay.order]
+        Bn = lay.inverse[gm.boundary_faces]   # the whole mesh's boundary triangles, new ids
+        parts = [partition.tet_part(Tn, lay, r) for r in range(comm.size)]
+        root.kept = (gm, lay)
+        payloads = []
+        for p in parts:
+            local_of = np.full(Pn.shape[0], -1, np.int64)
+            local_of[p.vertices] = np.arange(p.vertices.size)
+            B = local_of[Bn]
+            payloads.append((p, np.ascontiguousarray(Pn[p.vertices]), None if values is None else values[p.vertices],
+                             B[np.all(B >= 0, axis=1)]))
+        return (lay.offsets, gm.points.shape[0], gm.tets.shape[0]), payloads
+
+    (offsets, nv, nt), (part, P, vals, B) = _scatter_parts(comm, root, "distributing the tetrahedral mesh")
+    local = TetMesh.from_validated(P, part.local_cells)  # a patch of the mesh rank 0 validated and oriented
+    gm, lay = root.kept if comm.rank == 0 else (None, None)
+    return LocalMesh(local, part, np.asarray(offsets), int(nv), int(nt), comm.rank, comm.size, gm, lay, vals, B)
+
+
+def gather_owned(loc: LocalMesh, values, comm=None):
+    """The owned rows of per-vertex ``values`` of every rank, on rank 0 in the OLD (input) vertex numbering.
+
+    Parameters
+    ----------
+    loc : LocalMesh
+        This rank's part.
+    values : (n_owned, ...) array
+        One row per owned vertex, in the order of the owned new ids.
+    comm : mpi4py.MPI.Comm, optional
+        Default :func:`world`.
+
+    Returns
+    -------
+    (n_vertices, ...) array or None
+        On rank 0 the rows in the numbering of ``loc.global_mesh``; None elsewhere.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> loc = distribute_tets(box_tet_mesh(2), None)
+    >>> x = gather_owned(loc, loc.mesh.points[loc.part.owned])
+    >>> bool(np.array_equal(x, box_tet_mesh(2).points))
+    True
+    """
+    comm = world() if comm is None else comm
+    values = np.asarray(values)
+    if values.shape[0] != loc.n_owned:
+        from dhlb.errors import ShapeError
+
+        raise ShapeError(f"gather_owned: {values.shape[0]} rows for {loc.n_owned} owned vertices")
+    pieces = comm.gather(values, root=0)
+    if comm.rank != 0:
+        return None
+    new = np.concatenate(pieces)  # rank order = new id order
+    return new[loc.layout.inverse]
+
+
+def gather_cells(loc: LocalMesh, mask, values, comm=None):
+    """Per-cell ``values`` of the cells ``mask`` of every rank, on rank 0 by global cell id.
+
+    Returns ``(ids, values)`` on rank 0 (sorted by global cell id) and ``(None, None)`` elsewhere.
+    """
+    comm = world() if comm is None else comm
+    ids = loc.part.cells[mask]
+    got = comm.gather((ids, np.asarray(values)), root=0)
+    if comm.rank != 0:
+        return None, None
+    all_ids = np.concatenate([g[0] for g in got])
+    all_vals = np.concatenate([g[1] for g in got])
+    order = np.argsort(all_ids, kind="stable")
+    return all_ids[order], all_vals[order]
+

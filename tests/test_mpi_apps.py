@@ -1,0 +1,109 @@
+"""The distributed applications (field, vortex) under ``mpirun -n 1, 2, 3``: skipped without petsc4py and mpirun.
+
+Runs tests/mpi/app_checks.py (owned rows bit for bit equal to the serial assembly, eigenvalues and
+singularities equal to the default backend's, the linked rings) for P = 1, 2 and 3 ranks (oversubscribed
+on a 2-core machine) and compares the runs with each other; and the command line under ``mpirun -n 2``:
+``dhlb field --backend petsc`` writes the default backend's singularities, a bad mesh ends every rank
+with one error line.
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from dhlb.linalg.backends_petsc import petsc_available
+
+ROOT = Path(__file__).resolve().parents[1]
+MPIRUN = shutil.which("mpirun")
+pytestmark = [pytest.mark.slow,
+              pytest.mark.skipif(not (petsc_available() and MPIRUN), reason="needs petsc4py/slepc4py and mpirun")]
+
+
+def _mpirun(n, args, timeout=600):
+    cmd = [MPIRUN, "-n", str(n)] + (["--allow-run-as-root"] if os.geteuid() == 0 else []) + args
+    env = {**os.environ, "OMPI_MCA_rmaps_base_oversubscribe": "1", "OPENBLAS_NUM_THREADS": "1",
+           "PYTHONPATH": str(ROOT)}
+    t = time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=ROOT)
+    return proc, time.perf_counter() - t
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    out = {}
+    for n in (1, 2, 3):
+        path = tmp_path_factory.mktemp(f"p{n}") / "out.json"
+        proc, _ = _mpirun(n, [sys.executable, str(ROOT / "tests" / "mpi" / "app_checks.py"), str(path)])
+        assert proc.returncode == 0, proc.stdout + proc.stderr
+        out[n] = json.loads(path.read_text())
+    return out
+
+
+@pytest.mark.parametrize("n", [1, 2, 3])
+def test_every_check_passes(runs, n):
+    assert all(v["ok"] for v in runs[n].values()), runs[n]
+
+
+def test_owned_rows_are_the_serial_rows_and_parts_are_balanced(runs):
+    for n in (1, 2, 3):
+        r = runs[n]["check_field_rows_bitwise"]
+        assert r["bitwise_rows"] and len(r["owned"]) == n
+        N = sum(r["owned"])
+        assert all(loc < N for loc in r["local"]) or n == 1       # no rank holds the whole mesh
+
+
+def test_results_do_not_depend_on_the_rank_count(runs):
+    f = [runs[n]["check_field"] for n in (1, 2, 3)]
+    assert f[0]["sing_faces"] == f[1]["sing_faces"] == f[2]["sing_faces"]
+    assert f[0]["sing_index"] == f[1]["sing_index"] == f[2]["sing_index"]
+    lam = [x["eigenvalue"] for x in f]
+    assert max(abs(x / lam[0] - 1) for x in lam) <= 1e-12
+    v = [runs[n]["check_vortex"] for n in (1, 2, 3)]
+    assert v[0]["n_filaments"] == v[1]["n_filaments"] == v[2]["n_filaments"] == 2
+    for a in v[1:]:
+        for p, q in zip(v[0]["points"], a["points"]):
+            assert np.abs(np.array(p) - np.array(q)).max() <= 1e-10
+
+
+def test_command_line_field_on_two_ranks_writes_the_default_fields_singularities(tmp_path):
+    mesh = str(ROOT / "tests" / "data" / "bunny-7k.obj")
+    proc, _ = _mpirun(2, [sys.executable, "-m", "dhlb", "field", mesh, "--n", "4", "--backend", "petsc", "--no-png",
+                          "-o", str(tmp_path / "field")])
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.count("34 singularities") == 1           # rank 0 alone prints
+    from dhlb.cli import main
+
+    assert main(["field", mesh, "--n", "4", "--no-png", "-q", "-o", str(tmp_path / "ref")]) == 0
+    got, ref = (json.loads((tmp_path / f"{b}.json").read_text()) for b in ("field", "ref"))
+    assert abs(got["eigenvalue"] / ref["eigenvalue"] - 1) < 1e-12
+    assert got["solver"]["parallel"]["ranks"] == 2
+    a, b = np.load(tmp_path / "field.npz"), np.load(tmp_path / "ref.npz")
+    for key in ("singular_faces", "singular_index", "face_index"):
+        assert np.array_equal(a[key], b[key]), key
+    assert np.allclose(np.abs(a["u"]), np.abs(b["u"]), atol=1e-7, equal_nan=True)
+
+
+def test_command_line_vortex_on_two_ranks_finds_the_linked_rings(tmp_path):
+    proc, _ = _mpirun(2, [sys.executable, "-m", "dhlb", "vortex", "--box", "16", "--velocity", "linked-rings",
+                          "--backend", "petsc", "--json"])
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    assert len(data["filaments"]) == 2 and all(f["closed"] for f in data["filaments"])
+    assert data["linking_numbers"] == [[0, 1], [1, 0]]
+
+
+def test_a_bad_mesh_ends_every_rank_with_one_error_line(tmp_path):
+    bad = tmp_path / "bad.obj"
+    bad.write_text("v 0 0 0\nv 1 0 0\nv 0 nan 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n")
+    proc, elapsed = _mpirun(2, [sys.executable, "-m", "dhlb", "field", str(bad), "--backend", "petsc", "--no-png",
+                                "-o", str(tmp_path / "out")], timeout=120)
+    assert proc.returncode != 0 and elapsed < 60
+    lines = [ln for ln in proc.stderr.splitlines() if "error" in ln.lower()]
+    assert len(lines) == 1 and "not finite" in lines[0], proc.stderr
