@@ -152,3 +152,229 @@ def test_mpi_command_line_writes_the_default_backends_field_once(tmp_path):
     assert np.array_equal(a["singular_faces"], b["singular_faces"])
     assert np.array_equal(a["singular_index"], b["singular_index"])
     assert np.array_equal(a["face_index"], b["face_index"])
+
+
+# ---------------------------------------------------------------------- dhlb.linalg.distributed (issue 31)
+from dhlb.errors import InsufficientMemoryError, NonFiniteError, ShapeError  # noqa: E402
+from dhlb.linalg import backends_petsc  # noqa: E402
+from dhlb.linalg._checks import norm1  # noqa: E402
+from dhlb.linalg.distributed import (  # noqa: E402
+    RowBlock,
+    check_hermitian_distributed,
+    default_shift_distributed,
+    distributed_eigenpairs,
+    gather_to_root,
+    norm1_distributed,
+    scatter_values,
+    start_vector,
+)
+from dhlb.linalg.eigen import default_shift  # noqa: E402
+
+
+def _blocks(A, M):
+    n = A.shape[0]
+    return RowBlock.from_global(A, 0, n), RowBlock.from_global(M, 0, n)
+
+
+def _grid3(m):
+    """Dirichlet Laplacian of an m³ grid: λ_min = 3 (2 − 2 cos(π/(m+1)))."""
+    T = sp.diags([-np.ones(m - 1), 2 * np.ones(m), -np.ones(m - 1)], [-1, 0, 1])
+    Id = sp.identity(m)
+    return (sp.kron(sp.kron(T, Id), Id) + sp.kron(sp.kron(Id, T), Id) + sp.kron(sp.kron(Id, Id), T)).tocsr()
+
+
+@needs_petsc
+def test_distributed_path_graph_matches_the_closed_form():
+    n = 800
+    res = distributed_eigenpairs(*_blocks(_path(n), sp.identity(n, format="csr")), 4, tol=1e-10)
+    assert res.converged and res.method == "krylovschur" and res.factorizations == 1 and res.residuals.max() <= 1e-10
+    assert np.allclose(res.eigenvalues, 2 - 2 * np.cos(np.pi * np.arange(4) / n), rtol=0, atol=1e-12)
+    assert np.allclose(res.vectors.conj().T @ res.vectors, np.eye(4), atol=1e-10)
+    assert np.all(res.vectors.T @ start_vector(0, n) > 0)        # the phase normalization
+    assert res.stats["icntl_24"] == 1 and res.stats["icntl_7"] == backends_petsc.MUMPS_ORDERING
+
+
+@needs_petsc
+@settings(max_examples=6, deadline=None)
+@given(st.integers(0, 2**31), st.integers(1, 4))
+def test_distributed_random_complex_hermitian_pencils_agree_with_dense_eigh(seed, k):
+    A, M = _hermitian_pencil(seed, 300)
+    res = distributed_eigenpairs(*_blocks(A, M), k, tol=1e-10)
+    ref = sla.eigh(A.toarray(), M.toarray(), eigvals_only=True, subset_by_index=[0, k - 1])
+    assert res.converged and np.all(res.residuals <= 1e-10)
+    assert np.allclose(res.eigenvalues, ref, rtol=0, atol=1e-8 * abs(A).sum(axis=0).max())
+    U = res.vectors
+    assert np.allclose(U.conj().T @ (M @ U), np.eye(k), atol=1e-8)
+
+
+@needs_petsc
+def test_lobpcg_gamg_on_a_3d_grid_matches_the_closed_form():
+    m = 14
+    res = distributed_eigenpairs(*_blocks(_grid3(m), sp.identity(m**3, format="csr")), 1, tol=1e-10,
+                                 method="lobpcg-gamg")
+    exact = 3 * (2 - 2 * np.cos(np.pi / (m + 1)))
+    assert res.converged and res.method == "lobpcg-gamg" and res.factorizations == 0 and res.solves > 0
+    assert abs(res.eigenvalues[0] / exact - 1) < 1e-8
+
+
+@needs_petsc
+def test_lobpcg_gamg_on_tet_vortex_matrices_matches_krylovschur():
+    from dhlb.fem import bundle_matrices
+    from dhlb.geometry import EuclideanComplex
+    from dhlb.mesh import box_tet_mesh
+    from dhlb.vortex import FilamentField, vortex_ring
+    from dhlb.vortex.velocity import velocity_bundle
+
+    mesh = box_tet_mesh(10, lower=-1.5, upper=1.5)
+    v = FilamentField([vortex_ring(0.8, center=(0.01, 0.02, 0.03), n=48)], 2 * np.pi, core_radius=0.15)
+    L = velocity_bundle(mesh.complex, mesh.points, v, 1.0)
+    A, M = (sp.csr_matrix(S) for S in bundle_matrices(L, EuclideanComplex(mesh.complex, points=mesh.points)))
+    B = _blocks(A, M)
+    gam = distributed_eigenpairs(*B, 2, tol=1e-10, method="lobpcg-gamg")
+    ks = distributed_eigenpairs(*B, 2, tol=1e-10, method="krylovschur")
+    assert gam.converged and ks.converged
+    assert np.allclose(gam.eigenvalues, ks.eigenvalues, rtol=1e-8, atol=0)
+    assert default_shift_distributed(*B) == default_shift(A, M)
+
+
+@needs_petsc
+def test_auto_falls_back_to_lobpcg_gamg_when_the_factor_does_not_fit():
+    from dhlb.linalg.memory import set_memory_limit
+
+    B = _blocks(_grid3(8), sp.identity(512, format="csr"))
+    assert distributed_eigenpairs(*B, 1, tol=1e-10).method == "krylovschur"
+    set_memory_limit(10_000)
+    try:
+        res = distributed_eigenpairs(*B, 1, tol=1e-10)
+    finally:
+        set_memory_limit(None)
+    assert res.method == "lobpcg-gamg" and "GiB per rank" in res.note and res.converged
+
+
+@given(st.integers(0, 5000), st.lists(st.integers(0, 5000), max_size=6), st.integers(0, 2**32))
+def test_start_vector_does_not_depend_on_the_split(n, cuts, seed):
+    cuts = sorted({0, n, *(c for c in cuts if c <= n)})
+    parts = [start_vector(a, b, seed) for a, b in itertools.pairwise(cuts)]
+    whole = start_vector(0, n, seed)
+    assert np.array_equal(np.concatenate(parts) if parts else np.zeros(0), whole)
+    assert n < 100 or not np.array_equal(whole, start_vector(0, n, seed + 1))
+
+
+def test_scatter_gather_norm1_and_shift_on_one_process():
+    A, M = _hermitian_pencil(5, 200)
+    B, C = _blocks(A, M)
+    x = np.column_stack([np.arange(200) * (1 + 2j), np.ones(200)])
+    wanted = np.array([199, 0, 7, 7, 150])
+    assert np.array_equal(scatter_values(x, 0, 200, 200, wanted), x[wanted])
+    assert np.array_equal(scatter_values(x[:, 0].real, 0, 200, 200, wanted), x[wanted, 0].real)
+    assert np.array_equal(gather_to_root(x), x)
+    assert np.isclose(norm1_distributed(B), norm1(A), rtol=1e-14)
+    assert default_shift_distributed(B, C) == default_shift(A, M)
+    with pytest.raises(ShapeError, match="outside"):
+        scatter_values(x, 0, 200, 200, np.array([200]))
+
+
+@needs_petsc
+def test_distributed_bad_inputs_raise_typed_errors_naming_rank_and_row():
+    n = 50
+    A, M = _path(n).astype(complex).tolil(), sp.identity(n, format="csr")
+    A[7, 8] = -1 + 0.5j                                          # A[8, 7] stays -1: not Hermitian
+    with pytest.raises(InvalidOperatorError, match=r"A is not Hermitian: A\[7, 8\].*row 7.*MPI rank 0 of 1"):
+        distributed_eigenpairs(*_blocks(A.tocsr(), M), 1, tol=1e-10)
+    with pytest.raises(InvalidOperatorError, match="not Hermitian"):
+        check_hermitian_distributed(RowBlock.from_global(A.tocsr(), 0, n))
+    S = _path(n).tocsr()
+    S.data[S.indptr[12]] = np.nan
+    with pytest.raises(NonFiniteError, match=r"A\[12, 11\] = nan is not finite \[MPI rank 0 of 1\]"):
+        distributed_eigenpairs(*_blocks(S, M), 1, tol=1e-10)
+    B = RowBlock.from_global(_path(n), 0, n)
+    short = RowBlock(B.indptr[:-1], B.indices, B.data, 0, n, n)
+    with pytest.raises(ShapeError, match="len\\(indptr\\) - 1 = 49"):
+        distributed_eigenpairs(short, RowBlock.from_global(M, 0, n), 1, tol=1e-10)
+    with pytest.raises(ShapeError, match="tile"):
+        distributed_eigenpairs(RowBlock.from_global(_path(n), 0, n - 1), RowBlock.from_global(M, 0, n - 1), 1,
+                               tol=1e-10)
+
+
+# ---------------------------------------------------------------------- MUMPS options and failures (defects 1, 2)
+def _factor_of(ksp):
+    return ksp.getPC().getFactorMatrix()
+
+
+@needs_petsc
+def test_mumps_options_reach_the_factor_in_the_eigen_and_factorize_paths(monkeypatch):
+    monkeypatch.setattr(backends_petsc, "MUMPS_ORDERING", 2)         # AMF: not MUMPS' default (7, automatic)
+    fac = PetscBackend().factorize(_path(60) + sp.identity(60))
+    F = _factor_of(fac.ksp)
+    assert (F.getMumpsIcntl(24), F.getMumpsIcntl(7)) == (1, 2)
+    be = PetscBackend()
+    n = 300
+    smallest_eigenpairs(_path(n), sp.identity(n, format="csr"), k=1, solver=SolverOptions(backend=be))
+    F = _factor_of(be._eps[1].getST().getKSP())
+    assert (F.getMumpsIcntl(24), F.getMumpsIcntl(7)) == (1, 2)
+    res = distributed_eigenpairs(*_blocks(_path(n), sp.identity(n, format="csr")), 1, tol=1e-10)
+    assert (res.stats["icntl_24"], res.stats["icntl_7"], res.stats["ordering_used"]) == (1, 2, 2)
+
+
+@needs_petsc
+def test_singular_shifted_matrix_says_singular_in_the_eigen_paths():
+    n = 200
+    with pytest.raises(InvalidOperatorError, match="singular: MUMPS found 1 null pivot"):
+        distributed_eigenpairs(*_blocks(_path(n), sp.identity(n, format="csr")), 1, tol=1e-10, shift=0.0)
+    with pytest.raises(InvalidOperatorError, match="singular: MUMPS found 1 null pivot"):
+        PetscBackend().eigensolve(_path(n), sp.identity(n, format="csr"), np.ones((n, 1)), shift=0.0, tol=1e-10,
+                                  maxiter=100)
+
+
+@needs_petsc
+def test_a_mumps_workspace_failure_names_the_petsc_code_and_not_singularity(monkeypatch):
+    monkeypatch.setitem(backends_petsc.MUMPS_ICNTL, 14, -90)       # 10 % of the estimated workspace: INFOG(1) = -9
+    K = _grid3(20)
+    for run in (lambda: distributed_eigenpairs(*_blocks(K, sp.identity(8000, format="csr")), 1, tol=1e-10,
+                                               method="krylovschur"),
+                lambda: PetscBackend().factorize(K)):
+        with pytest.raises(InsufficientMemoryError) as info:
+            run()
+        msg = str(info.value)
+        assert "PETSc error code 76" in msg and "workspace is too small" in msg and "INFOG(1) = -9" in msg, msg
+        assert "singular" not in msg
+
+
+def _mpirun_n(size, args, timeout):
+    cmd = [MPIRUN, "-n", str(size)] + (["--allow-run-as-root"] if os.geteuid() == 0 else []) + [sys.executable] + args
+    env = {**os.environ, "OMPI_MCA_rmaps_base_oversubscribe": "1", "OPENBLAS_NUM_THREADS": "1"}
+    t = time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=ROOT)
+    return proc, time.perf_counter() - t
+
+
+@needs_mpirun
+@pytest.mark.slow
+def test_distributed_results_do_not_depend_on_the_number_of_ranks(tmp_path):
+    script = str(ROOT / "tests" / "mpi" / "linalg_checks.py")
+    out = {}
+    for size in (1, 2, 3):
+        proc, _ = _mpirun_n(size, [script, str(tmp_path / f"p{size}.npz")], timeout=600)
+        assert proc.returncode == 0, proc.stdout + proc.stderr
+        lines = [ln for ln in proc.stdout.splitlines() if ln.startswith(f"[{size} ranks]")]
+        assert len(lines) == 3 and all(ln.endswith(": ok") for ln in lines), proc.stdout
+        out[size] = np.load(tmp_path / f"p{size}.npz")
+    ref = out[1]
+    for size in (2, 3):
+        got = out[size]
+        assert np.all(np.abs(got["eigenvalues"] / ref["eigenvalues"] - 1) < 1e-12)
+        assert np.abs(got["vectors"] - ref["vectors"]).max() < 1e-10
+        assert got["shift"] == ref["shift"]
+        assert abs(got["lobpcg"][0] / ref["lobpcg"][0] - 1) < 1e-8
+
+
+@needs_mpirun
+@pytest.mark.slow
+@pytest.mark.parametrize("size", [1, 2, 3])
+def test_a_nan_on_one_rank_raises_the_same_error_everywhere_with_one_line(tmp_path, size):
+    proc, elapsed = _mpirun_n(size, [str(ROOT / "tests" / "mpi" / "linalg_checks.py"), str(tmp_path / "x.npz"),
+                                     "--nan"], timeout=120)
+    assert proc.returncode != 0 and elapsed < 30, (elapsed, proc.stderr)
+    assert proc.stderr.count("NonFiniteError: A[") == 1, proc.stderr
+    assert f"is not finite [MPI rank {size - 1} of {size}]" in proc.stderr
+    assert not (tmp_path / "x.npz").exists()

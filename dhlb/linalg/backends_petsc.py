@@ -49,13 +49,15 @@ from __future__ import annotations
 import hashlib
 import importlib.util
 import sys
+import time
 
 import numpy as np
 import scipy.sparse as sp
 
-from dhlb.errors import DhlbError, InvalidOperatorError, ShapeError
+from dhlb.errors import DhlbError, InsufficientMemoryError, InvalidOperatorError, ShapeError
 
-__all__ = ["PetscBackend", "comm_rank_size", "install_abort_hook", "petsc_available", "row_ranges"]
+__all__ = ["MUMPS_ICNTL", "MUMPS_ORDERING", "PetscBackend", "comm_rank_size", "install_abort_hook", "petsc_available",
+           "row_ranges"]
 
 _SOLVERS = ("mumps", "superlu_dist", "petsc")
 
@@ -135,7 +137,9 @@ def install_abort_hook() -> None:
         from mpi4py import MPI
 
         rank = MPI.COMM_WORLD.rank
-        if isinstance(value, DhlbError):
+        if getattr(value, "mpi_collective", False) and rank != 0:
+            time.sleep(10)  # raised on every rank alike: rank 0 prints it once and ends the run
+        elif isinstance(value, DhlbError):
             sys.stderr.write(f"dhlb (MPI rank {rank}): {kind.__name__}: {value}\n")
         else:
             previous(kind, value, tb)
@@ -235,8 +239,30 @@ def _gather(v) -> np.ndarray:
     return np.concatenate(comm.tompi4py().allgather(local))
 
 
-def _direct_pc(ksp, prefix: str):
-    """Set ``ksp`` to ``preonly`` + LU by the first available distributed direct solver; returns its name."""
+MUMPS_ORDERING = 0
+"""MUMPS' ``ICNTL(7)``, the sequential ordering of the analysis (0 AMD, 2 AMF, 3 SCOTCH, 4 PORD, 5 METIS, 6 QAMD,
+7 automatic); set on every factorization (:func:`_direct_pc`) and read back in the tests."""
+
+MUMPS_ICNTL: dict = {}
+"""Extra MUMPS ``ICNTL`` settings ``{i: value}`` for every factorization (tuning, and the tests' forced failures)."""
+
+_MUMPS_FAILURES = {
+    -8: "MUMPS' integer workspace is too small (raise ICNTL(14))",
+    -9: "MUMPS' workspace is too small (raise ICNTL(14))",
+    -10: "numerically singular",
+    -13: "a memory allocation failed inside MUMPS (out of memory)",
+    -19: "the memory limit ICNTL(23) of MUMPS is too small",
+}
+_MUMPS_MEMORY = (-8, -9, -13, -19)
+
+
+def _direct_pc(ksp) -> str:
+    """Set ``ksp`` to ``preonly`` + LU by the first available distributed direct solver; returns its name.
+
+    The MUMPS options (null-pivot detection ``ICNTL(24) = 1``, the ordering :data:`MUMPS_ORDERING`,
+    :data:`MUMPS_ICNTL`) go under the options prefix that ``ksp`` itself reads (for an eigensolver's
+    spectral transformation that is the ``EPS`` prefix + ``st_``), so the factor sees them.
+    """
     from petsc4py import PETSc
 
     ksp.setType("preonly")
@@ -248,10 +274,51 @@ def _direct_pc(ksp, prefix: str):
             continue
         pc.setFactorSolverType(solver)
         if solver == "mumps":
-            PETSc.Options(prefix).setValue("mat_mumps_icntl_24", 1)  # null pivot detection: singular -> error
+            opts = PETSc.Options(ksp.getOptionsPrefix() or "")
+            for i, value in {24: 1, 7: MUMPS_ORDERING, **MUMPS_ICNTL}.items():
+                opts.setValue(f"mat_mumps_icntl_{i}", int(value))
         return solver
     raise InvalidOperatorError("PETSc has no direct solver for a distributed matrix (neither MUMPS nor "
                                "SuperLU_dist); rebuild PETSc with --download-mumps or run on one rank")
+
+
+def _mumps(pc):
+    """The MUMPS factor matrix of ``pc``, or ``None`` (another solver, or not set up)."""
+    from petsc4py import PETSc
+
+    try:
+        F = pc.getFactorMatrix()
+        F.getMumpsInfog(1)
+    except (PETSc.Error, AttributeError):
+        return None
+    return F
+
+
+def _null_pivots(pc) -> int:
+    """The null pivots MUMPS found (``INFOG(28)``, with ``ICNTL(24) = 1``); 0 for other solvers."""
+    F = _mumps(pc)
+    return 0 if F is None else int(F.getMumpsInfog(28))
+
+
+def _petsc_failure(err, pc, what: str, singular_hint: str = "") -> DhlbError:
+    """The typed error for a PETSc failure while factorizing or solving with ``pc``.
+
+    Names PETSc's error code and message; it says "singular" only when MUMPS reports it
+    (``INFOG(1) = -10``), and its workspace and memory failures raise
+    :class:`~dhlb.errors.InsufficientMemoryError`.
+    """
+    lines = [ln.split("] ", 1)[-1].strip() for ln in str(err).strip().splitlines() if ln.strip()]
+    petsc = f"PETSc error code {getattr(err, 'ierr', '?')}" + (f": {lines[-1]}" if len(lines) > 1 else "")
+    F = _mumps(pc)
+    code = 0 if F is None else int(F.getMumpsInfog(1))
+    if code == -10:
+        return InvalidOperatorError(f"{what} is numerically singular (MUMPS INFOG(1) = -10; {petsc})"
+                                    + (f"; {singular_hint}" if singular_hint else ""))
+    if code < 0:
+        words = _MUMPS_FAILURES.get(code, "MUMPS failed")
+        msg = (f"{what}: {words} (MUMPS INFOG(1) = {code}, INFOG(2) = {int(F.getMumpsInfog(2))}; {petsc})")
+        return InsufficientMemoryError(msg) if code in _MUMPS_MEMORY else InvalidOperatorError(msg)
+    return InvalidOperatorError(f"{what}: PETSc failed ({petsc})")
 
 
 def _raise_if_failed(ksp, what):
@@ -260,19 +327,24 @@ def _raise_if_failed(ksp, what):
     reason = ksp.getConvergedReason()
     if reason < 0:
         name = {v: k for k, v in vars(PETSc.KSP.ConvergedReason).items() if isinstance(v, int)}.get(reason, reason)
-        raise InvalidOperatorError(f"{what}: the PETSc solve failed ({name}); the matrix is singular or "
-                                   "numerically singular")
+        raise InvalidOperatorError(f"{what}: the PETSc solve failed ({name})")
 
 
 def _factor_stats(ksp, solver) -> dict:
-    """Size of the factor and flops of the factorization as reported by MUMPS (empty for other solvers)."""
-    if solver != "mumps":
+    """Size of the factor and flops of the factorization as reported by MUMPS (empty for other solvers).
+
+    Includes ``ICNTL(7)`` and ``ICNTL(24)`` read back from the factor and the ordering MUMPS used
+    (``INFOG(7)``).
+    """
+    F = _mumps(ksp.getPC()) if solver == "mumps" else None
+    if F is None:
         return {"solver": solver}
-    F = ksp.getPC().getFactorMatrix()
     entries = F.getMumpsInfog(29)  # negative: millions of entries
     return {"solver": solver, "factor_entries": float(entries if entries >= 0 else -entries * 1e6),
             "factor_flops": float(F.getMumpsRinfog(3)),
-            "peak_mb_max_rank": float(F.getMumpsInfog(21)), "peak_mb_total": float(F.getMumpsInfog(22))}
+            "peak_mb_max_rank": float(F.getMumpsInfog(21)), "peak_mb_total": float(F.getMumpsInfog(22)),
+            "icntl_7": int(F.getMumpsIcntl(7)), "icntl_24": int(F.getMumpsIcntl(24)),
+            "ordering_used": int(F.getMumpsInfog(7))}
 
 
 # ---------------------------------------------------------------------- factor
@@ -289,14 +361,14 @@ class _PetscFactor:
         self.ksp = PETSc.KSP().create(comm=_world())
         self.ksp.setOptionsPrefix(prefix)
         self.ksp.setOperators(self.K)
-        self.solver = _direct_pc(self.ksp, prefix)
+        self.solver = _direct_pc(self.ksp)
         self.name = f"petsc-{self.solver}"
         self.ksp.setFromOptions()
+        self.ksp.setErrorIfNotConverged(True)  # a failed factorization raises here, with MUMPS' INFOG(1)
         try:
             self.ksp.setUp()
         except PETSc.Error as err:
-            raise InvalidOperatorError(f"the matrix to factorize is singular ({self.solver} failed: error "
-                                       f"code {err.ierr})") from err
+            raise _petsc_failure(err, self.ksp.getPC(), "the matrix to factorize") from err
         self.ksp.setErrorIfNotConverged(False)
         self._x = self.K.createVecLeft()
         self._probe()
@@ -308,11 +380,8 @@ class _PetscFactor:
         b.set(1.0)
         self.ksp.solve(b, self._x)
         _raise_if_failed(self.ksp, "factorize")
-        if self.solver == "mumps":
-            null = self.ksp.getPC().getFactorMatrix().getMumpsInfog(28)
-            if null > 0:
-                raise InvalidOperatorError(f"the matrix to factorize is singular (MUMPS found {null} null "
-                                           "pivot(s))")
+        if null := _null_pivots(self.ksp.getPC()):
+            raise InvalidOperatorError(f"the matrix to factorize is singular (MUMPS found {null} null pivot(s))")
         if not np.all(np.isfinite(self._x.getArray(readonly=True))):
             raise InvalidOperatorError("the matrix to factorize is singular (the factorization produced inf/NaN)")
 
@@ -393,7 +462,7 @@ class PetscBackend:
         E.setConvergenceTest(SLEPc.EPS.Conv.NORM)
         st = E.getST()
         st.setType(SLEPc.ST.Type.SINVERT)
-        self.solver = _direct_pc(st.getKSP(), prefix)
+        self.solver = _direct_pc(st.getKSP())
         E.setFromOptions()
         self._eps = (key, E, Ap, Mp)
         return E
@@ -421,11 +490,15 @@ class PetscBackend:
         E.setDimensions(nev=p, ncv=ncv)
         E.setTolerances(tol=float(tol), max_it=int(maxiter))
         E.setInitialSpace([_vec_from(Ap, Xa[:, j]) for j in range(p)])
+        what, hint = f"A + εM (ε = {shift:.3g})", "so A is not positive semidefinite or M is not positive definite"
+        pc = E.getST().getKSP().getPC()
         try:
+            E.setUp()
+            if null := _null_pivots(pc):
+                raise InvalidOperatorError(f"{what} is singular: MUMPS found {null} null pivot(s); {hint}")
             E.solve()
         except PETSc.Error as err:
-            raise InvalidOperatorError(f"SLEPc failed (error code {err.ierr}): A + εM (ε = {shift:.3g}) is singular, "
-                                       "so A is not positive semidefinite or M is not positive definite") from err
+            raise _petsc_failure(err, pc, what, hint) from err
         self.stats = _factor_stats(E.getST().getKSP(), self.solver)
         nconv = min(E.getConverged(), p)
         if nconv == 0 and E.getIterationNumber() >= maxiter:
