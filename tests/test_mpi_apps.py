@@ -57,6 +57,7 @@ def test_owned_rows_are_the_serial_rows_and_parts_are_balanced(runs):
         assert r["bitwise_rows"] and len(r["owned"]) == n
         N = sum(r["owned"])
         assert all(loc < N for loc in r["local"]) or n == 1       # no rank holds the whole mesh
+        assert runs[n]["check_tet_rows_bitwise"]["bitwise_rows"]
 
 
 def test_results_do_not_depend_on_the_rank_count(runs):
@@ -68,8 +69,21 @@ def test_results_do_not_depend_on_the_rank_count(runs):
     v = [runs[n]["check_vortex"] for n in (1, 2, 3)]
     assert v[0]["n_filaments"] == v[1]["n_filaments"] == v[2]["n_filaments"] == 2
     for a in v[1:]:
-        for p, q in zip(v[0]["points"], a["points"]):
-            assert np.abs(np.array(p) - np.array(q)).max() <= 1e-10
+        assert _curve_distance(v[0]["points"], a["points"]) <= 1e-10
+
+
+def _curve_distance(A, B) -> float:
+    """The largest point distance between two sets of closed polylines, matched up to order and start point."""
+    worst = 0.0
+    for p in A:
+        p, best = np.array(p), np.inf
+        for q in B:
+            q = np.array(q)
+            if q.shape == p.shape:
+                k = int(np.argmin(np.linalg.norm(q - p[0], axis=1)))  # loops start at the smallest crossing
+                best = min(best, np.abs(np.roll(q, -k, axis=0) - p).max())   # in the numbering of the run
+        worst = max(worst, best)
+    return worst
 
 
 def test_command_line_field_on_two_ranks_writes_the_default_fields_singularities(tmp_path):
@@ -87,7 +101,9 @@ def test_command_line_field_on_two_ranks_writes_the_default_fields_singularities
     a, b = np.load(tmp_path / "field.npz"), np.load(tmp_path / "ref.npz")
     for key in ("singular_faces", "singular_index", "face_index"):
         assert np.array_equal(a[key], b[key]), key
-    assert np.allclose(np.abs(a["u"]), np.abs(b["u"]), atol=1e-7, equal_nan=True)
+    ua, ub = a["u"], b["u"]                 # the same section up to the eigenvector's arbitrary phase
+    phase = np.vdot(ub, ua) / abs(np.vdot(ub, ua))
+    assert np.abs(ua - phase * ub).max() <= 1e-6 * np.abs(ub).max()
 
 
 def test_command_line_vortex_on_two_ranks_finds_the_linked_rings(tmp_path):
@@ -106,4 +122,17 @@ def test_a_bad_mesh_ends_every_rank_with_one_error_line(tmp_path):
                                 "-o", str(tmp_path / "out")], timeout=120)
     assert proc.returncode != 0 and elapsed < 60
     lines = [ln for ln in proc.stderr.splitlines() if "error" in ln.lower()]
-    assert len(lines) == 1 and "not finite" in lines[0], proc.stderr
+    assert len(lines) == 1 and "line 3" in lines[0] and "non-finite" in lines[0], proc.stderr
+
+
+def test_command_line_stripes_on_two_ranks_gives_the_default_zeros(tmp_path):
+    # stripes has no distributed driver yet: every rank solves the whole problem through the petsc backend
+    mesh = str(ROOT / "tests" / "data" / "bunny-7k.obj")
+    proc, _ = _mpirun(2, [sys.executable, "-m", "dhlb", "stripes", mesh, "--spacing", "6", "--backend", "petsc",
+                          "--no-png", "-q", "-o", str(tmp_path / "s.obj")])
+    assert proc.returncode == 0, proc.stderr
+    from dhlb.cli import main
+
+    assert main(["stripes", mesh, "--spacing", "6", "--no-png", "-q", "-o", str(tmp_path / "ref.obj")]) == 0
+    got, ref = (json.loads((tmp_path / f"{b}.json").read_text()) for b in ("s", "ref"))
+    assert got["zeros"]["faces"] == ref["zeros"]["faces"] and got["zeros"]["index"] == ref["zeros"]["index"]

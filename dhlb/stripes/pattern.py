@@ -45,6 +45,7 @@ from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import DhlbWarning, InvalidParameterError, NotSemidefiniteError
 from dhlb.fem import SolverOptions, select_backend, smallest_eigenpairs
 from dhlb.linalg import solver_options
+from dhlb.linalg.backends import get_backend
 from dhlb.mesh.surface import SurfaceMesh, validate_surface
 from dhlb.mesh.tangent import TangentBundle
 from dhlb.stripes.energy import stripe_matrices
@@ -118,18 +119,18 @@ def _indefinite(A, M, solver):
                                                                           block_size=solver.block_size, maxiter=2000))
 
 
-def _factor_solve(res, A, M, tol):
+def _factor_solve(res, A, M):
     """``(K⁻¹, factorizations)`` for ``K = A − shift·M`` positive definite.
 
-    The eigensolver's factor (no new factorization), or (iterative backends, no factor) one direct
-    factorization of the floor shift, warm-started from the eigenvector.
+    The eigensolver's factor (no new factorization), or (iterative and external backends, no factor)
+    one direct factorization of ``A − shift·M`` by the backend :func:`~dhlb.linalg.select_backend` picks.
+    (Not an eigen solve warm-started from the eigenvector: that one stops at the warm start, factorizing
+    nothing.)
     """
     if res.factor is not None:
         return res.factor.solve, 0
-    direct = select_backend(A.shape[0], A.nnz, eigen=True, shifted=True)
-    again = smallest_eigenpairs(A, M, 1, v0=res.eigenvectors[:, 0],
-                                solver=SolverOptions(backend=direct, tol=tol, factor_shift="floor"))
-    return again.factor.solve, int(again.factorizations)
+    direct = get_backend(select_backend(A.shape[0], A.nnz, eigen=True, shifted=True))
+    return direct.factorize((A - res.shift * M).tocsc(), positive_definite=True).solve, 1
 
 
 def _counted(solve):
@@ -146,7 +147,7 @@ def _section(sec: SectionOptions, A, M, x, res, cplx, tol):
     """``(x, iteration, solves, factorizations)`` of the section after the eigenvector."""
     if sec.kind == "eigenvector":
         return x, None, 0, 0
-    solve, factorizations = _factor_solve(res, A, M, tol)
+    solve, factorizations = _factor_solve(res, A, M)
     solve, calls = _counted(solve)
     if sec.kind == "power":
         it = power_section(A, M, solve, POWER_ITERATIONS if sec.iterations is None else sec.iterations, seed=sec.seed,
