@@ -23,6 +23,7 @@ RANK = {
     # layer 0, leaves: exceptions, progress bars, result base, deprecation shims, atomic files, argument coercion
     "errors": 0,
     "_progress": 0.5, "_display": 0.5, "_result": 0.5, "_deprecation": 0.5, "_files": 0.5, "_coerce": 0.5,
+    "_phases": 0.5,
     "topology": 1,
     "forms": 2, "examples": 2,                    # examples: named complexes, built on topology only
     "bundles": 3,
