@@ -56,9 +56,11 @@ from dhlb._coerce import check_int
 from dhlb.errors import InvalidParameterError, InvalidSimplexError, ShapeError, UnreferencedVertexError
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from numpy.typing import ArrayLike
 
-__all__ = ["METIS_PARTITION_OPTIONS", "MeshPart", "VertexLayout", "owned_rows", "partition_vertices",
+__all__ = ["METIS_PARTITION_OPTIONS", "MeshPart", "VertexLayout", "box_tet_part", "owned_rows", "partition_vertices",
            "surface_part", "tet_part", "vertex_layout"]
 
 METIS_PARTITION_OPTIONS = {"seed": 0}
@@ -553,3 +555,124 @@ def owned_rows(S, part: MeshPart) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         raise ShapeError(f"an owned row has an entry in column {int(cols.max())}, a copy of a split fringe vertex; "
                          "the part does not hold that row")
     return R.indptr.astype(np.int64), part.vertices[cols], R.data.copy()
+
+
+def box_tet_part(m: int | Sequence[int], lower: ArrayLike, upper: ArrayLike, rank: int,
+                 parts: int) -> tuple[MeshPart, np.ndarray, np.ndarray]:
+    """The part of ``rank`` of :func:`~dhlb.mesh.box_tet_mesh` cut in slabs of x, built without the whole box.
+
+    The vertices are partitioned by their grid plane ``i`` along x (the slowest axis of the box
+    numbering): rank ``r`` owns the planes ``i0 = r (m_0+1) // P`` to ``i1 = (r+1)(m_0+1) // P``
+    (excluded), i.e. the box vertex ids ``i0 S .. i1 S - 1`` with ``S = (m_1+1)(m_2+1)``. These
+    are contiguous, so the layout is the identity (``vertex_layout`` of the slab part ids keeps every
+    id) and the part equals ``tet_part(box.tets, vertex_layout(slab_ids, P), rank)`` field by field
+    — ``cells`` are rows of ``box_tet_mesh(m, lower, upper).tets`` and ``local_cells`` those rows,
+    same vertex order, in local ids — while only the tetrahedra of the grid cells of x-layers
+    ``i0 - 1 .. i1 - 1`` (one layer of halo) are made: time and memory are those of the part.
+
+    Parameters
+    ----------
+    m : int >= 1, or 3 ints
+        Cells per axis, as :func:`~dhlb.mesh.box_tet_mesh`.
+    lower, upper : 3 floats (or one number for all axes)
+        Opposite corners, ``lower < upper`` on every axis.
+    rank : int
+        The rank ``r``, ``0 <= r < parts``.
+    parts : int
+        The number of ranks ``P``, ``1 <= P <= m_0 + 1`` (every rank owns at least one plane).
+
+    Returns
+    -------
+    part : MeshPart
+        As :func:`tet_part` gives it for the whole box and the slab partition (``n_copies == 0``).
+    points : (nl, 3) float array
+        ``box.points[part.vertices]``, bit for bit.
+    boundary_faces : (b, 3) int64 array
+        The boundary triangles of the whole box (``box.boundary_faces``: outward normals) whose three
+        vertices are local, in local vertex ids, in the order of ``box.boundary_faces``.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``m`` is not a positive integer (or three), ``lower < upper`` fails on an axis, ``parts`` is
+        not an integer in ``1 .. m_0 + 1`` or ``rank`` not in ``0 .. parts - 1``.
+    ResourceLimitError
+        The part's estimated memory (:func:`~dhlb.mesh.check_box_memory` for its layers) exceeds what is available.
+    ShapeError, NonFiniteError
+        ``lower`` or ``upper`` is neither a number nor 3 numbers, or is not finite.
+
+    Examples
+    --------
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> box = box_tet_mesh(3, lower=-1.0, upper=1.0)
+    >>> ids = np.arange(64) // 16 // 2                        # planes 0, 1 -> rank 0; 2, 3 -> rank 1
+    >>> whole = tet_part(box.tets, vertex_layout(ids, 2), 1)
+    >>> part, points, bf = box_tet_part(3, -1.0, 1.0, rank=1, parts=2)
+    >>> part.owned_range, part.vertices.size, part.cells.size, bf.shape
+    ((32, 64), 48, 108, (66, 3))
+    >>> bool(np.array_equal(part.local_cells, whole.local_cells) and np.array_equal(points, box.points[16:]))
+    True
+    """
+    from dhlb._coerce import as_vec3
+    from dhlb.examples._util import kuhn_paths
+    from dhlb.examples.grids import _cells_per_axis, _strides
+    from dhlb.mesh.tet import check_box_memory
+
+    cells = _cells_per_axis(3, m, 1)
+    lo_pt = as_vec3(np.broadcast_to(lower, 3) if np.ndim(lower) == 0 else lower, "lower")
+    hi_pt = as_vec3(np.broadcast_to(upper, 3) if np.ndim(upper) == 0 else upper, "upper")
+    if np.any(hi_pt <= lo_pt):
+        raise InvalidParameterError(f"the box needs lower < upper on every axis, got lower={lo_pt.tolist()}, "
+                                    f"upper={hi_pt.tolist()}")
+    planes = cells[0] + 1
+    if isinstance(parts, bool) or not isinstance(parts, (int, np.integer)) or not 1 <= parts <= planes:
+        raise InvalidParameterError(f"parts must be an integer in 1 .. m_0 + 1 = {planes} (every rank owns a plane "
+                                    f"of the x slabs), got {parts!r}")
+    P = int(parts)
+    if isinstance(rank, bool) or not isinstance(rank, (int, np.integer)) or not 0 <= rank < P:
+        raise InvalidParameterError(f"rank must be an integer in 0 .. {P - 1}, got {rank!r}")
+    r = int(rank)
+    i0, i1 = r * planes // P, (r + 1) * planes // P        # owned planes
+    c0, c1 = max(i0 - 1, 0), min(i1, cells[0])              # cell layers with a tet at an owned vertex
+    check_box_memory((c1 - c0, cells[1], cells[2]))
+    shape = (planes, cells[1] + 1, cells[2] + 1)
+    strides = _strides(shape)
+    S = int(strides[0])
+    v0 = c0 * S                                             # first local vertex: plane c0 .. plane c1
+    # the tets of the cells, as cube_nd makes them, in the order of SimplicialComplex.simplices
+    # (lexicographic: by the cell's lowest corner, then the sorted Kuhn offsets); check_tet_mesh then
+    # swaps the last two vertices of the negatively oriented ones (odd paths: lower < upper)
+    paths = kuhn_paths(3)
+    offsets = paths @ strides
+    order = np.lexsort(offsets.T[::-1])
+    offsets, paths = offsets[order], paths[order]
+    negative = np.linalg.det((paths[:, 1:] - paths[:, :1]).astype(np.float64)) < 0
+    offsets[negative] = offsets[negative][:, [0, 1, 3, 2]]
+    base = np.zeros(1, np.int64)
+    for a, (start, stop) in enumerate(((c0, c1), (0, cells[1]), (0, cells[2]))):
+        base = np.add.outer(base, np.arange(start, stop, dtype=np.int64) * strides[a]).ravel()
+    local_cells = ((base - v0)[:, None, None] + offsets[None]).reshape(-1, 4)
+    per_layer = 6 * cells[1] * cells[2]
+    rows = np.arange(c0 * per_layer, c1 * per_layer, dtype=np.int64)
+    nl = (c1 + 1 - c0) * S
+    vertices = np.arange(v0, v0 + nl, dtype=np.int64)
+    owned_cells = np.repeat(np.arange(c0, c1) >= i0, per_layer)  # the lowest vertex is the cell's corner
+    idx = np.indices((c1 + 1 - c0,) + shape[1:], dtype=np.int64).reshape(3, -1).T
+    idx[:, 0] += c0
+    points = lo_pt + idx / np.asarray(cells, dtype=np.float64) * (hi_pt - lo_pt)
+    # boundary faces: the faces of the local tets (in the order of TetMesh.boundary_faces) on a side of the box;
+    # every one whose vertices are local is a face of a local tet, and a face lies on a side iff its vertices do
+    sides = np.zeros(nl, np.uint8)                          # bit 2a: on the side i_a = 0; bit 2a + 1: i_a = m_a
+    for a in range(3):
+        sides |= (idx[:, a] == 0).astype(np.uint8) << np.uint8(2 * a)
+        sides |= (idx[:, a] == cells[a]).astype(np.uint8) << np.uint8(2 * a + 1)
+    corners = np.array([[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]])
+    C = sides[local_cells]
+    on_side = np.stack([C[:, f[0]] & C[:, f[1]] & C[:, f[2]] for f in corners], axis=1) != 0
+    t, f = np.nonzero(on_side)                              # by tet, then face: the order of boundary_faces
+    boundary = local_cells[t[:, None], corners[f]]
+    for a in (vertices, rows, local_cells, owned_cells):
+        a.setflags(write=False)
+    part = MeshPart(r, P, vertices, slice((i0 - c0) * S, (i1 - c0) * S), (i0 * S, i1 * S), rows, local_cells,
+                    owned_cells)
+    return part, points, boundary
