@@ -85,6 +85,8 @@ def _check_spelling(parser: argparse.ArgumentParser, argv: list[str]) -> None:
             sub.error(f"unrecognized arguments: {option}{did_you_mean(option, known)}")
 
 
+_MPI_MAIN_RUNNING = False  # set by dhlb.cli.mpi.mpi_main, which calls main() on rank 0
+
 _MPI_SIZE_VARIABLES = ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "MPI_LOCALNRANKS")
 """Environment variables in which mpirun / mpiexec (Open MPI, MPICH, PMIx) pass the number of ranks."""
 
@@ -93,7 +95,7 @@ def _under_mpirun() -> bool:
     """:func:`dhlb.cli.mpi.launched_by_mpirun`, without importing it (and PETSc) when no MPI variable is set."""
     import os
 
-    if not any(k in os.environ for k in _MPI_SIZE_VARIABLES):
+    if _MPI_MAIN_RUNNING or not any(k in os.environ for k in _MPI_SIZE_VARIABLES):
         return False
     from dhlb.cli.mpi import launched_by_mpirun
 

@@ -15,7 +15,6 @@ from dhlb.linalg.backends_petsc import PetscBackend, comm_rank_size, install_abo
 
 __all__ = ["launched_by_mpirun", "mpi_main"]
 
-_ACTIVE = False  # mpi_main is running (dhlb.cli.main called from it must not call it again)
 
 
 def launched_by_mpirun() -> bool:
@@ -30,7 +29,9 @@ def launched_by_mpirun() -> bool:
     """
     import os
 
-    if _ACTIVE:
+    import dhlb.cli
+
+    if dhlb.cli._MPI_MAIN_RUNNING:
         return False
     for name in _MPI_SIZE_VARIABLES:
         try:
@@ -64,10 +65,13 @@ def mpi_main(argv=None) -> int:
     dhlb ...
     0
     """
-    global _ACTIVE
+    import dhlb.cli
+
     if "petsc" not in _REGISTRY:
         register_backend("petsc", PetscBackend, ("petsc4py", "slepc4py", "mpi4py"))
-    _ACTIVE = True
+    # dhlb.cli.main, called below, must not come back here (the flag lives in dhlb.cli, never run as __main__:
+    # `python -m dhlb.cli.mpi` imports this module a second time under its own name)
+    dhlb.cli._MPI_MAIN_RUNNING = True
     rank, size = comm_rank_size()
     argv = list(sys.argv[1:] if argv is None else argv)
     if size == 1:

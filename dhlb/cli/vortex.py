@@ -154,7 +154,11 @@ def _mesh(args):
     return V, T, args.mesh
 
 
+_BOX_CORNERS = np.array([[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]])  # the domain of --box
+
+
 def _velocity(args, V, T):
+    """The velocity of ``--velocity`` on the mesh ``(V, T)`` (``V`` None: the ``--box`` cube ``[-1, 1]^3``)."""
     spec = args.velocity
     if spec in DEMOS:
         per_curve = abs(args.circulation) / (2 * np.pi * args.hbar)
@@ -163,7 +167,7 @@ def _velocity(args, V, T):
                 f"--circulation {args.circulation:g} with --hbar {args.hbar:g} asks for about {per_curve:.3g} "
                 f"filaments per demo curve (|circulation| / 2 pi hbar); at most {MAX_FILAMENTS_PER_CURVE} are "
                 "allowed: lower --circulation or raise --hbar")
-        P = V.points if T is None else np.asarray(V)[np.unique(np.asarray(T))]
+        P = _BOX_CORNERS if V is None else V.points if T is None else np.asarray(V)[np.unique(np.asarray(T))]
         field, _ = demo_velocity(spec, P, circulation=args.circulation, core_radius=args.core)
         return field, f"{spec} (circulation {args.circulation:.6g}, core radius {field.core_radius:.4g})"
     if not spec.endswith(".npy"):
@@ -232,6 +236,20 @@ def _run_distributed(args):
     from dhlb.vortex.distributed import distributed_vortex_filaments
 
     comm = world()
+    if args.mesh is None and args.velocity in DEMOS:  # --box: every rank builds its own slab, nothing is sent
+        from dhlb.mesh.distribute import distribute_box
+        from dhlb.mesh.tet import VORTEX_BYTES_PER_CELL, check_box_memory
+
+        n = 12 if args.box is None else args.box
+        try:  # the memory of the whole run over all ranks, estimated before any work
+            check_box_memory(n, per_cell=VORTEX_BYTES_PER_CELL, name="--box")
+        except ResourceLimitError as exc:
+            raise UsageError(str(exc)) from None
+        velocity, vname = _velocity(args, None, None)
+        loc = distribute_box(n, -1.0, 1.0, comm=comm)
+        result = distributed_vortex_filaments(loc, None, velocity, args.hbar, options=VortexOptions(order=args.order),
+                                              solver=SolverOptions(tol=args.tol), comm=comm)
+        return result, f"box {n}", vname, velocity
 
     def read():
         V, T, name = _mesh(args)

@@ -28,19 +28,21 @@ Examples
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from dhlb.errors import DhlbError
+from dhlb.errors import DhlbError, InvalidParameterError
 
 if TYPE_CHECKING:
     from collections.abc import Callable
 
     from dhlb.mesh.partition import MeshPart, VertexLayout
 
-__all__ = ["LocalMesh", "distribute_surface", "distribute_tets", "gather_owned", "root_first", "world"]
+__all__ = ["LocalMesh", "distribute_box", "distribute_surface", "distribute_tets", "gather_cells", "gather_owned",
+           "root_first", "world"]
 
 
 class _SelfComm:
@@ -162,8 +164,9 @@ class LocalMesh:
         Global counts.
     rank, size : int
         This rank and the number of ranks.
-    global_mesh : SurfaceMesh or TetMesh or None
-        Rank 0 only: the validated whole mesh, in its own (old) numbering; None elsewhere.
+    whole : SurfaceMesh or TetMesh or callable or None
+        Rank 0 only: the validated whole mesh, or a function that rebuilds it (see :attr:`global_mesh`);
+        None elsewhere.
     layout : VertexLayout or None
         Rank 0 only: old ↔ new vertex numbers; None elsewhere.
     vertex_values : (n_local, ...) array or None
@@ -171,6 +174,8 @@ class LocalMesh:
     boundary_faces : (b, 3) int array or None
         Tets: the boundary triangles of the whole mesh with all three vertices local (local vertex ids),
         so that a face of the patch's boundary can be told from a cut between ranks.
+    input_rows : (n_vertices,) int array or None
+        Rank 0 only: the input row of ``V`` of each vertex of the whole mesh (old numbering).
     """
 
     mesh: Any
@@ -180,10 +185,25 @@ class LocalMesh:
     n_cells: int
     rank: int
     size: int
-    global_mesh: Any = None
+    whole: Any = None
     layout: VertexLayout | None = None
     vertex_values: np.ndarray | None = None
     boundary_faces: np.ndarray | None = None
+    input_rows: np.ndarray | None = None
+
+    @property
+    def global_mesh(self):
+        """Rank 0: the validated whole mesh (old numbering); None on the other ranks.
+
+        With more than one rank, rank 0 does not keep the whole mesh's structures while the ranks
+        assemble and solve (they would be most of its memory, ~0.75 KB per face of a surface): it is
+        validated again on first use, after the solve (deterministic: the same mesh).
+        """
+        if callable(self.whole):
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")   # the first validation warned already
+                self.whole = self.whole()
+        return self.whole
 
     @property
     def start(self) -> int:
@@ -213,7 +233,8 @@ def _scatter_parts(comm, make_parts: Callable[[], tuple[Any, list]], what: str):
     return header, mine
 
 
-def distribute_surface(V, F, *, reorient: bool = False, components: str = "all", comm=None) -> LocalMesh:
+def distribute_surface(V, F, *, reorient: bool = False, components: str = "all", connected: bool = False,
+                       comm=None) -> LocalMesh:
     """Validate a triangle mesh on rank 0 and give every rank its part with two rings of halo faces.
 
     Parameters
@@ -226,6 +247,8 @@ def distribute_surface(V, F, *, reorient: bool = False, components: str = "all",
         Flip inconsistently oriented faces (as :func:`~dhlb.mesh.validate_surface`).
     components : {"all", "largest"}, optional
         Keep all connected components, or only the largest (as :func:`~dhlb.mesh.validate_surface`).
+    connected : bool, optional
+        Refuse a mesh of several connected components (:class:`~dhlb.errors.InvalidParameterError`).
     comm : mpi4py.MPI.Comm, optional
         Default :func:`world`.
 
@@ -253,18 +276,25 @@ def distribute_surface(V, F, *, reorient: bool = False, components: str = "all",
 
     def root():
         gm = validate_surface(V, F, reorient=reorient, components=components)
+        if connected and gm.components[0] > 1:
+            raise InvalidParameterError(
+                f"the mesh has {gm.components[0]} connected components; the distributed field solves one "
+                "eigenproblem: keep the largest (components='largest'), or compute the components one by one")
         lay = partition.vertex_layout(partition.partition_vertices(gm.n_vertices, gm.faces, comm.size), comm.size)
         Fn = lay.inverse[gm.faces]
         Pn = gm.points[lay.order]
         parts = [partition.surface_part(Fn, lay, r) for r in range(comm.size)]
-        root.kept = (gm, lay)
+        rebuild = gm if comm.size == 1 else (lambda: validate_surface(V, F, reorient=reorient, components=components))
+        root.kept = (rebuild, lay, np.asarray(gm.vertex_labels))
         return (lay.offsets, gm.n_vertices, gm.n_faces), [(p, np.ascontiguousarray(Pn[p.vertices])) for p in parts]
 
     (offsets, nv, nf), (part, P) = _scatter_parts(comm, root, "distributing the surface")
-    # the local patch: the whole mesh was validated on rank 0, so this only builds the local structures
-    local = validate_surface(P, part.local_cells)
-    gm, lay = root.kept if comm.rank == 0 else (None, None)
-    return LocalMesh(local, part, np.asarray(offsets), int(nv), int(nf), comm.rank, comm.size, gm, lay)
+    whole, lay, rows = root.kept if comm.rank == 0 else (None, None, None)
+    root.kept = None
+    # the local patch (one rank: the whole mesh, validated once); rank 0 validated the whole mesh
+    local = whole if comm.size == 1 else validate_surface(P, part.local_cells)
+    return LocalMesh(local, part, np.asarray(offsets), int(nv), int(nf), comm.rank, comm.size, whole, lay,
+                     input_rows=rows)
 
 
 def distribute_tets(V, T, *, orientation: str = "fix", vertex_values=None, comm=None) -> LocalMesh:
@@ -310,16 +340,21 @@ def distribute_tets(V, T, *, orientation: str = "fix", vertex_values=None, comm=
 
     def root():
         gm = V if isinstance(V, TetMesh) else check_tet_mesh(V, T, orientation=orientation)
+        values = vertex_values(gm) if callable(vertex_values) else vertex_values
+        rows = np.asarray(gm.complex.vertex_labels)
+        if values is not None:  # input rows -> compact -> new numbering
+            values = np.asarray(values)[rows]
         lay = partition.vertex_layout(partition.partition_vertices(gm.points.shape[0], gm.tets, comm.size),
                                       comm.size)
-        values = vertex_values(gm) if callable(vertex_values) else vertex_values
-        if values is not None:  # input rows -> compact -> new numbering
-            values = np.asarray(values)[np.asarray(gm.complex.vertex_labels)][lay.order]
+        if values is not None:
+            values = values[lay.order]
         Tn = lay.inverse[gm.tets]
         Pn = gm.points[lay.order]
         Bn = lay.inverse[gm.boundary_faces]   # the whole mesh's boundary triangles, new ids
         parts = [partition.tet_part(Tn, lay, r) for r in range(comm.size)]
-        root.kept = (gm, lay)
+        keep = gm if comm.size == 1 or isinstance(V, TetMesh) else (
+            lambda: check_tet_mesh(V, T, orientation=orientation))
+        root.kept = (keep, lay, rows)
         payloads = []
         for p in parts:
             local_of = np.full(Pn.shape[0], -1, np.int64)
@@ -330,9 +365,66 @@ def distribute_tets(V, T, *, orientation: str = "fix", vertex_values=None, comm=
         return (lay.offsets, gm.points.shape[0], gm.tets.shape[0]), payloads
 
     (offsets, nv, nt), (part, P, vals, B) = _scatter_parts(comm, root, "distributing the tetrahedral mesh")
-    local = TetMesh.from_validated(P, part.local_cells)  # a patch of the mesh rank 0 validated and oriented
-    gm, lay = root.kept if comm.rank == 0 else (None, None)
-    return LocalMesh(local, part, np.asarray(offsets), int(nv), int(nt), comm.rank, comm.size, gm, lay, vals, B)
+    whole, lay, rows = root.kept if comm.rank == 0 else (None, None, None)
+    root.kept = None
+    # a patch of the mesh rank 0 validated and oriented (one rank: the whole mesh itself)
+    local = whole if comm.size == 1 else TetMesh.from_validated(P, part.local_cells)
+    return LocalMesh(local, part, np.asarray(offsets), int(nv), int(nt), comm.rank, comm.size, whole, lay, vals, B,
+                     rows)
+
+
+def distribute_box(m, lower=(0.0, 0.0, 0.0), upper=(1.0, 1.0, 1.0), *, comm=None) -> LocalMesh:
+    """Every rank builds its own slab of :func:`~dhlb.mesh.box_tet_mesh`; no rank builds the whole box.
+
+    The parts are slabs of x-planes (:func:`dhlb.mesh.partition.box_tet_part`), so the vertex numbering
+    is the box's own (the layout is the identity) and nothing is sent between the ranks.
+
+    Parameters
+    ----------
+    m : int or 3 ints
+        Cells per axis.
+    lower, upper : 3 floats (or one number for all axes)
+        Opposite corners of the box.
+    comm : mpi4py.MPI.Comm, optional
+        Default :func:`world`.
+
+    Returns
+    -------
+    LocalMesh
+        As :func:`distribute_tets`; on rank 0 :attr:`LocalMesh.global_mesh` builds the whole box on first
+        use (after the solve).
+
+    Raises
+    ------
+    InvalidParameterError, ResourceLimitError
+        As :func:`~dhlb.mesh.box_tet_mesh`, or more ranks than x-planes; on every rank (each checks).
+
+    Examples
+    --------
+    >>> loc = distribute_box(3, -1.0, 1.0)
+    >>> loc.n_vertices, loc.n_cells, loc.mesh.tets.shape[0]
+    (64, 162, 162)
+    """
+    from dhlb.mesh import partition
+    from dhlb.mesh.tet import TetMesh
+
+    comm = world() if comm is None else comm
+    part, P, B = partition.box_tet_part(m, lower, upper, comm.rank, comm.size)
+    cells = np.broadcast_to(np.asarray(m, np.int64), 3)
+    nv, nt = int(np.prod(cells + 1)), int(6 * np.prod(cells))
+    starts = comm.allgather(part.owned_range[0])
+    offsets = np.array(list(starts) + [nv], np.int64)
+    lay = whole = rows = None
+    if comm.rank == 0:
+        ident = np.arange(nv, dtype=np.int64)
+        lay = partition.VertexLayout(ident, ident, offsets)
+        rows = ident
+
+        def whole():
+            p, points, _ = partition.box_tet_part(m, lower, upper, 0, 1)
+            return TetMesh.from_validated(points, p.local_cells)
+    local = TetMesh.from_validated(P, part.local_cells)
+    return LocalMesh(local, part, offsets, nv, nt, comm.rank, comm.size, whole, lay, None, B, rows)
 
 
 def gather_owned(loc: LocalMesh, values, comm=None):
@@ -377,7 +469,32 @@ def gather_owned(loc: LocalMesh, values, comm=None):
 def gather_cells(loc: LocalMesh, mask, values, comm=None):
     """Per-cell ``values`` of the cells ``mask`` of every rank, on rank 0 by global cell id.
 
-    Returns ``(ids, values)`` on rank 0 (sorted by global cell id) and ``(None, None)`` elsewhere.
+    Parameters
+    ----------
+    loc : LocalMesh
+        This rank's part.
+    mask : (n_local_cells,) bool array
+        The local cells to send (e.g. owned cells with a nonzero index).
+    values : (mask.sum(), ...) array
+        Their values, in local cell order.
+    comm : mpi4py.MPI.Comm, optional
+        Default :func:`world`.
+
+    Returns
+    -------
+    ids : (k,) int array or None
+        On rank 0 the global cell ids (rows of the whole mesh's cells), increasing; None elsewhere.
+    values : (k, ...) array or None
+        Their values; None elsewhere.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> loc = distribute_tets(box_tet_mesh(2), None)
+    >>> ids, vals = gather_cells(loc, loc.part.owned_cells, np.ones(int(loc.part.owned_cells.sum())))
+    >>> ids.size, float(vals.sum())
+    (48, 48.0)
     """
     comm = world() if comm is None else comm
     ids = loc.part.cells[mask]

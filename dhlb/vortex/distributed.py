@@ -30,7 +30,7 @@ Examples
 >>> v = FilamentField([vortex_ring(0.8, center=(0.01, 0.02, 0.03), n=48)], 2 * np.pi, core_radius=0.15)
 >>> res = (distributed_vortex_filaments(box_tet_mesh(8, lower=-1.5, upper=1.5), None, v, 1.0)
 ...        if petsc_available() else None)
->>> res is None or (len(res.filaments), res.filaments[0].closed)
+>>> res is None or (len(res.filaments), res.filaments[0].closed) == (1, True)
 True
 """
 
@@ -41,7 +41,7 @@ import warnings
 import numpy as np
 
 from dhlb._phases import PhaseMeter
-from dhlb.errors import UnresolvedFluxWarning
+from dhlb.errors import ShapeError, UnresolvedFluxWarning
 from dhlb.linalg import SolverOptions, solver_options
 from dhlb.vortex.options import VortexOptions
 from dhlb.vortex.pipeline import DEFAULT_TOL, _per_vertex_velocity, filament_linking_numbers
@@ -64,8 +64,9 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
 
     Parameters
     ----------
-    V : (n, 3) float array, TetMesh or None
-        Vertex positions or a validated :class:`~dhlb.mesh.TetMesh` (rank 0; None elsewhere).
+    V : (n, 3) float array, TetMesh, LocalMesh or None
+        Vertex positions or a validated :class:`~dhlb.mesh.TetMesh` (rank 0; None elsewhere); or, on every
+        rank, its part of a mesh already distributed (:func:`dhlb.mesh.distribute.distribute_box`).
     T : (m, 4) int array or None
         Tetrahedra (rank 0, unless ``V`` is a TetMesh).
     velocity : callable or (n, 3) array
@@ -98,7 +99,7 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     from dhlb.fem import bundle_matrices
     from dhlb.geometry import EuclideanComplex
     from dhlb.linalg.distributed import RowBlock, distributed_eigenpairs, scatter_values
-    from dhlb.mesh.distribute import distribute_tets, gather_owned, world
+    from dhlb.mesh.distribute import LocalMesh, distribute_tets, gather_owned, world
     from dhlb.mesh.partition import owned_rows
     from dhlb.vortex.stitch import filament_pieces, stitch_pieces
 
@@ -117,7 +118,12 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
             out = np.zeros((n_rows, 3))
             out[rows] = _per_vertex_velocity(velocity, n_rows, rows)
             return out
-    loc = distribute_tets(V, T, orientation=options.orientation, vertex_values=per_vertex, comm=comm)
+    if isinstance(V, LocalMesh):   # already distributed (e.g. dhlb.mesh.distribute.distribute_box)
+        if T is not None or array_velocity:
+            raise ShapeError("with a distributed mesh (LocalMesh) as V, T must be None and velocity a callable v(x)")
+        loc = V
+    else:
+        loc = distribute_tets(V, T, orientation=options.orientation, vertex_values=per_vertex, comm=comm)
     part, N = loc.part, loc.n_vertices
     X, P = loc.mesh.complex, loc.mesh.points
     geo = EuclideanComplex(X, points=P)
@@ -173,8 +179,7 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     t = dict(meter.seconds, total=meter.total)
     if n_unresolved:
         val, labels, c = max(fluxes, key=lambda f: f[0])
-        lab = tuple(int(v) for v in loc.layout.order[list(labels)])
-        rows = tuple(int(v) for v in np.asarray(loc.global_mesh.complex.vertex_labels)[list(lab)])
+        rows = tuple(int(v) for v in loc.input_rows[loc.layout.order[list(labels)]])
         warnings.warn(
             f"{n_unresolved} triangles carry a flux |Ω| = |dω|/ħ > π; the largest, |Ω| = {val:.4g}, is on the "
             f"triangle {rows} (rows of V) near {np.round(c, 6).tolist()}: the mesh does not resolve the vortex core "
