@@ -251,6 +251,19 @@ def test_auto_falls_back_to_lobpcg_gamg_when_the_factor_does_not_fit():
     assert res.method == "lobpcg-gamg" and "GiB per rank" in res.note and res.converged
 
 
+@needs_petsc
+def test_auto_takes_lobpcg_gamg_for_a_large_volume_pattern_as_select_backend_does():
+    from dhlb.linalg.backends import ITERATIVE_3D
+    from dhlb.linalg.distributed import _choose
+
+    A = _grid3(22)            # 10,648 unknowns, 7 nonzeros per row: a surface-like count, factorized
+    assert _choose(_blocks(A, A)[0], "auto")[0] == "krylovschur"
+    A27 = (abs(A) @ abs(A)).tocsr()          # 27-point pattern: >= 10 nonzeros per row, like a tet mesh
+    assert A27.shape[0] >= ITERATIVE_3D and A27.nnz >= 10 * A27.shape[0]
+    method, note = _choose(_blocks(A27, A27)[0], "auto")
+    assert method == "lobpcg-gamg" and "amg-lobpcg on one process" in note
+
+
 @given(st.integers(0, 5000), st.lists(st.integers(0, 5000), max_size=6), st.integers(0, 2**32))
 def test_start_vector_does_not_depend_on_the_split(n, cuts, seed):
     cuts = sorted({0, n, *(c for c in cuts if c <= n)})

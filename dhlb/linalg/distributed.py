@@ -20,9 +20,12 @@ Eigenpairs (:func:`distributed_eigenpairs`)
       the ``amg-lobpcg`` backend (measured on the ~97k-unknown vortex matrices of a tet box: see
       :data:`METHODS`).
 
-    ``"auto"`` factorizes unless the factor, estimated by
-    :func:`dhlb.linalg.memory.factor_bytes` (the model of the one-process memory check) and
-    divided by the number of ranks, does not fit in the memory available on the tightest rank.
+    ``"auto"`` follows :func:`dhlb.linalg.select_backend` on one process: ``lobpcg-gamg`` for a
+    volume-like pattern (at least 10 nonzeros per row) of at least
+    :data:`~dhlb.linalg.backends.ITERATIVE_3D` unknowns; otherwise it factorizes, unless the factor,
+    estimated by :func:`dhlb.linalg.memory.factor_bytes` (the model of the one-process memory
+    check) and divided by the number of ranks, does not fit in the memory available on the
+    tightest rank.
     Both use SLEPc's ``EPS_CONV_NORM`` test; afterwards a Rayleigh–Ritz step on the distributed
     vectors, ``M``-normalization, the normwise backward errors
     ``η = ‖Ax − λMx‖ / ((‖A‖₁ + |λ| ‖M‖₁) ‖x‖)`` (all by PETSc products and MPI reductions) and a
@@ -58,6 +61,7 @@ import scipy.sparse as sp
 
 import dhlb.errors as _errors
 from dhlb.errors import DhlbError, InvalidOperatorError, NotSemidefiniteError, ShapeError
+from dhlb.linalg.backends import ITERATIVE_3D
 from dhlb.linalg.backends_petsc import (
     _direct_pc,
     _factor_stats,
@@ -669,12 +673,17 @@ class DistributedEigen:
 
 
 def _choose(A: RowBlock, method: str) -> tuple[str, str]:
-    """``(method, note)``: ``auto`` factorizes unless the estimated factor per rank does not fit."""
+    """``(method, note)``: ``auto`` is lobpcg-gamg for a large volume mesh, else Krylov–Schur if the factor fits."""
     if method in METHODS:
         return method, ""
     if method != "auto":
         raise _collective(ShapeError(f"method must be 'auto' or one of {METHODS}, got {method!r}"))
     nnz = int(_allreduce(len(A.data), "sum"))
+    if A.n >= ITERATIVE_3D and nnz >= 10 * A.n:
+        # the rule of select_backend on one process (a large volume-like pattern goes to amg-lobpcg; the
+        # pattern's growth dimension, which needs the whole graph, is judged by nonzeros per row alone)
+        return "lobpcg-gamg", (f"auto: {A.n} unknowns with {nnz / A.n:.1f} nonzeros per row (a volume mesh of "
+                               f">= {ITERATIVE_3D} vertices): lobpcg-gamg, as amg-lobpcg on one process")
     # the model of dhlb.linalg.memory (the one-process memory check), with a volume's fill for a
     # 3-D-like pattern (>= 10 nonzeros per row, as select_backend), spread over the ranks
     need = factor_bytes(A.n, nnz, complex_=True, dimension=3.0 if nnz >= 10 * A.n else 2.0) / _size()
