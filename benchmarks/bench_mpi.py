@@ -7,8 +7,9 @@ Usage (from the MPI environment of docs/mpi.md)::
 Cases: ``torus200k`` the n = 4 field on a 200,704-face torus grid; ``ico8`` the n = 4 field on the
 icosphere of level 8 (1,310,720 faces, subdivision order); ``box56`` the linked-rings vortex on the
 Freudenthal–Kuhn box with 56 cells per axis (1,053,696 tetrahedra). For each case and rank count P
-it runs ``mpirun -n P python bench_mpi.py --worker CASE``: rank 0 builds the mesh, then every rank
-runs :func:`dhlb.fields.distributed.distributed_direction_field` or
+it runs ``mpirun -n P python bench_mpi.py --worker CASE``: rank 0 builds the surface (the box: every
+rank builds its own slab, :func:`dhlb.mesh.distribute.distribute_box`, as ``dhlb vortex --box``), then
+every rank runs :func:`dhlb.fields.distributed.distributed_direction_field` or
 :func:`dhlb.vortex.distributed.distributed_vortex_filaments`, which report the seconds and the peak
 resident memory (``VmHWM``, reset at every phase) of every phase on every rank. It prints one row per
 run and the issue's two memory ratios:
@@ -80,16 +81,19 @@ def worker(case: str) -> None:
             "singularities": len(res.singularities.faces)}
     else:
         from dhlb.cli.vortex import demo_velocity
-        from dhlb.mesh import box_tet_mesh
+        from dhlb.mesh.distribute import distribute_box
         from dhlb.vortex.distributed import distributed_vortex_filaments
 
         m = int(case[3:])
-        mesh = box_tet_mesh(m, lower=-1.0, upper=1.0) if comm.rank == 0 else None
         field, _ = demo_velocity("linked-rings", np.array([[-1.0, -1, -1], [1, 1, 1]]))
-        build = time.perf_counter() - t
+        build = 0.0
         comm.Barrier()
         t = time.perf_counter()
-        res = distributed_vortex_filaments(mesh, None, field, 1.0)
+        loc = distribute_box(m, -1.0, 1.0, comm=comm)      # as dhlb vortex --box: each rank builds its slab
+        t_box = time.perf_counter() - t
+        res = distributed_vortex_filaments(loc, None, field, 1.0)
+        if res is not None:
+            res.timings["box"] = t_box
         size = None if res is None else {
             "tets": int(res.statistics["n_tets"]), "unknowns": int(res.statistics["n_vertices"]),
             "eigenvalue": float(res.eigenvalue), "filaments": len(res.filaments),

@@ -41,7 +41,7 @@ import numbers
 
 import numpy as np
 
-from dhlb._phases import PhaseMeter
+from dhlb._phases import PhaseMeter, trim_heap
 from dhlb.errors import InvalidParameterError
 from dhlb.fields.directions import FieldIndices, Singularities, direction_vectors, field_indices
 from dhlb.fields.energy import check_s, energy_matrices
@@ -128,6 +128,7 @@ def distributed_direction_field(V, F=None, n: int = 1, s: float = 0.0, *, option
     Mb = RowBlock(*owned_rows(M, part), loc.start, loc.stop, N)
     A_own = A[part.owned]   # the owned rows in local columns, for the energy
     del A, M
+    trim_heap()   # the assembly's temporaries, before the factorization
     meter.mark("assembly")
     tol = solver.tol if solver.tol is not None else default_tol(N)
     eig = distributed_eigenpairs(Ab, Mb, 1, tol=tol)

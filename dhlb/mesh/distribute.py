@@ -34,6 +34,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from dhlb._phases import trim_heap
 from dhlb.errors import DhlbError, InvalidParameterError
 
 if TYPE_CHECKING:
@@ -293,6 +294,7 @@ def distribute_surface(V, F, *, reorient: bool = False, components: str = "all",
     root.kept = None
     # the local patch (one rank: the whole mesh, validated once); rank 0 validated the whole mesh
     local = whole if comm.size == 1 else validate_surface(P, part.local_cells)
+    trim_heap()   # the validation's temporaries: give them back before the assembly
     return LocalMesh(local, part, np.asarray(offsets), int(nv), int(nf), comm.rank, comm.size, whole, lay,
                      input_rows=rows)
 
@@ -369,6 +371,7 @@ def distribute_tets(V, T, *, orientation: str = "fix", vertex_values=None, comm=
     root.kept = None
     # a patch of the mesh rank 0 validated and oriented (one rank: the whole mesh itself)
     local = whole if comm.size == 1 else TetMesh.from_validated(P, part.local_cells)
+    trim_heap()   # the validation's temporaries: give them back before the assembly
     return LocalMesh(local, part, np.asarray(offsets), int(nv), int(nt), comm.rank, comm.size, whole, lay, vals, B,
                      rows)
 

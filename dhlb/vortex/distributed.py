@@ -40,7 +40,7 @@ import warnings
 
 import numpy as np
 
-from dhlb._phases import PhaseMeter
+from dhlb._phases import PhaseMeter, trim_heap
 from dhlb.errors import ShapeError, UnresolvedFluxWarning
 from dhlb.linalg import SolverOptions, solver_options
 from dhlb.vortex.options import VortexOptions
@@ -138,6 +138,7 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     Ab = RowBlock(*owned_rows(A, part), loc.start, loc.stop, N)
     Mb = RowBlock(*owned_rows(M, part), loc.start, loc.stop, N)
     del A, M
+    trim_heap()   # the assembly's temporaries, before the factorization
     meter.mark("assembly")
     eig = distributed_eigenpairs(Ab, Mb, 1, tol=tol)
     del Ab, Mb

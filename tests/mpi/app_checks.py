@@ -121,6 +121,22 @@ def check_field():
             "sing_index": b.index.tolist(), "parallel": {k: par[k] for k in ("owned_vertices", "local_vertices")}}
 
 
+def check_field_with_boundary():
+    """A mesh with boundary: the boundary rotation of the Poincaré–Hopf terms is summed over the ranks."""
+    from dhlb.io import example_path
+
+    V, F = read_surface(example_path("saddle.obj")) if RANK == 0 else (None, None)
+    res = distributed_direction_field(V, F, n=4)
+    if RANK != 0:
+        return {}
+    ref = direction_field(V, F, n=4)
+    assert np.array_equal(res.singularities.faces, ref.singularities.faces), "singularities differ"
+    assert res.index_sum == ref.index_sum
+    rot = abs(res.indices.boundary_rotation - ref.indices.boundary_rotation)
+    assert rot < 1e-9 and abs(res.poincare_hopf - ref.poincare_hopf) < 1e-9, f"boundary rotation differs by {rot:.2e}"
+    return {"boundary_rotation": res.indices.boundary_rotation}
+
+
 def check_vortex():
     from dhlb.cli.vortex import demo_velocity
 
@@ -158,7 +174,8 @@ def check_vortex():
 def main():
     out = sys.argv[1]
     failed, results = 0, {}
-    for check in (check_field_rows_bitwise, check_tet_rows_bitwise, check_field, check_vortex):
+    for check in (check_field_rows_bitwise, check_tet_rows_bitwise, check_field, check_field_with_boundary,
+                  check_vortex):
         try:
             data, ok = check(), True
         except AssertionError as err:
