@@ -781,7 +781,6 @@ def distributed_eigenpairs(A: RowBlock, M: RowBlock, k: int = 1, *, tol: float, 
     True
     """
     global _calls
-    from petsc4py import PETSc
 
     install_abort_hook()
     if not (isinstance(k, (int, np.integer)) and 1 <= k <= A.n):
@@ -798,6 +797,17 @@ def distributed_eigenpairs(A: RowBlock, M: RowBlock, k: int = 1, *, tol: float, 
     _calls += 1
     prefix = f"dhlb_dist{_calls}_"
     E, extra = _setup_eps(Ap, Mp, method, int(k), eps, prefix)
+    try:
+        return _solve_eps(E, extra, Ap, Mp, A, k, eps, tol, maxiter, normA, normM, method, note)
+    finally:  # free the factor (MUMPS) and the matrices now, not when the garbage collector runs
+        for obj in (E, Ap, Mp):
+            obj.destroy()
+
+
+def _solve_eps(E, extra, Ap, Mp, A, k, eps, tol, maxiter, normA, normM, method, note) -> DistributedEigen:
+    """Run the set-up eigensolver ``E`` (restarting from its vectors if η > tol); the result on every rank."""
+    from petsc4py import PETSc
+
     ksp = E.getST().getKSP()
     what = f"A + εM (ε = {eps:.3g})"
     try:
