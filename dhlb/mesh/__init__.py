@@ -13,8 +13,9 @@ surfaces and ``(V, T)`` for tetrahedral meshes (libigl, gpytoolbox):
 * arrays: :func:`mesh_complex` (the complex of ``(V, cells)`` with the input orientation),
   :func:`compact_mesh` (drop unreferenced vertices), :func:`signed_volumes`;
 * distributed assembly (:mod:`dhlb.mesh.partition`): :func:`partition_vertices` (METIS),
-  :func:`vertex_layout`, the local meshes :func:`surface_part`, :func:`tet_part` (→ :class:`MeshPart`)
-  and :func:`owned_rows`.
+  :func:`vertex_layout`, the local meshes :func:`surface_part`, :func:`tet_part` (→ :class:`MeshPart`),
+  a box's slab built alone :func:`box_tet_part`, and :func:`owned_rows`; under MPI
+  :mod:`dhlb.mesh.distribute` (rank 0 validates and partitions, every rank gets its part).
 
 Examples
 --------
@@ -33,8 +34,8 @@ _ATTRS = {
     "arrays": ["MeshComplex", "mesh_arrays", "mesh_complex"],
     "coerce": ["as_surface", "as_tangent_bundle", "as_tet_mesh"],
     "compact": ["compact_mesh"],
-    "partition": ["MeshPart", "VertexLayout", "owned_rows", "partition_vertices", "surface_part", "tet_part",
-                  "vertex_layout"],
+    "partition": ["MeshPart", "VertexLayout", "box_tet_part", "owned_rows", "partition_vertices", "surface_part",
+                  "tet_part", "vertex_layout"],
     "surface": ["SurfaceMesh", "validate_surface"],
     "tangent": ["TangentBundle", "tangent_bundle"],
     "tet": ["TetMesh", "ball_tet_mesh", "box_tet_mesh", "check_tet_mesh", "signed_volumes"],
@@ -47,4 +48,5 @@ __all__ = [
     "MeshComplex", "mesh_complex", "mesh_arrays", "compact_mesh",
     "as_surface", "as_tangent_bundle", "as_tet_mesh",
     "partition_vertices", "vertex_layout", "VertexLayout", "surface_part", "tet_part", "MeshPart", "owned_rows",
+    "box_tet_part",
 ]

@@ -613,17 +613,12 @@ def box_tet_part(m: int | Sequence[int], lower: ArrayLike, upper: ArrayLike, ran
     >>> bool(np.array_equal(part.local_cells, whole.local_cells) and np.array_equal(points, box.points[16:]))
     True
     """
-    from dhlb._coerce import as_vec3
     from dhlb.examples._util import kuhn_paths
     from dhlb.examples.grids import _cells_per_axis, _strides
-    from dhlb.mesh.tet import check_box_memory
+    from dhlb.mesh.tet import box_corners, check_box_memory
 
     cells = _cells_per_axis(3, m, 1)
-    lo_pt = as_vec3(np.broadcast_to(lower, 3) if np.ndim(lower) == 0 else lower, "lower")
-    hi_pt = as_vec3(np.broadcast_to(upper, 3) if np.ndim(upper) == 0 else upper, "upper")
-    if np.any(hi_pt <= lo_pt):
-        raise InvalidParameterError(f"the box needs lower < upper on every axis, got lower={lo_pt.tolist()}, "
-                                    f"upper={hi_pt.tolist()}")
+    lo_pt, hi_pt = box_corners(lower, upper)
     planes = cells[0] + 1
     if isinstance(parts, bool) or not isinstance(parts, (int, np.integer)) or not 1 <= parts <= planes:
         raise InvalidParameterError(f"parts must be an integer in 1 .. m_0 + 1 = {planes} (every rank owns a plane "

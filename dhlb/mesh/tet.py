@@ -43,8 +43,8 @@ if TYPE_CHECKING:
 
     from numpy.typing import ArrayLike
 
-__all__ = ["TetMesh", "signed_volumes", "tet_signs", "check_tet_complex", "check_tet_mesh", "box_tet_mesh",
-           "ball_tet_mesh", "box_memory_estimate", "check_box_memory"]
+__all__ = ["TetMesh", "signed_volumes", "tet_signs", "check_tet_complex", "check_tet_mesh", "box_corners",
+           "box_tet_mesh", "ball_tet_mesh", "box_memory_estimate", "check_box_memory"]
 
 DEFAULT_RTOL = 1e-10
 """A tetrahedron with ``|vol| <= rtol · L³`` (``L`` its longest edge) counts as degenerate."""
@@ -515,6 +515,38 @@ def check_box_memory(m: int | Sequence[int], *, per_cell: int = BOX_BYTES_PER_CE
     return need
 
 
+def box_corners(lower: ArrayLike, upper: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """The corners ``(lower, upper)`` of a box as two 3-vectors, checked: finite, ``lower < upper`` on every axis.
+
+    Parameters
+    ----------
+    lower, upper : 3 floats (or one number for all axes)
+        Opposite corners.
+
+    Returns
+    -------
+    lower, upper : (3,) float arrays
+
+    Raises
+    ------
+    InvalidParameterError
+        ``lower < upper`` fails on an axis.
+    ShapeError, NonFiniteError
+        Neither a number nor 3 numbers, or not finite.
+
+    Examples
+    --------
+    >>> [c.tolist() for c in box_corners(-1, (1, 2, 3))]
+    [[-1.0, -1.0, -1.0], [1.0, 2.0, 3.0]]
+    """
+    lo = as_vec3(np.broadcast_to(lower, 3) if np.ndim(lower) == 0 else lower, "lower")
+    hi = as_vec3(np.broadcast_to(upper, 3) if np.ndim(upper) == 0 else upper, "upper")
+    if np.any(hi <= lo):
+        raise InvalidParameterError(f"the box needs lower < upper on every axis, got lower={lo.tolist()}, "
+                                    f"upper={hi.tolist()}")
+    return lo, hi
+
+
 def box_tet_mesh(
     m: int | Sequence[int] = 4, lower: ArrayLike = (0.0, 0.0, 0.0), upper: ArrayLike = (1.0, 1.0, 1.0)
 ) -> TetMesh:
@@ -550,11 +582,7 @@ def box_tet_mesh(
     ((162, 4), -1.0, 8.0)
     """
     check_box_memory(m)
-    lo, hi = as_vec3(np.broadcast_to(lower, 3) if np.ndim(lower) == 0 else lower, "lower"), \
-        as_vec3(np.broadcast_to(upper, 3) if np.ndim(upper) == 0 else upper, "upper")
-    if np.any(hi <= lo):
-        raise InvalidParameterError(f"the box needs lower < upper on every axis, got lower={lo.tolist()}, "
-                                    f"upper={hi.tolist()}")
+    lo, hi = box_corners(lower, upper)
     X, U = cube_nd(3, m, return_points=True)
     return check_tet_mesh(lo + U * (hi - lo), X.simplices(3))
 

@@ -51,11 +51,14 @@ from dhlb.vortex.velocity import _check_hbar, velocity_bundle
 __all__ = ["distributed_vortex_filaments"]
 
 
-def _owned_count(simplices: np.ndarray, part) -> int:
-    """The simplices of the local complex (rows of local vertex ids) that this rank owns: smallest vertex owned."""
-    lo, hi = part.owned.start, part.owned.stop
-    first = simplices.min(axis=1)
-    return int(np.count_nonzero((first >= lo) & (first < hi)))
+def _owned(simplices: np.ndarray, part) -> np.ndarray:
+    """Which simplices of the local complex (rows of local vertex ids, increasing) this rank owns.
+
+    A simplex belongs to the owner of its smallest vertex; local vertices are in increasing global order,
+    so that is the first vertex of the row, and the owned vertices are the local block ``part.owned``.
+    """
+    first = simplices[:, 0]
+    return (first >= part.owned.start) & (first < part.owned.stop)
 
 
 def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: VortexOptions | None = None,
@@ -132,7 +135,7 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     L = velocity_bundle(X, P, loc.vertex_values if array_velocity else velocity, h, order=options.order)
     Om = L.curvature
     tri = X.simplices(2)
-    owned_tri = _owned_tri = (tri[:, 0] >= part.owned.start) & (tri[:, 0] < part.owned.stop)  # tri rows are sorted
+    owned_tri = _owned(tri, part)
     meter.mark("omega")
     A, M = bundle_matrices(L, geo)
     Ab = RowBlock(*owned_rows(A, part), loc.start, loc.stop, N)
@@ -146,8 +149,9 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     psi_own = np.asarray(eig.vectors[:, 0], np.complex128)
     psi_loc = scatter_values(psi_own, loc.start, loc.stop, N, part.vertices)
     on_boundary = np.zeros(tri.shape[0], bool)
-    if loc.boundary_faces.size:
-        on_boundary[X.index(2, np.sort(loc.boundary_faces, axis=1))] = True
+    if loc.boundary_faces.size:   # the whole mesh's boundary triangles with local vertices that are in the patch
+        B = loc.boundary_faces[X.contains(2, loc.boundary_faces)]
+        on_boundary[X.index(2, B)] = True
     owned_tets = loc.mesh.index[part.owned_cells]   # rows of X.simplices(3)
     pieces = filament_pieces(L, psi_loc, P, owned_tets, vertex_ids=part.vertices, boundary=on_boundary,
                              placement=options.placement)
@@ -158,13 +162,13 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     by_crossed = comm.allreduce(by_crossed)
     all_pieces = comm.gather(pieces, root=0)
     big = np.abs(Om) > np.pi
-    flux = (float(np.abs(Om).max()) if Om.size else 0.0, int(np.count_nonzero(big & _owned_tri)))
+    flux = (float(np.abs(Om).max()) if Om.size else 0.0, int(np.count_nonzero(big & owned_tri)))
     worst = int(np.argmax(np.abs(Om))) if Om.size else -1
     worst_info = (flux[0], tuple(int(v) for v in part.vertices[tri[worst]]) if worst >= 0 else (),
                   P[tri[worst]].mean(axis=0).tolist() if worst >= 0 else [])
     fluxes = comm.gather(worst_info, root=0)
     n_unresolved = comm.allreduce(flux[1])
-    n_edges = comm.allreduce(_owned_count(X.simplices(1), part))
+    n_edges = comm.allreduce(int(np.count_nonzero(_owned(X.simplices(1), part))))
     n_tri = comm.allreduce(int(np.count_nonzero(owned_tri)))
     psi_all = gather_owned(loc, psi_own, comm)
     meter.mark("extraction")

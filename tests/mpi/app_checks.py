@@ -171,11 +171,29 @@ def check_vortex():
             "owned": [s[0] for s in sizes], "local": [s[1] for s in sizes]}
 
 
+def check_open_filament():
+    """A ring that leaves the box: one open filament from boundary to boundary, cut between the ranks."""
+    from dhlb.vortex import FilamentField, vortex_ring
+
+    mesh = box_tet_mesh(14, lower=-1.0, upper=1.0)
+    field = FilamentField([vortex_ring(1.0, center=(1.013, 0.007, 0.011), n=96)], 2 * np.pi, core_radius=0.15)
+    res = distributed_vortex_filaments(mesh if RANK == 0 else None, None, field, 1.0, solver=SolverOptions(tol=1e-12))
+    if RANK != 0:
+        return {}
+    ref = vortex_filaments(mesh, None, field, 1.0, solver=SolverOptions(tol=1e-12))
+    assert [f.closed for f in res.filaments] == [f.closed for f in ref.filaments] == [False]
+    a, b = res.filaments[0].points, ref.filaments[0].points
+    assert a.shape == b.shape and np.abs(a - b).max() <= 1e-10, "the open filament differs from the serial one"
+    for key in ("n_crossed_faces", "tets_by_crossed_faces", "n_triangles", "n_edges", "n_tets"):
+        assert res.statistics[key] == ref.statistics[key], (key, res.statistics[key], ref.statistics[key])
+    return {"open_points_diff": float(np.abs(a - b).max())}
+
+
 def main():
     out = sys.argv[1]
     failed, results = 0, {}
     for check in (check_field_rows_bitwise, check_tet_rows_bitwise, check_field, check_field_with_boundary,
-                  check_vortex):
+                  check_vortex, check_open_filament):
         try:
             data, ok = check(), True
         except AssertionError as err:
