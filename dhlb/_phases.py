@@ -9,8 +9,8 @@ Examples
 >>> meter = PhaseMeter()
 >>> x = bytearray(50 * 2**20)
 >>> meter.mark("allocate")
->>> sorted(meter.seconds), meter.peak_mb["allocate"] >= 50
-(['allocate'], True)
+>>> sorted(meter.seconds), meter.peak_mb["allocate"] >= 50, meter.peak_mb["allocate"] - meter.start_mb["allocate"] >= 50
+(['allocate'], True, True)
 """
 
 from __future__ import annotations
@@ -57,6 +57,18 @@ def trim_heap() -> None:
         trim(0)
 
 
+def _rss_mb() -> float:
+    """The resident memory now, in MB (``VmRSS``; the process peak where ``/proc`` is missing)."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("VmRSS:"):
+                    return int(line.split()[1]) / 1024.0
+    except OSError:
+        pass
+    return peak_mb()
+
+
 def _hwm_mb() -> float | None:
     try:
         with open("/proc/self/status", encoding="ascii") as fh:
@@ -78,12 +90,18 @@ def _reset_hwm() -> bool:
 
 
 class PhaseMeter:
-    """Times phases and measures the peak resident memory within each (MB); :meth:`mark` ends a phase."""
+    """Times phases and measures the peak resident memory within each (MB); :meth:`mark` ends a phase.
+
+    ``peak_mb[name]`` is the largest resident memory during the phase, ``start_mb[name]`` the resident
+    memory when it began (what it inherited), so ``peak_mb - start_mb`` is what the phase itself added.
+    """
 
     def __init__(self):
         self.seconds: dict[str, float] = {}
         self.peak_mb: dict[str, float] = {}
+        self.start_mb: dict[str, float] = {}    # resident memory when each phase began (what it inherited)
         self._resettable = _reset_hwm() and _hwm_mb() is not None
+        self._start = _rss_mb()
         self._t0 = self._t = time.perf_counter()
 
     def mark(self, name: str) -> None:
@@ -92,8 +110,10 @@ class PhaseMeter:
         self.seconds[name] = self.seconds.get(name, 0.0) + now - self._t
         peak = _hwm_mb() if self._resettable else peak_mb()
         self.peak_mb[name] = max(self.peak_mb.get(name, 0.0), peak if peak is not None else peak_mb())
+        self.start_mb.setdefault(name, self._start)
         if self._resettable:
             _reset_hwm()
+        self._start = _rss_mb()
         self._t = time.perf_counter()
 
     @property

@@ -152,6 +152,7 @@ def distributed_direction_field(V, F=None, n: int = 1, s: float = 0.0, *, option
     counts = comm.gather((loc.n_owned, part.vertices.size, loc.mesh.n_faces, int(part.owned_cells.sum())), root=0)
     meter.mark("gather")
     all_peaks = comm.gather(meter.peak_mb, root=0)
+    all_starts = comm.gather(meter.start_mb, root=0)
     if comm.rank != 0:
         return None
     t = meter.seconds
@@ -165,7 +166,8 @@ def distributed_direction_field(V, F=None, n: int = 1, s: float = 0.0, *, option
                            sing_g)
     parallel = {"ranks": comm.size, "owned_vertices": [c[0] for c in counts], "local_vertices": [c[1] for c in counts],
                 "local_faces": [c[2] for c in counts], "owned_faces": [c[3] for c in counts],
-                "petsc_rows": [c[0] for c in counts], "peak_mb": all_peaks, "method": eig.method}
+                "petsc_rows": [c[0] for c in counts], "peak_mb": all_peaks, "start_mb": all_starts,
+                "method": eig.method}
     stats = {"backend": "petsc", "iterations": int(eig.iterations), "residual": float(eig.residuals[0]),
              "converged": bool(eig.converged), "factorizations": int(eig.factorizations), "solves": int(eig.solves),
              "shift": float(eig.shift), "note": eig.note, "parallel": parallel, **{"mumps": eig.stats}}

@@ -173,6 +173,7 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     psi_all = gather_owned(loc, psi_own, comm)
     meter.mark("extraction")
     all_peaks = comm.gather(meter.peak_mb, root=0)
+    all_starts = comm.gather(meter.start_mb, root=0)
     counts = comm.gather((loc.n_owned, part.vertices.size, int(part.owned_cells.sum()), loc.mesh.tets.shape[0]),
                          root=0)
     if comm.rank != 0:
@@ -193,7 +194,8 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     n_closed = sum(f.closed for f in fs)
     parallel = {"ranks": comm.size, "owned_vertices": [c[0] for c in counts], "local_vertices": [c[1] for c in counts],
                 "owned_tets": [c[2] for c in counts], "local_tets": [c[3] for c in counts],
-                "petsc_rows": [c[0] for c in counts], "peak_mb": all_peaks, "method": eig.method}
+                "petsc_rows": [c[0] for c in counts], "peak_mb": all_peaks, "start_mb": all_starts,
+                "method": eig.method}
     stats = {
         "n_vertices": int(N), "n_edges": int(n_edges), "n_triangles": int(n_tri), "n_tets": int(loc.n_cells),
         "hbar": h, "max_flux": max(f[0] for f in fluxes), "n_unresolved_faces": int(n_unresolved),
