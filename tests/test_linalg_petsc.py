@@ -391,3 +391,12 @@ def test_a_nan_on_one_rank_raises_the_same_error_everywhere_with_one_line(tmp_pa
     assert proc.stderr.count("NonFiniteError: A[") == 1, proc.stderr
     assert f"is not finite [MPI rank {size - 1} of {size}]" in proc.stderr
     assert not (tmp_path / "x.npz").exists()
+
+
+@needs_petsc
+@pytest.mark.parametrize("n", [1, 2, 3, 5])
+def test_tiny_matrices_factorize_with_the_default_ordering(n):
+    # PORD forced (ICNTL(7) = 4) ends the process on 2 or 3 rows; the automatic choice does not
+    K = (sp.identity(n) * 3 - sp.eye(n, k=1) - sp.eye(n, k=-1)).tocsr()
+    x = PetscBackend().factorize(K).solve(np.ones(n))
+    assert np.allclose(K @ x, 1)

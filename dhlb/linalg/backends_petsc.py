@@ -239,14 +239,16 @@ def _gather(v) -> np.ndarray:
     return np.concatenate(comm.tompi4py().allgather(local))
 
 
-MUMPS_ORDERING = 4
+MUMPS_ORDERING = 7
 """MUMPS' ``ICNTL(7)``, the sequential ordering of the analysis (0 AMD, 2 AMF, 3 SCOTCH, 4 PORD, 5 METIS, 6 QAMD,
 7 automatic); set on every factorization (:func:`_direct_pc`) and read back in the tests.
 
-PORD, chosen by measurement (``benchmarks/bench_mumps_ordering.py``, docs/mpi.md): it is bundled with every
-MUMPS, and against AMD it has 39 % fewer factor entries on the 1.31M-face icosphere field (8.6e7 against
-1.42e8) and on a 384k-tet box, and factorizes 2–5× faster; its analysis costs 0.3–3.5 s more. (Debian's
-MUMPS has neither METIS nor SCOTCH: asking for 3 or 5 silently gives PORD; 7 picks PORD there too.)"""
+Automatic, chosen by measurement (``benchmarks/bench_mumps_ordering.py``, docs/mpi.md): on every matrix
+measured it picks PORD (``INFOG(7) = 4``), which against AMD has 39 % fewer factor entries on the
+1.31M-face icosphere field (8.6e7 against 1.42e8) and on a 384k-tet box, and factorizes 2–5× faster.
+PORD itself (4) is not forced: on a matrix of two or three rows it stops the process ("no valid number of
+stages in multisector"). Debian's MUMPS has neither METIS nor SCOTCH (3 and 5 silently give PORD); where
+they exist, automatic may pick them."""
 
 MUMPS_ICNTL: dict = {}
 """Extra MUMPS ``ICNTL`` settings ``{i: value}`` for every factorization (tuning, and the tests' forced failures)."""
