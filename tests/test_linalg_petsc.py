@@ -162,12 +162,12 @@ from dhlb.linalg.distributed import (  # noqa: E402
     RowBlock,
     check_hermitian_distributed,
     default_shift_distributed,
-    distributed_eigenpairs,
     gather_to_root,
     norm1_distributed,
     scatter_values,
     start_vector,
 )
+from dhlb.linalg.distributed_eigen import distributed_eigenpairs  # noqa: E402
 from dhlb.linalg.eigen import default_shift  # noqa: E402
 
 
@@ -254,7 +254,7 @@ def test_auto_falls_back_to_lobpcg_gamg_when_the_factor_does_not_fit():
 @needs_petsc
 def test_auto_takes_lobpcg_gamg_for_a_large_volume_pattern_as_select_backend_does():
     from dhlb.linalg.backends import ITERATIVE_3D
-    from dhlb.linalg.distributed import _choose
+    from dhlb.linalg.distributed_eigen import _choose
 
     A = _grid3(22)            # 10,648 unknowns, 7 nonzeros per row: a surface-like count, factorized
     assert _choose(_blocks(A, A)[0], "auto")[0] == "krylovschur"

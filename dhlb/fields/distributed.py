@@ -11,7 +11,7 @@ distribute rank 0 validates the whole mesh, partitions it (METIS) and sends each
            and two rings of halo faces (:func:`dhlb.mesh.distribute.distribute_surface`)
 assembly   the tangent bundle and :func:`~dhlb.fields.energy_matrices` of the *local* mesh, unchanged;
            the owned rows (bit for bit those of the serial assembly) go to PETSc
-solve      :func:`dhlb.linalg.distributed.distributed_eigenpairs` (SLEPc, MUMPS): the owned rows of the
+solve      :func:`dhlb.linalg.distributed_eigen.distributed_eigenpairs` (SLEPc, MUMPS): the owned rows of the
            eigenvector
 indices    the halo values of ``u`` by a scatter; directions of the owned vertices and indices of the
            owned faces (:func:`~dhlb.fields.field_indices` with ``faces=``) on the local mesh;
@@ -72,7 +72,7 @@ def distributed_direction_field(V, F=None, n: int = 1, s: float = 0.0, *, option
         (``progress`` is ignored).
     solver : SolverOptions or str, optional
         Only ``tol`` is used (default :func:`dhlb.linalg.default_tol` of the global vertex count); the
-        solver is SLEPc's (:func:`dhlb.linalg.distributed.distributed_eigenpairs`).
+        solver is SLEPc's (:func:`dhlb.linalg.distributed_eigen.distributed_eigenpairs`).
     comm : mpi4py.MPI.Comm, optional
         Default ``MPI_COMM_WORLD``.
 
@@ -106,7 +106,8 @@ def distributed_direction_field(V, F=None, n: int = 1, s: float = 0.0, *, option
     >>> ok
     True
     """
-    from dhlb.linalg.distributed import RowBlock, distributed_eigenpairs, scatter_values
+    from dhlb.linalg.distributed import RowBlock, scatter_values
+    from dhlb.linalg.distributed_eigen import distributed_eigenpairs
     from dhlb.mesh.distribute import distribute_surface, gather_cells, gather_owned, world
     from dhlb.mesh.partition import owned_rows
 

@@ -11,7 +11,7 @@ mesh       rank 0 validates the whole mesh, partitions it (METIS) and sends each
 omega      :func:`~dhlb.vortex.velocity_bundle` on the local complex
 assembly   :func:`dhlb.fem.bundle_matrices` on the local mesh, unchanged; the owned rows (bit for bit
            those of the serial assembly) go to PETSc
-solve      :func:`dhlb.linalg.distributed.distributed_eigenpairs`: the owned rows of ψ
+solve      :func:`dhlb.linalg.distributed_eigen.distributed_eigenpairs`: the owned rows of ψ
 extraction the halo values of ψ by a scatter; the filament pieces through the owned tetrahedra,
            keyed by global triangle (:func:`~dhlb.vortex.filament_pieces`); rank 0 stitches them
            (:func:`~dhlb.vortex.stitch_pieces`) and computes the linking numbers
@@ -101,7 +101,8 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     """
     from dhlb.fem import bundle_matrices
     from dhlb.geometry import EuclideanComplex
-    from dhlb.linalg.distributed import RowBlock, distributed_eigenpairs, scatter_values
+    from dhlb.linalg.distributed import RowBlock, scatter_values
+    from dhlb.linalg.distributed_eigen import distributed_eigenpairs
     from dhlb.mesh.distribute import LocalMesh, distribute_tets, gather_owned, world
     from dhlb.mesh.partition import owned_rows
     from dhlb.vortex.stitch import filament_pieces, stitch_pieces

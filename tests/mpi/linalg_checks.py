@@ -22,13 +22,13 @@ from dhlb.linalg.backends_petsc import row_ranges  # noqa: E402
 from dhlb.linalg.distributed import (  # noqa: E402
     RowBlock,
     default_shift_distributed,
-    distributed_eigenpairs,
     gather_to_root,
     petsc_matrix,
     row_layout,
     scatter_values,
     start_vector,
 )
+from dhlb.linalg.distributed_eigen import distributed_eigenpairs  # noqa: E402
 
 COMM = MPI.COMM_WORLD
 RANK, SIZE = COMM.rank, COMM.size
