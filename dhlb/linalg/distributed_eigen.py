@@ -263,6 +263,8 @@ def distributed_eigenpairs(A: RowBlock, M: RowBlock, k: int = 1, *, tol: float, 
     Examples
     --------
     >>> import scipy.sparse as sp
+    >>> from dhlb.linalg.backends_petsc import petsc_available
+    >>> from dhlb.linalg.distributed import RowBlock
     >>> n = 50
     >>> S = sp.diags([-np.ones(n - 1), np.r_[1, 2 * np.ones(n - 2), 1], -np.ones(n - 1)], [-1, 0, 1])
     >>> A, M = RowBlock.from_global(S, 0, n), RowBlock.from_global(sp.identity(n), 0, n)
