@@ -43,11 +43,16 @@ def launched_by_mpirun() -> bool:
 
 
 def mpi_main(argv=None) -> int:
-    """``dhlb`` under MPI: every rank runs the command, rank 0 alone writes outputs and prints.
+    """``dhlb`` under MPI: every rank runs the command, rank 0 alone reads the mesh, writes outputs and prints.
 
-    Run as ``mpirun -n P python -m dhlb.cli.mpi field MESH --backend petsc -o OUT``.
-    Ranks other than 0 write their copy of the outputs into a private temporary directory
-    (deleted afterwards) and print nothing; the exit code is the largest over all ranks.
+    Run as ``mpirun -n P dhlb field MESH --backend petsc -o OUT`` (``dhlb`` comes here when started by
+    mpirun) or ``mpirun -n P python -m dhlb.cli.mpi ...``. With ``--backend petsc``, ``field`` (smoothest)
+    and ``vortex`` run distributed (:mod:`dhlb.fields.distributed`, :mod:`dhlb.vortex.distributed`: no
+    rank holds a global matrix); the other commands run the replicated petsc backend, and ranks other
+    than 0 write their copy of the outputs into a private temporary directory (deleted afterwards).
+    Ranks other than 0 print nothing; the exit code is the largest over all ranks, and a rank whose
+    command failed while the others wait in a collective call ends the run after
+    :data:`GRACE_SECONDS`.
 
     Parameters
     ----------
