@@ -136,3 +136,22 @@ def test_command_line_stripes_on_two_ranks_gives_the_default_zeros(tmp_path):
     assert main(["stripes", mesh, "--spacing", "6", "--no-png", "-q", "-o", str(tmp_path / "ref.obj")]) == 0
     got, ref = (json.loads((tmp_path / f"{b}.json").read_text()) for b in ("s", "ref"))
     assert got["zeros"]["faces"] == ref["zeros"]["faces"] and got["zeros"]["index"] == ref["zeros"]["index"]
+
+
+def test_command_line_conformal_on_two_ranks_gives_the_default_eigenvalue():
+    # conformal has no distributed driver yet: every rank solves the whole problem through the petsc backend
+    mesh = str(ROOT / "dhlb" / "data" / "octopus-tet.mesh")
+    proc, _ = _mpirun(2, [sys.executable, "-m", "dhlb", "conformal", mesh, "--backend", "petsc", "--json"])
+    assert proc.returncode == 0, proc.stderr
+    got = json.loads(proc.stdout)
+    assert got["statistics"]["solver"]["backend"] == "petsc"
+    import contextlib
+    import io
+
+    from dhlb.cli import main
+
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main(["conformal", mesh, "--json"]) == 0
+    ref = json.loads(out.getvalue())
+    assert abs(got["eigenvalue"] / ref["eigenvalue"] - 1) < 1e-8
