@@ -400,3 +400,16 @@ def test_tiny_matrices_factorize_with_the_default_ordering(n):
     K = (sp.identity(n) * 3 - sp.eye(n, k=1) - sp.eye(n, k=-1)).tocsr()
     x = PetscBackend().factorize(K).solve(np.ones(n))
     assert np.allclose(K @ x, 1)
+
+
+@needs_petsc
+def test_distributed_solves_leave_no_options_behind():
+    from petsc4py import PETSc
+
+    n = 300
+    blocks = _blocks(_path(n) + sp.identity(n), sp.identity(n, format="csr"))
+    distributed_eigenpairs(*blocks, 1, tol=1e-10)
+    before = len(PETSc.Options().getAll())
+    for _ in range(3):
+        distributed_eigenpairs(*blocks, 1, tol=1e-10)
+    assert len(PETSc.Options().getAll()) == before

@@ -289,6 +289,18 @@ def _direct_pc(ksp) -> str:
                                "SuperLU_dist); rebuild PETSc with --download-mumps or run on one rank")
 
 
+def _forget_options(prefix: str) -> None:
+    """Delete the options :func:`_direct_pc` set under ``prefix`` (once the factor is gone).
+
+    So PETSc's options database does not grow by a few entries with every solve of a long-running program.
+    """
+    from petsc4py import PETSc
+
+    opts = PETSc.Options(prefix)
+    for i in {24: 1, 7: MUMPS_ORDERING, **MUMPS_ICNTL}:
+        opts.delValue(f"mat_mumps_icntl_{i}")
+
+
 def _mumps(pc):
     """The MUMPS factor matrix of ``pc``, or ``None`` (another solver, or not set up)."""
     from petsc4py import PETSc

@@ -54,7 +54,14 @@ import scipy.linalg as sla
 
 from dhlb.errors import InvalidOperatorError, NotSemidefiniteError, ShapeError
 from dhlb.linalg.backends import ITERATIVE_3D
-from dhlb.linalg.backends_petsc import _direct_pc, _factor_stats, _null_pivots, _petsc_failure, install_abort_hook
+from dhlb.linalg.backends_petsc import (
+    _direct_pc,
+    _factor_stats,
+    _forget_options,
+    _null_pivots,
+    _petsc_failure,
+    install_abort_hook,
+)
 from dhlb.linalg.distributed import (
     RowBlock,
     _agree,
@@ -296,6 +303,7 @@ def distributed_eigenpairs(A: RowBlock, M: RowBlock, k: int = 1, *, tol: float, 
     finally:  # free the factor (MUMPS) and the matrices now, not when the garbage collector runs
         for obj in (E, Ap, Mp):
             obj.destroy()
+        _forget_options(prefix + "st_")
 
 
 def _solve_eps(E, extra, Ap, Mp, A, k, eps, tol, maxiter, normA, normM, method, note) -> DistributedEigen:
