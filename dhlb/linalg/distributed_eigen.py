@@ -298,17 +298,45 @@ def distributed_eigenpairs(A: RowBlock, M: RowBlock, k: int = 1, *, tol: float, 
     _calls += 1
     prefix = f"dhlb_dist{_calls}_"
     E, extra = _setup_eps(Ap, Mp, method, int(k), eps, prefix)
+    pencil = _Pencil(Ap, Mp, A.start, A.stop, eps, normA, normM)
     try:
-        return _solve_eps(E, extra, Ap, Mp, A, k, eps, tol, maxiter, normA, normM, method, note)
+        return _solve_eps(E, pencil, int(k), _Run(method, extra.get("solver", "gamg"), float(tol), maxiter, note))
     finally:  # free the factor (MUMPS) and the matrices now, not when the garbage collector runs
-        for obj in (E, Ap, Mp):
-            obj.destroy()
+        for obj in (E, Ap, Mp, extra.get("K")):
+            if obj is not None:
+                obj.destroy()
         _forget_options(prefix + "st_")
 
 
-def _solve_eps(E, extra, Ap, Mp, A, k, eps, tol, maxiter, normA, normM, method, note) -> DistributedEigen:
+@dataclass(frozen=True)
+class _Pencil:
+    """The distributed pencil as PETSc holds it: matrices, this rank's rows, the shift and the norms of η."""
+
+    Ap: object
+    Mp: object
+    start: int
+    stop: int
+    eps: float
+    normA: float
+    normM: float
+
+
+@dataclass(frozen=True)
+class _Run:
+    """How to solve: the method, its inner solver (``mumps``, ``gamg``), tolerance, iteration limit, a note so far."""
+
+    method: str
+    solver: str
+    tol: float
+    maxiter: int
+    note: str
+
+
+def _solve_eps(E, pencil: _Pencil, k: int, run: _Run) -> DistributedEigen:
     """Run the set-up eigensolver ``E`` (restarting from its vectors if η > tol); the result on every rank."""
     from petsc4py import PETSc
+
+    Ap, Mp, eps, tol, method = pencil.Ap, pencil.Mp, pencil.eps, run.tol, run.method
 
     ksp = E.getST().getKSP()
     what = f"A + εM (ε = {eps:.3g})"
@@ -316,14 +344,15 @@ def _solve_eps(E, extra, Ap, Mp, A, k, eps, tol, maxiter, normA, normM, method, 
         E.setUp()
     except PETSc.Error as err:
         raise _collective(_petsc_failure(err, ksp.getPC(), what, singular_hint=_NOT_PSD)) from err
-    if method == "krylovschur" and extra["solver"] == "mumps" and (null := _null_pivots(ksp.getPC())):
+    if method == "krylovschur" and run.solver == "mumps" and (null := _null_pivots(ksp.getPC())):
         raise _collective(InvalidOperatorError(f"{what} is singular: MUMPS found {null} null pivot(s); "
                                                f"{_NOT_PSD}"))
-    s0 = start_vector(A.start, A.stop, 0)
-    X = np.column_stack([s0] + [start_vector(A.start, A.stop, j) for j in range(1, k)]).astype(np.complex128)
-    iterations, t0, notes, solves0 = 0, time.perf_counter(), [note] if note else [], _ksp_solves()
+    s0 = start_vector(pencil.start, pencil.stop, 0)
+    X = np.column_stack([s0] + [start_vector(pencil.start, pencil.stop, j) for j in range(1, k)])
+    X = X.astype(np.complex128)
+    iterations, t0, notes, solves0 = 0, time.perf_counter(), [run.note] if run.note else [], _ksp_solves()
     for attempt in range(1 + _RESTARTS):
-        E.setTolerances(tol=float(tol), max_it=maxiter)
+        E.setTolerances(tol=tol, max_it=run.maxiter)
         E.setInitialSpace(_vecs(Ap, X))
         try:
             E.solve()
@@ -335,7 +364,7 @@ def _solve_eps(E, extra, Ap, Mp, A, k, eps, tol, maxiter, normA, normM, method, 
         for i in range(nconv):
             E.getEigenpair(i, vr)
             X[:, i] = vr.getArray(readonly=True)
-        lam, X, eta = _rayleigh_ritz(Ap, Mp, X, normA, normM)
+        lam, X, eta = _rayleigh_ritz(Ap, Mp, X, pencil.normA, pencil.normM)
         if lam[0] < -eps:
             raise _collective(NotSemidefiniteError(
                 f"{what} is not positive definite, so A is not positive semidefinite or M is not positive "
@@ -349,7 +378,7 @@ def _solve_eps(E, extra, Ap, Mp, A, k, eps, tol, maxiter, normA, normM, method, 
     converged = bool(np.all(eta <= tol))
     stats = {"time": time.perf_counter() - t0}
     if method == "krylovschur":
-        stats.update(_factor_stats(ksp, extra["solver"]))
+        stats.update(_factor_stats(ksp, run.solver))
     else:
         stats["preconditioner"] = "gamg"
         stats["gamg_levels"] = int(ksp.getPC().getMGLevels())
