@@ -61,11 +61,6 @@ def icosphere(level: int):
     return ico(level)
 
 
-def _rss_mb() -> float:
-    with open("/proc/self/status", encoding="ascii") as fh:
-        return next(int(ln.split()[1]) / 1024 for ln in fh if ln.startswith("VmRSS:"))
-
-
 def worker(case: str) -> None:
     from mpi4py import MPI
     from petsc4py import PETSc  # noqa: F401
@@ -74,9 +69,10 @@ def worker(case: str) -> None:
     import dhlb.fields.distributed
     import dhlb.linalg.distributed
     import dhlb.vortex.distributed  # noqa: F401 -- loaded before the baseline is read
+    from dhlb._phases import rss_mb
 
     comm = MPI.COMM_WORLD
-    baseline = comm.gather(_rss_mb(), root=0)   # interpreter, numpy/scipy, MPI, PETSc, SLEPc, dhlb: before any data
+    baseline = comm.gather(rss_mb(), root=0)   # interpreter, numpy/scipy, MPI, PETSc, SLEPc, dhlb: before any data
     t = time.perf_counter()
     if case.startswith(("torus", "ico")):
         from dhlb.fields.distributed import distributed_direction_field

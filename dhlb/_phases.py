@@ -18,7 +18,7 @@ from __future__ import annotations
 import resource
 import time
 
-__all__ = ["PhaseMeter", "peak_mb", "trim_heap"]
+__all__ = ["PhaseMeter", "peak_mb", "rss_mb", "trim_heap"]
 
 
 def peak_mb() -> float:
@@ -57,8 +57,14 @@ def trim_heap() -> None:
         trim(0)
 
 
-def _rss_mb() -> float:
-    """The resident memory now, in MB (``VmRSS``; the process peak where ``/proc`` is missing)."""
+def rss_mb() -> float:
+    """The resident memory now, in MB (``VmRSS``; the process peak where ``/proc`` is missing).
+
+    Examples
+    --------
+    >>> 0 < rss_mb() <= peak_mb() + 1
+    True
+    """
     try:
         with open("/proc/self/status", encoding="ascii") as fh:
             for line in fh:
@@ -101,7 +107,7 @@ class PhaseMeter:
         self.peak_mb: dict[str, float] = {}
         self.start_mb: dict[str, float] = {}    # resident memory when each phase began (what it inherited)
         self._resettable = _reset_hwm() and _hwm_mb() is not None
-        self._start = _rss_mb()
+        self._start = rss_mb()
         self._t0 = self._t = time.perf_counter()
 
     def mark(self, name: str) -> None:
@@ -113,7 +119,7 @@ class PhaseMeter:
         self.start_mb.setdefault(name, self._start)
         if self._resettable:
             _reset_hwm()
-        self._start = _rss_mb()
+        self._start = rss_mb()
         self._t = time.perf_counter()
 
     @property

@@ -106,10 +106,9 @@ def distributed_direction_field(V, F=None, n: int = 1, s: float = 0.0, *, option
     >>> ok
     True
     """
-    from dhlb.linalg.distributed import RowBlock, scatter_values
+    from dhlb.linalg.distributed import scatter_values
     from dhlb.linalg.distributed_eigen import distributed_eigenpairs
     from dhlb.mesh.distribute import distribute_surface, gather_cells, gather_owned, world
-    from dhlb.mesh.partition import owned_rows
 
     comm = world() if comm is None else comm
     options = FieldOptions() if options is None else options
@@ -125,8 +124,7 @@ def distributed_direction_field(V, F=None, n: int = 1, s: float = 0.0, *, option
     part, N = loc.part, loc.n_vertices
     tb = TangentBundle(loc.mesh, n)
     A, M = energy_matrices(tb, s=s, lumped=options.lumped)
-    Ab = RowBlock(*owned_rows(A, part), loc.start, loc.stop, N)
-    Mb = RowBlock(*owned_rows(M, part), loc.start, loc.stop, N)
+    Ab, Mb = loc.row_block(A), loc.row_block(M)
     A_own = A[part.owned]   # the owned rows in local columns, for the energy
     del A, M
     trim_heap()   # the assembly's temporaries, before the factorization

@@ -39,7 +39,7 @@ from dhlb.linalg.backends_petsc import (
     petsc_available,  # noqa: F401 -- the examples skip without PETSc
 )
 
-__all__ = ["RowBlock", "check_hermitian_distributed", "default_shift_distributed", "gather_to_root",
+__all__ = ["RowBlock", "world", "check_hermitian_distributed", "default_shift_distributed", "gather_to_root",
            "norm1_distributed", "petsc_matrix", "row_layout", "scatter_values", "start_vector"]
 
 _HERMITIAN_RTOL = 1e-10     # as dhlb.linalg._checks._check_hermitian
@@ -47,23 +47,55 @@ _EPS = np.finfo(float).eps
 
 
 # ---------------------------------------------------------------------- MPI plumbing
-def _mpi():
-    """``MPI_COMM_WORLD`` (mpi4py), or ``None`` without mpi4py (one process)."""
+class _SelfComm:
+    """The communicator of a single process (no mpi4py): the mpi4py calls used here, without communication."""
+
+    rank, size = 0, 1
+
+    def bcast(self, obj, root=0):
+        return obj
+
+    def scatter(self, objs, root=0):
+        return objs[0]
+
+    def gather(self, obj, root=0):
+        return [obj]
+
+    def allreduce(self, obj, op=None):
+        return obj
+
+    def allgather(self, obj):
+        return [obj]
+
+
+def world():
+    """``MPI.COMM_WORLD`` of mpi4py, or a one-process stand-in when mpi4py is not installed.
+
+    Returns
+    -------
+    mpi4py.MPI.Comm or a stand-in with ``rank``, ``size``, ``bcast``, ``scatter``, ``gather``, ``allreduce``
+
+    Examples
+    --------
+    >>> comm = world()
+    >>> 0 <= comm.rank < comm.size
+    True
+    """
     try:
         from mpi4py import MPI
     except ImportError:
-        return None
+        return _SelfComm()
     return MPI.COMM_WORLD
 
 
 def _size() -> int:
-    comm = _mpi()
-    return 1 if comm is None else comm.size
+    comm = world()
+    return comm.size
 
 
 def _allreduce(value, op: str):
-    comm = _mpi()
-    if comm is None or comm.size == 1:
+    comm = world()
+    if comm.size == 1:
         return value
     from mpi4py import MPI
 
@@ -77,8 +109,8 @@ def _collective(err: DhlbError) -> DhlbError:
 
 def _agree(err: DhlbError | None) -> None:
     """Raise the same typed error on every rank if ``err`` is set on any rank (the lowest such rank's)."""
-    comm = _mpi()
-    size = 1 if comm is None else comm.size
+    comm = world()
+    size = comm.size
     status = None if err is None else (type(err).__name__, str(err))
     statuses = [status] if size == 1 else comm.allgather(status)
     for r, st in enumerate(statuses):
@@ -199,8 +231,8 @@ def row_layout(n_owned: int) -> tuple[int, int, int]:
     (0, 5, 5)
     """
     n_owned = int(n_owned)
-    comm = _mpi()
-    if comm is None or comm.size == 1:
+    comm = world()
+    if comm.size == 1:
         return 0, n_owned, n_owned
     start = comm.exscan(n_owned)
     start = 0 if comm.rank == 0 or start is None else int(start)
@@ -248,9 +280,9 @@ def _validate_layout(blocks: dict) -> None:
         kind, msg = problem.split(":", 1)
         err = getattr(_errors, kind)(msg)
     _agree(err)
-    comm = _mpi()
+    comm = world()
     layouts = [tuple((B.start, B.stop, B.n) for B in blocks.values())]
-    if comm is not None and comm.size > 1:
+    if comm.size > 1:
         layouts = comm.allgather(layouts[0])
     names = list(blocks)
     for r, lay in enumerate(layouts):           # the same list on every rank: the same verdict
@@ -345,8 +377,8 @@ def scatter_values(x_owned: np.ndarray, start: int, stop: int, n: int, wanted: n
             raise ShapeError(f"wanted id {bad} is outside [0, {n})")
 
     _agreeing(check)
-    comm = _mpi()
-    if comm is None or comm.size == 1:
+    comm = world()
+    if comm.size == 1:
         if start != 0 or stop != n:
             raise _collective(ShapeError(f"one process owns rows [{start}, {stop}) but n = {n}"))
         return x[wanted]
@@ -392,8 +424,8 @@ def gather_to_root(x_owned: np.ndarray, root: int = 0) -> np.ndarray | None:
     [0, 1, 2]
     """
     x = np.asarray(x_owned)
-    comm = _mpi()
-    if comm is None or comm.size == 1:
+    comm = world()
+    if comm.size == 1:
         return x.copy()
     parts = comm.gather(x, root=root)
     return np.concatenate(parts, axis=0) if comm.rank == root else None

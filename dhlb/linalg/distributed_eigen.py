@@ -68,7 +68,6 @@ from dhlb.linalg.distributed import (
     _allreduce,
     _collective,
     _hermitian_problem,
-    _mpi,
     _positive_diagonal_problem,
     _size,
     _validate_layout,
@@ -76,6 +75,7 @@ from dhlb.linalg.distributed import (
     norm1_distributed,
     petsc_matrix,
     start_vector,
+    world,
 )
 from dhlb.linalg.memory import available_bytes, factor_bytes
 
@@ -118,8 +118,8 @@ def _apply(P, X: np.ndarray) -> np.ndarray:
 def _inner(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
     """``Xᴴ Y`` of distributed blocks (an MPI sum of the local products)."""
     local = X.conj().T @ Y
-    comm = _mpi()
-    if comm is None or comm.size == 1:
+    comm = world()
+    if comm.size == 1:
         return local
     from mpi4py import MPI
 

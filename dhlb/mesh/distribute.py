@@ -36,6 +36,7 @@ import numpy as np
 
 from dhlb._phases import trim_heap
 from dhlb.errors import DhlbError, InvalidParameterError
+from dhlb.linalg.distributed import RowBlock, gather_to_root, world
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -44,47 +45,6 @@ if TYPE_CHECKING:
 
 __all__ = ["LocalMesh", "distribute_box", "distribute_surface", "distribute_tets", "gather_cells", "gather_owned",
            "root_first", "world"]
-
-
-class _SelfComm:
-    """The communicator of a single process (no mpi4py): the mpi4py calls used here, without communication."""
-
-    rank, size = 0, 1
-
-    def bcast(self, obj, root=0):
-        return obj
-
-    def scatter(self, objs, root=0):
-        return objs[0]
-
-    def gather(self, obj, root=0):
-        return [obj]
-
-    def allreduce(self, obj, op=None):
-        return obj
-
-    def allgather(self, obj):
-        return [obj]
-
-
-def world():
-    """``MPI.COMM_WORLD`` of mpi4py, or a one-process stand-in when mpi4py is not installed.
-
-    Returns
-    -------
-    mpi4py.MPI.Comm or a stand-in with ``rank``, ``size``, ``bcast``, ``scatter``, ``gather``, ``allreduce``
-
-    Examples
-    --------
-    >>> comm = world()
-    >>> 0 <= comm.rank < comm.size
-    True
-    """
-    try:
-        from mpi4py import MPI
-    except ImportError:
-        return _SelfComm()
-    return MPI.COMM_WORLD
 
 
 def _rebuild(kind: type, message: str) -> BaseException:
@@ -215,6 +175,23 @@ class LocalMesh:
     def stop(self) -> int:
         """One past the last owned new global vertex id."""
         return int(self.offsets[self.rank + 1])
+
+    def row_block(self, S) -> RowBlock:
+        """The owned rows of a matrix assembled on the local mesh, as the distributed linear algebra takes them.
+
+        Parameters
+        ----------
+        S : (n_local, n_local) scipy.sparse matrix
+            Assembled on :attr:`mesh` (rows and columns are local vertices).
+
+        Returns
+        -------
+        RowBlock
+            Rows ``start:stop`` of the global matrix, global column ids (:func:`~dhlb.mesh.partition.owned_rows`).
+        """
+        from dhlb.mesh.partition import owned_rows
+
+        return RowBlock(*owned_rows(S, self.part), self.start, self.stop, self.n_vertices)
 
     @property
     def n_owned(self) -> int:
@@ -462,11 +439,8 @@ def gather_owned(loc: LocalMesh, values, comm=None):
         from dhlb.errors import ShapeError
 
         raise ShapeError(f"gather_owned: {values.shape[0]} rows for {loc.n_owned} owned vertices")
-    pieces = comm.gather(values, root=0)
-    if comm.rank != 0:
-        return None
-    new = np.concatenate(pieces)  # rank order = new id order
-    return new[loc.layout.inverse]
+    new = gather_to_root(values)   # rank order = new id order
+    return None if new is None else new[loc.layout.inverse]
 
 
 def gather_cells(loc: LocalMesh, mask, values, comm=None):

@@ -300,6 +300,34 @@ class MeshPart:
         down = np.flatnonzero(v[1:] <= v[:-1])
         return v.size if down.size == 0 else int(down[0]) + 1
 
+    def owns(self, simplices: ArrayLike) -> np.ndarray:
+        """Which simplices (rows of local vertex ids: edges, triangles, cells) this rank owns.
+
+        The rule of :attr:`owned_cells`, for simplices of any dimension: a simplex belongs to the
+        owner of its smallest (new, global) vertex id, so every simplex of the whole mesh is owned by
+        exactly one rank.
+
+        Parameters
+        ----------
+        simplices : (s, k) int array
+            Rows of local vertex ids (positions in :attr:`vertices`).
+
+        Returns
+        -------
+        (s,) bool array
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from dhlb.mesh import box_tet_mesh
+        >>> box = box_tet_mesh(2)
+        >>> layout = vertex_layout(partition_vertices(27, box.tets, 2), 2)
+        >>> p = tet_part(layout.inverse[box.tets], layout, 0)
+        >>> bool(np.array_equal(p.owns(p.local_cells), p.owned_cells))
+        True
+        """
+        return _owned_by(self.vertices[np.asarray(simplices)], *self.owned_range)
+
     @property
     def halo(self) -> np.ndarray:
         """Local positions of the vertices this rank does not own (copies included)."""
@@ -338,12 +366,16 @@ def _make_part(C: np.ndarray, rows: np.ndarray, layout: VertexLayout, rank: int,
         lc, copies = _split_fans(lc, fringe)
         vertices = np.concatenate([vertices, vertices[copies]])
     start = int(np.searchsorted(vertices[:n_distinct], lo))
-    G = vertices[lc]
-    gmin = np.minimum.reduce([G[:, j] for j in range(G.shape[1])])
-    owned_cells = (gmin >= lo) & (gmin < hi)
+    owned_cells = _owned_by(vertices[lc], lo, hi)
     for a in (vertices, rows, lc, owned_cells):
         a.setflags(write=False)
     return MeshPart(rank, layout.parts, vertices, slice(start, start + nowned), (lo, hi), rows, lc, owned_cells)
+
+
+def _owned_by(G: np.ndarray, lo: int, hi: int) -> np.ndarray:
+    """Rows of global vertex ids whose smallest id is in ``[lo, hi)``: the simplices the owner of that range owns."""
+    gmin = np.minimum.reduce([G[:, j] for j in range(G.shape[1])]) if G.shape[1] else np.zeros(len(G), np.int64)
+    return (gmin >= lo) & (gmin < hi)
 
 
 def _any_column(B: np.ndarray) -> np.ndarray:

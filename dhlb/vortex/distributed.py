@@ -51,16 +51,6 @@ from dhlb.vortex.velocity import _check_hbar, velocity_bundle
 __all__ = ["distributed_vortex_filaments"]
 
 
-def _owned(simplices: np.ndarray, part) -> np.ndarray:
-    """Which simplices of the local complex (rows of local vertex ids, increasing) this rank owns.
-
-    A simplex belongs to the owner of its smallest vertex; local vertices are in increasing global order,
-    so that is the first vertex of the row, and the owned vertices are the local block ``part.owned``.
-    """
-    first = simplices[:, 0]
-    return (first >= part.owned.start) & (first < part.owned.stop)
-
-
 def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: VortexOptions | None = None,
                                  solver: SolverOptions | str | None = None, comm=None) -> VortexResult | None:
     """Vortex filaments of a velocity field on a tetrahedral mesh, computed by all MPI ranks together.
@@ -101,10 +91,9 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     """
     from dhlb.fem import bundle_matrices
     from dhlb.geometry import EuclideanComplex
-    from dhlb.linalg.distributed import RowBlock, scatter_values
+    from dhlb.linalg.distributed import scatter_values
     from dhlb.linalg.distributed_eigen import distributed_eigenpairs
     from dhlb.mesh.distribute import LocalMesh, distribute_tets, gather_owned, world
-    from dhlb.mesh.partition import owned_rows
     from dhlb.vortex.stitch import filament_pieces, stitch_pieces
 
     comm = world() if comm is None else comm
@@ -136,11 +125,10 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     L = velocity_bundle(X, P, loc.vertex_values if array_velocity else velocity, h, order=options.order)
     Om = L.curvature
     tri = X.simplices(2)
-    owned_tri = _owned(tri, part)
+    owned_tri = part.owns(tri)
     meter.mark("omega")
     A, M = bundle_matrices(L, geo)
-    Ab = RowBlock(*owned_rows(A, part), loc.start, loc.stop, N)
-    Mb = RowBlock(*owned_rows(M, part), loc.start, loc.stop, N)
+    Ab, Mb = loc.row_block(A), loc.row_block(M)
     del A, M
     trim_heap()   # the assembly's temporaries, before the factorization
     meter.mark("assembly")
@@ -169,7 +157,7 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
                   P[tri[worst]].mean(axis=0).tolist() if worst >= 0 else [])
     fluxes = comm.gather(worst_info, root=0)
     n_unresolved = comm.allreduce(flux[1])
-    n_edges = comm.allreduce(int(np.count_nonzero(_owned(X.simplices(1), part))))
+    n_edges = comm.allreduce(int(np.count_nonzero(part.owns(X.simplices(1)))))
     n_tri = comm.allreduce(int(np.count_nonzero(owned_tri)))
     psi_all = gather_owned(loc, psi_own, comm)
     meter.mark("extraction")
