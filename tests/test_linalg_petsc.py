@@ -7,11 +7,6 @@ Set up the environment with ``.ci/mpi-setup.sh`` (docs/mpi.md) and run this file
 
 import itertools
 import json
-import os
-import shutil
-import subprocess
-import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -25,10 +20,10 @@ from dhlb.errors import InvalidOperatorError
 from dhlb.linalg import SolverOptions, smallest_eigenpairs
 from dhlb.linalg.backends import _REGISTRY, register_backend
 from dhlb.linalg.backends_petsc import PetscBackend, petsc_available, row_ranges
+from tests.mpi_launch import MPIRUN, mpirun
 
 ROOT = Path(__file__).resolve().parents[1]
 needs_petsc = pytest.mark.skipif(not petsc_available(), reason="petsc4py/slepc4py (complex) not importable")
-MPIRUN = shutil.which("mpirun")
 needs_mpirun = pytest.mark.skipif(not (petsc_available() and MPIRUN), reason="needs petsc4py and mpirun")
 
 
@@ -107,18 +102,10 @@ def test_indefinite_a_is_reported_not_psd():
         smallest_eigenpairs(A, sp.identity(n, format="csr"), k=1, solver=SolverOptions(backend="petsc"))
 
 
-def _mpirun(args, timeout):
-    cmd = [MPIRUN, "-n", "2"] + (["--allow-run-as-root"] if os.geteuid() == 0 else []) + [sys.executable] + args
-    env = {**os.environ, "OMPI_MCA_rmaps_base_oversubscribe": "1", "OPENBLAS_NUM_THREADS": "1"}
-    t = time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=ROOT)
-    return proc, time.perf_counter() - t
-
-
 @needs_mpirun
 @pytest.mark.slow
 def test_two_ranks_bunny_landau_and_mismatched_input():
-    proc, _ = _mpirun([str(ROOT / "tests" / "mpi" / "run_checks.py")], timeout=600)
+    proc, _ = mpirun(2, [str(ROOT / "tests" / "mpi" / "run_checks.py")], timeout=600)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     lines = [ln for ln in proc.stdout.splitlines() if ln.startswith("[2 ranks]")]
     assert len(lines) == 3 and all(": ok " in ln for ln in lines), proc.stdout
@@ -127,7 +114,7 @@ def test_two_ranks_bunny_landau_and_mismatched_input():
 @needs_mpirun
 @pytest.mark.slow
 def test_bad_input_on_one_rank_ends_all_ranks_with_one_error():
-    proc, elapsed = _mpirun([str(ROOT / "tests" / "mpi" / "run_checks.py"), "--bad-input"], timeout=120)
+    proc, elapsed = mpirun(2, [str(ROOT / "tests" / "mpi" / "run_checks.py"), "--bad-input"], timeout=120)
     assert proc.returncode != 0 and elapsed < 60
     assert proc.stderr.count("NonFiniteError: A[7, 7] = nan is not finite") == 1, proc.stderr
     assert "bad input was not detected" not in proc.stdout
@@ -138,7 +125,7 @@ def test_bad_input_on_one_rank_ends_all_ranks_with_one_error():
 def test_mpi_command_line_writes_the_default_backends_field_once(tmp_path):
     mesh = str(ROOT / "tests" / "data" / "bunny-7k.obj")
     out = tmp_path / "field"
-    proc, _ = _mpirun(["-m", "dhlb.linalg.backends_petsc", "field", mesh, "--n", "4", "--backend", "petsc",
+    proc, _ = mpirun(2, ["-m", "dhlb.linalg.backends_petsc", "field", mesh, "--n", "4", "--backend", "petsc",
                        "--no-png", "-o", str(out)], timeout=600)
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.count("34 singularities") == 1           # rank 0 alone prints
@@ -353,21 +340,13 @@ def test_a_mumps_workspace_failure_names_the_petsc_code_and_not_singularity(monk
         assert "singular" not in msg
 
 
-def _mpirun_n(size, args, timeout):
-    cmd = [MPIRUN, "-n", str(size)] + (["--allow-run-as-root"] if os.geteuid() == 0 else []) + [sys.executable] + args
-    env = {**os.environ, "OMPI_MCA_rmaps_base_oversubscribe": "1", "OPENBLAS_NUM_THREADS": "1"}
-    t = time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=ROOT)
-    return proc, time.perf_counter() - t
-
-
 @needs_mpirun
 @pytest.mark.slow
 def test_distributed_results_do_not_depend_on_the_number_of_ranks(tmp_path):
     script = str(ROOT / "tests" / "mpi" / "linalg_checks.py")
     out = {}
     for size in (1, 2, 3):
-        proc, _ = _mpirun_n(size, [script, str(tmp_path / f"p{size}.npz")], timeout=600)
+        proc, _ = mpirun(size, [script, str(tmp_path / f"p{size}.npz")], timeout=600)
         assert proc.returncode == 0, proc.stdout + proc.stderr
         lines = [ln for ln in proc.stdout.splitlines() if ln.startswith(f"[{size} ranks]")]
         assert len(lines) == 3 and all(ln.endswith(": ok") for ln in lines), proc.stdout
@@ -385,7 +364,7 @@ def test_distributed_results_do_not_depend_on_the_number_of_ranks(tmp_path):
 @pytest.mark.slow
 @pytest.mark.parametrize("size", [1, 2, 3])
 def test_a_nan_on_one_rank_raises_the_same_error_everywhere_with_one_line(tmp_path, size):
-    proc, elapsed = _mpirun_n(size, [str(ROOT / "tests" / "mpi" / "linalg_checks.py"), str(tmp_path / "x.npz"),
+    proc, elapsed = mpirun(size, [str(ROOT / "tests" / "mpi" / "linalg_checks.py"), str(tmp_path / "x.npz"),
                                      "--nan"], timeout=120)
     assert proc.returncode != 0 and elapsed < 30, (elapsed, proc.stderr)
     assert proc.stderr.count("NonFiniteError: A[") == 1, proc.stderr

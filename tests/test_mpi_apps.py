@@ -8,31 +8,17 @@ with one error line.
 """
 
 import json
-import os
-import shutil
-import subprocess
-import sys
-import time
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from dhlb.linalg.backends_petsc import petsc_available
+from tests.mpi_launch import MPIRUN, mpirun
 
 ROOT = Path(__file__).resolve().parents[1]
-MPIRUN = shutil.which("mpirun")
 pytestmark = [pytest.mark.slow,
               pytest.mark.skipif(not (petsc_available() and MPIRUN), reason="needs petsc4py/slepc4py and mpirun")]
-
-
-def _mpirun(n, args, timeout=600):
-    cmd = [MPIRUN, "-n", str(n)] + (["--allow-run-as-root"] if os.geteuid() == 0 else []) + args
-    env = {**os.environ, "OMPI_MCA_rmaps_base_oversubscribe": "1", "OPENBLAS_NUM_THREADS": "1",
-           "PYTHONPATH": str(ROOT)}
-    t = time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=ROOT)
-    return proc, time.perf_counter() - t
 
 
 @pytest.fixture(scope="module")
@@ -40,7 +26,7 @@ def runs(tmp_path_factory):
     out = {}
     for n in (1, 2, 3):
         path = tmp_path_factory.mktemp(f"p{n}") / "out.json"
-        proc, _ = _mpirun(n, [sys.executable, str(ROOT / "tests" / "mpi" / "app_checks.py"), str(path)])
+        proc, _ = mpirun(n, [str(ROOT / "tests" / "mpi" / "app_checks.py"), str(path)])
         assert proc.returncode == 0, proc.stdout + proc.stderr
         out[n] = json.loads(path.read_text())
     return out
@@ -88,7 +74,7 @@ def _curve_distance(A, B) -> float:
 
 def test_command_line_field_on_two_ranks_writes_the_default_fields_singularities(tmp_path):
     mesh = str(ROOT / "tests" / "data" / "bunny-7k.obj")
-    proc, _ = _mpirun(2, [sys.executable, "-m", "dhlb", "field", mesh, "--n", "4", "--backend", "petsc", "--no-png",
+    proc, _ = mpirun(2, ["-m", "dhlb", "field", mesh, "--n", "4", "--backend", "petsc", "--no-png",
                           "-o", str(tmp_path / "field")])
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.count("34 singularities") == 1           # rank 0 alone prints
@@ -107,7 +93,7 @@ def test_command_line_field_on_two_ranks_writes_the_default_fields_singularities
 
 
 def test_command_line_vortex_on_two_ranks_finds_the_linked_rings(tmp_path):
-    proc, _ = _mpirun(2, [sys.executable, "-m", "dhlb", "vortex", "--box", "16", "--velocity", "linked-rings",
+    proc, _ = mpirun(2, ["-m", "dhlb", "vortex", "--box", "16", "--velocity", "linked-rings",
                           "--backend", "petsc", "--json"])
     assert proc.returncode == 0, proc.stderr
     data = json.loads(proc.stdout)
@@ -118,7 +104,7 @@ def test_command_line_vortex_on_two_ranks_finds_the_linked_rings(tmp_path):
 def test_a_bad_mesh_ends_every_rank_with_one_error_line(tmp_path):
     bad = tmp_path / "bad.obj"
     bad.write_text("v 0 0 0\nv 1 0 0\nv 0 nan 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n")
-    proc, elapsed = _mpirun(2, [sys.executable, "-m", "dhlb", "field", str(bad), "--backend", "petsc", "--no-png",
+    proc, elapsed = mpirun(2, ["-m", "dhlb", "field", str(bad), "--backend", "petsc", "--no-png",
                                 "-o", str(tmp_path / "out")], timeout=120)
     assert proc.returncode != 0 and elapsed < 60
     lines = [ln for ln in proc.stderr.splitlines() if "error" in ln.lower()]
@@ -128,7 +114,7 @@ def test_a_bad_mesh_ends_every_rank_with_one_error_line(tmp_path):
 def test_command_line_stripes_on_two_ranks_gives_the_default_zeros(tmp_path):
     # stripes has no distributed driver yet: every rank solves the whole problem through the petsc backend
     mesh = str(ROOT / "tests" / "data" / "bunny-7k.obj")
-    proc, _ = _mpirun(2, [sys.executable, "-m", "dhlb", "stripes", mesh, "--spacing", "6", "--backend", "petsc",
+    proc, _ = mpirun(2, ["-m", "dhlb", "stripes", mesh, "--spacing", "6", "--backend", "petsc",
                           "--no-png", "-q", "-o", str(tmp_path / "s.obj")])
     assert proc.returncode == 0, proc.stderr
     from dhlb.cli import main
@@ -141,7 +127,7 @@ def test_command_line_stripes_on_two_ranks_gives_the_default_zeros(tmp_path):
 def test_command_line_conformal_on_two_ranks_gives_the_default_eigenvalue():
     # conformal has no distributed driver yet: every rank solves the whole problem through the petsc backend
     mesh = str(ROOT / "dhlb" / "data" / "octopus-tet.mesh")
-    proc, _ = _mpirun(2, [sys.executable, "-m", "dhlb", "conformal", mesh, "--backend", "petsc", "--json"])
+    proc, _ = mpirun(2, ["-m", "dhlb", "conformal", mesh, "--backend", "petsc", "--json"])
     assert proc.returncode == 0, proc.stderr
     got = json.loads(proc.stdout)
     assert got["statistics"]["solver"]["backend"] == "petsc"
