@@ -108,7 +108,7 @@ def distributed_direction_field(V, F=None, n: int = 1, s: float = 0.0, *, option
     """
     from dhlb.linalg.distributed import scatter_values
     from dhlb.linalg.distributed_eigen import distributed_eigenpairs
-    from dhlb.mesh.distribute import distribute_surface, gather_cells, gather_owned, world
+    from dhlb.mesh.distribute import distribute_surface, gather_cells, gather_owned, parallel_report, world
 
     comm = world() if comm is None else comm
     options = FieldOptions() if options is None else options
@@ -148,10 +148,8 @@ def distributed_direction_field(V, F=None, n: int = 1, s: float = 0.0, *, option
     d_all = gather_owned(loc, dirs, comm)
     fr_all = gather_owned(loc, tb.frames[part.owned], comm)
     ids, vals = gather_cells(loc, mine, np.column_stack([sing.index, sing.barycentric, sing.points]), comm)
-    counts = comm.gather((loc.n_owned, part.vertices.size, loc.mesh.n_faces, int(part.owned_cells.sum())), root=0)
     meter.mark("gather")
-    all_peaks = comm.gather(meter.peak_mb, root=0)
-    all_starts = comm.gather(meter.start_mb, root=0)
+    parallel = parallel_report(loc, meter, comm)
     if comm.rank != 0:
         return None
     t = meter.seconds
@@ -163,10 +161,7 @@ def distributed_direction_field(V, F=None, n: int = 1, s: float = 0.0, *, option
     sing_g = Singularities(ids, gm.face_rows[ids], vals[:, 0].astype(np.int64), vals[:, 1:4], vals[:, 4:7])
     indices = FieldIndices(face_index, int(face_index.sum()), total_curv, rot, (total_curv + rot) / (2 * np.pi),
                            sing_g)
-    parallel = {"ranks": comm.size, "owned_vertices": [c[0] for c in counts], "local_vertices": [c[1] for c in counts],
-                "local_faces": [c[2] for c in counts], "owned_faces": [c[3] for c in counts],
-                "petsc_rows": [c[0] for c in counts], "peak_mb": all_peaks, "start_mb": all_starts,
-                "method": eig.method}
+    parallel["method"] = eig.method
     stats = {"backend": "petsc", "iterations": int(eig.iterations), "residual": float(eig.residuals[0]),
              "converged": bool(eig.converged), "factorizations": int(eig.factorizations), "solves": int(eig.solves),
              "shift": float(eig.shift), "note": eig.note, "parallel": parallel, **{"mumps": eig.stats}}

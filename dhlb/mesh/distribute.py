@@ -44,7 +44,7 @@ if TYPE_CHECKING:
     from dhlb.mesh.partition import MeshPart, VertexLayout
 
 __all__ = ["LocalMesh", "distribute_box", "distribute_surface", "distribute_tets", "gather_cells", "gather_owned",
-           "root_first", "world"]
+           "parallel_report", "root_first", "world"]
 
 
 def _rebuild(kind: type, message: str) -> BaseException:
@@ -441,6 +441,47 @@ def gather_owned(loc: LocalMesh, values, comm=None):
         raise ShapeError(f"gather_owned: {values.shape[0]} rows for {loc.n_owned} owned vertices")
     new = gather_to_root(values)   # rank order = new id order
     return None if new is None else new[loc.layout.inverse]
+
+
+def parallel_report(loc: LocalMesh, meter, comm=None) -> dict | None:
+    """What each rank held and used, on rank 0: the ``"parallel"`` entry of a distributed result (collective).
+
+    Parameters
+    ----------
+    loc : LocalMesh
+        This rank's part.
+    meter : dhlb._phases.PhaseMeter
+        The run's phases: their peak memory and the memory each began with.
+    comm : mpi4py.MPI.Comm, optional
+        Default :func:`world`.
+
+    Returns
+    -------
+    dict or None
+        On rank 0: ``ranks``; per rank ``owned_vertices`` (also the rows handed to PETSc, ``petsc_rows``),
+        ``local_vertices``, ``owned_cells``, ``local_cells``, ``peak_mb`` and ``start_mb`` (per phase).
+        None elsewhere.
+
+    Examples
+    --------
+    >>> from dhlb._phases import PhaseMeter
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> meter = PhaseMeter()
+    >>> loc = distribute_tets(box_tet_mesh(2), None)
+    >>> meter.mark("mesh")
+    >>> r = parallel_report(loc, meter)
+    >>> r["ranks"], r["owned_vertices"], r["owned_cells"], sorted(r["peak_mb"][0])
+    (1, [27], [48], ['mesh'])
+    """
+    comm = world() if comm is None else comm
+    mine = (loc.n_owned, int(loc.part.vertices.size), int(loc.part.owned_cells.sum()), int(loc.part.cells.size),
+            dict(meter.peak_mb), dict(meter.start_mb))
+    got = comm.gather(mine, root=0)
+    if comm.rank != 0:
+        return None
+    owned, local, owned_cells, local_cells, peaks, starts = (list(c) for c in zip(*got))
+    return {"ranks": comm.size, "owned_vertices": owned, "local_vertices": local, "owned_cells": owned_cells,
+            "local_cells": local_cells, "petsc_rows": list(owned), "peak_mb": peaks, "start_mb": starts}
 
 
 def gather_cells(loc: LocalMesh, mask, values, comm=None):

@@ -93,7 +93,7 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     from dhlb.geometry import EuclideanComplex
     from dhlb.linalg.distributed import scatter_values
     from dhlb.linalg.distributed_eigen import distributed_eigenpairs
-    from dhlb.mesh.distribute import LocalMesh, distribute_tets, gather_owned, world
+    from dhlb.mesh.distribute import LocalMesh, distribute_tets, gather_owned, parallel_report, world
     from dhlb.vortex.stitch import filament_pieces, stitch_pieces
 
     comm = world() if comm is None else comm
@@ -161,10 +161,7 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     n_tri = comm.allreduce(int(np.count_nonzero(owned_tri)))
     psi_all = gather_owned(loc, psi_own, comm)
     meter.mark("extraction")
-    all_peaks = comm.gather(meter.peak_mb, root=0)
-    all_starts = comm.gather(meter.start_mb, root=0)
-    counts = comm.gather((loc.n_owned, part.vertices.size, int(part.owned_cells.sum()), loc.mesh.tets.shape[0]),
-                         root=0)
+    parallel = parallel_report(loc, meter, comm)
     if comm.rank != 0:
         return None
     fs = stitch_pieces(all_pieces)
@@ -181,10 +178,7 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
             "there, filaments may be misplaced or lost. Refine the mesh there, or increase ħ or the core radius.",
             UnresolvedFluxWarning, stacklevel=2)
     n_closed = sum(f.closed for f in fs)
-    parallel = {"ranks": comm.size, "owned_vertices": [c[0] for c in counts], "local_vertices": [c[1] for c in counts],
-                "owned_tets": [c[2] for c in counts], "local_tets": [c[3] for c in counts],
-                "petsc_rows": [c[0] for c in counts], "peak_mb": all_peaks, "start_mb": all_starts,
-                "method": eig.method}
+    parallel["method"] = eig.method
     stats = {
         "n_vertices": int(N), "n_edges": int(n_edges), "n_triangles": int(n_tri), "n_tets": int(loc.n_cells),
         "hbar": h, "max_flux": max(f[0] for f in fluxes), "n_unresolved_faces": int(n_unresolved),
