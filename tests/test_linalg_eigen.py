@@ -115,6 +115,20 @@ def test_path_graph_spectrum():
     assert abs(abs(res.eigenvectors[:, 1] @ x) - 1) < 1e-10
 
 
+def test_a_warm_start_still_factorizes_when_the_floor_factor_is_asked_for():
+    n = 300
+    A, M = path_laplacian(n), sp.identity(n, format="csr")
+    first = smallest_eigenpairs(A, M, k=1)
+    warm = smallest_eigenpairs(A, M, k=1, v0=first.eigenvectors[:, 0])
+    assert warm.factor is None and warm.factorizations == 0          # the warm start passed: nothing factorized
+    floor = smallest_eigenpairs(A, M, k=1, v0=first.eigenvectors[:, 0],
+                                solver=SolverOptions(backend="superlu", factor_shift="floor"))
+    assert floor.factor is not None and floor.factorizations == 1
+    b = np.arange(n, dtype=float)
+    x = floor.factor.solve(b)
+    assert np.allclose((A - floor.shift * M) @ x, b)
+
+
 def test_flat_torus_grid_spectrum_with_multiplicities():
     m = 24
     cyc = sp.diags([-np.ones(m - 1), 2 * np.ones(m), -np.ones(m - 1)], [-1, 0, 1], format="lil")

@@ -348,7 +348,8 @@ def _solve(A, M, k, tol, maxiter, sigma, v0, backend, block_size, factor_shift, 
     if default and not psd:
         with blas_guard():
             return _lowest_of_indefinite(A, M, k, eps_shift, tol, maxiter, v, ncv)
-    if v0 is not None and (k == 1 or (np.ndim(v0) == 2 and np.shape(v0)[1] >= k)):  # a warm start may already pass
+    # a warm start may already pass (not when the caller asked for the factor of A + εM: it must be made)
+    if v0 is not None and factor_shift != "floor" and (k == 1 or (np.ndim(v0) == 2 and np.shape(v0)[1] >= k)):
         W = np.asarray(v0) if np.ndim(v0) == 2 and np.shape(v0)[1] >= k else v[:, None]
         _, _, lam, U, eta = _rayleigh_ritz(A, M, W, k, shift, _norm1(A), _norm1(M))
         if np.all(eta <= tol) and not (default and lam[0] < shift):
