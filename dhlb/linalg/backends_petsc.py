@@ -207,19 +207,28 @@ def _check_square(S, name):
     return S
 
 
-def _petsc_mat(S: sp.csr_matrix):
-    """The rows of this rank of the (globally held) CSR ``S`` as a distributed PETSc AIJ matrix."""
+def _aij(indptr, indices, data, n: int):
+    """A distributed ``n × n`` PETSc AIJ matrix whose rows on this rank are the CSR ``(indptr, indices, data)``.
+
+    ``indices`` are global column ids; the ranks' rows follow each other in rank order.
+    """
     from petsc4py import PETSc
 
+    nloc = len(indptr) - 1
+    csr = (np.asarray(indptr, dtype=PETSc.IntType), np.asarray(indices, dtype=PETSc.IntType),
+           np.asarray(data, dtype=PETSc.ScalarType))
+    A = PETSc.Mat().createAIJ(size=((nloc, n), (nloc, n)), csr=csr, comm=_world())
+    A.assemble()
+    return A
+
+
+def _petsc_mat(S: sp.csr_matrix):
+    """The rows of this rank of the (globally held) CSR ``S`` as a distributed PETSc AIJ matrix."""
     comm = _world()
     n = S.shape[0]
     r0, r1 = row_ranges(n, comm.size)[comm.rank]
     ip = S.indptr[r0:r1 + 1]
-    csr = ((ip - ip[0]).astype(PETSc.IntType), S.indices[ip[0]:ip[-1]].astype(PETSc.IntType),
-           S.data[ip[0]:ip[-1]].astype(PETSc.ScalarType))
-    A = PETSc.Mat().createAIJ(size=((r1 - r0, n), (r1 - r0, n)), csr=csr, comm=comm)
-    A.assemble()
-    return A
+    return _aij(ip - ip[0], S.indices[ip[0]:ip[-1]], S.data[ip[0]:ip[-1]], n)
 
 
 def _vec_from(A, x):

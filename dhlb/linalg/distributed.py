@@ -36,6 +36,7 @@ import scipy.sparse as sp
 import dhlb.errors as _errors
 from dhlb.errors import DhlbError, InvalidOperatorError, ShapeError
 from dhlb.linalg.backends_petsc import (
+    _aij,
     petsc_available,  # noqa: F401 -- the examples skip without PETSc
 )
 
@@ -572,11 +573,4 @@ def petsc_matrix(B: RowBlock):
     >>> petsc_matrix(B).getOwnershipRange() if petsc_available() else (0, 3)
     (0, 3)
     """
-    from petsc4py import PETSc
-
-    nloc = B.n_owned
-    csr = (np.asarray(B.indptr, dtype=PETSc.IntType), np.asarray(B.indices, dtype=PETSc.IntType),
-           np.asarray(B.data, dtype=PETSc.ScalarType))
-    P = PETSc.Mat().createAIJ(size=((nloc, B.n), (nloc, B.n)), csr=csr, comm=PETSc.COMM_WORLD)
-    P.assemble()
-    return P
+    return _aij(B.indptr, B.indices, B.data, B.n)
