@@ -79,8 +79,8 @@ def _expected_content(path, res):
     side = json.load(open(base + ".json")) if os.path.exists(base + ".json") else {}
     if side.get("format") == "dhlb-stripes":
         return side["n_faces"], len(side["zeros"]["faces"]) + len(side["branch"]["faces"]), 1
-    if "filaments" in side:                                           # the domain the JSON names, and the filaments
-        return len(res.mesh.boundary_faces), 0, len(side["filaments"])
+    if "filaments" in side:                         # the domain the JSON names, its outline, and the filaments
+        return len(res.mesh.boundary_faces), 0, 1 + len(side["filaments"])
     lines = open(base + ".obj").read().splitlines()
     return None, 0, sum(ln.startswith("l ") for ln in lines)
 
@@ -142,10 +142,13 @@ def test_every_command_output_opens(tmp_path, monkeypatch):
                 assert scene.meshes[0].faces.shape == (faces, 3)
     v = read_result("v")
     assert v.mesh is not None and len(v.mesh.points) == 7**3            # the JSON names the domain: box 6
-    assert [m.name for m in scene_of(v).meshes] == ["domain"] and len(scene_of(v).curves) == len(v.filaments) > 0
+    assert [m.name for m in scene_of(v).meshes] == ["domain"]
+    assert [c.name for c in scene_of(v).curves] == ["outline"] + [f"filament {k}" for k in range(len(v.filaments))]
+    assert len(v.filaments) > 0 and len(scene_of(v).curves[0].edges) == 12 * 6     # the box's 12 edges, 6 pieces each
     c = read_result("c.mesh")
     assert c.input_known and c.distortion.shape == (len(c.mesh.tets),) and c.distortion.min() >= 1.0 - 1e-9
-    assert scene_of(c).meshes[0].shown_scalar == "distortion"
+    assert [(m.name, m.shown_scalar) for m in scene_of(c).meshes] == [("before", "distortion"),
+                                                                       ("deformed", "distortion")]
 
 
 @pytest.mark.parametrize("n", [1, 2])
@@ -236,6 +239,8 @@ def test_conformal_picture_from_file_is_the_memory_picture(tmp_path):
     res.save(tmp_path / "d.json")                       # to_json: the deformed mesh and its distortion, no input
     back = read_result(tmp_path / "d.json")
     assert not back.input_known and np.array_equal(back.distortion, res.distortion)
-    a, b = scene_of(res).meshes[0], scene_of(back).meshes[0]
-    assert np.array_equal(a.points, b.points) and np.array_equal(a.faces, b.faces)
+    drawn = scene_of(res)                               # before and after, side by side
+    assert [m.name for m in drawn.meshes] == ["before", "deformed"]
+    a, b = drawn.meshes[1], scene_of(back).meshes[0]    # without the input: the deformed boundary alone, as computed
+    assert np.array_equal(b.points, res.points) and np.array_equal(a.faces, b.faces)
     assert np.array_equal(a.scalars["distortion"], b.scalars["distortion"])

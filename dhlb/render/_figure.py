@@ -28,6 +28,25 @@ __all__ = ["Camera", "ConformalStyle", "FieldStyle", "FilamentStyle", "StripeSty
 
 _CAMERA = ("view", "up", "size", "dpi")   # the keywords of dhlb 0.1 that moved into Camera
 
+# ---- the one palette of the PNG pictures, the polyscope viewer and the web views
+POSITIVE = (0.85, 0.12, 0.10)
+"""Colour of singularities and zeros of positive index, in every picture and in the viewer."""
+NEGATIVE = (0.10, 0.25, 0.85)
+"""Colour of negative index."""
+BRANCH = (0.10, 0.65, 0.25)
+"""Colour of the branch points of a stripe pattern."""
+FACE_COLOR = (0.78, 0.80, 0.86)
+"""Colour of a surface without a quantity on it (shaded)."""
+STRIPE_DARK, STRIPE_LIGHT = (0.10, 0.10, 0.14), (0.96, 0.94, 0.88)
+"""Colours of a stripe pattern at ``cos α = −1`` and ``+1``."""
+FILAMENT_COLORS = ((0.839, 0.153, 0.157), (0.122, 0.467, 0.706), (0.173, 0.627, 0.173), (0.580, 0.404, 0.741),
+                   (1.000, 0.498, 0.055), (0.090, 0.745, 0.812), (0.549, 0.337, 0.294), (0.890, 0.467, 0.761),
+                   (0.498, 0.498, 0.498), (0.737, 0.741, 0.133))
+"""One colour per filament (matplotlib's tab10 order), cycled."""
+DOMAIN_COLOR, OUTLINE_COLOR = (0.90, 0.92, 0.95), (0.353, 0.384, 0.439)
+"""The domain of vortex filaments (translucent or a silhouette) and its outline."""
+
+
 
 class _Replace:
     def replace(self, **changes: Any):
@@ -218,7 +237,7 @@ class FieldStyle(_Replace):
     glyph_length: float | None = None
     glyph_width: float = 0.7
     glyph_color: Any = "#1a1a1a"
-    face_color: Any = (0.78, 0.80, 0.86)
+    face_color: Any = FACE_COLOR
     ambient: float = 0.3
     max_glyphs: int = 40000
     dot_radius: float | None = None
@@ -249,8 +268,8 @@ class StripeStyle(_Replace):
     0.35
     """
 
-    dark: Any = (0.10, 0.10, 0.14)
-    light: Any = (0.96, 0.94, 0.88)
+    dark: Any = STRIPE_DARK
+    light: Any = STRIPE_LIGHT
     fn: Callable[[np.ndarray], np.ndarray] = np.cos
     ambient: float = 0.35
     max_triangles: int = 400_000
@@ -279,8 +298,8 @@ class FilamentStyle(_Replace):
     """
 
     line_width: float = 2.2
-    fill: Any = (0.90, 0.92, 0.95)
-    outline_color: Any = "#5a6270"
+    fill: Any = DOMAIN_COLOR
+    outline_color: Any = OUTLINE_COLOR
     background: Any = "white"
 
 
@@ -303,13 +322,6 @@ class ConformalStyle(_Replace):
     colormap: str = "viridis"
     background: Any = "white"
 
-
-POSITIVE = (0.85, 0.12, 0.10)
-"""Colour of singularities and zeros of positive index, in every picture and in the viewer."""
-NEGATIVE = (0.10, 0.25, 0.85)
-"""Colour of negative index."""
-BRANCH = (0.10, 0.65, 0.25)
-"""Colour of the branch points of a stripe pattern."""
 
 _AXES = {"x": 0, "y": 1, "z": 2}
 

@@ -26,7 +26,7 @@ if TYPE_CHECKING:
 
     from numpy.typing import ArrayLike
 
-__all__ = ["CONFORMAL_CAMERA", "boundary_distortion", "distortion_range", "render_conformal_png"]
+__all__ = ["CONFORMAL_CAMERA", "boundary_distortion", "distortion_range", "render_conformal_png", "rigid_fit"]
 
 CONFORMAL_CAMERA = Camera(size=(1200, 600))
 """The default camera of :func:`render_conformal_png` (two panels side by side)."""
@@ -101,9 +101,7 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
     F = np.asarray(faces, dtype=np.int64)
     B, A = np.asarray(before, float), np.asarray(after, float)
     right, upv, w = camera.fitted(B).frame()
-    U, _, Vt = np.linalg.svd((A - A.mean(0)).T @ (B - B.mean(0)))   # f is defined up to a rigid motion:
-    D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])          # show it best aligned with the input
-    after = (A - A.mean(0)) @ U @ D @ Vt + B.mean(0)
+    after = rigid_fit(A, B)   # f is defined up to a rigid motion: show it best aligned with the input
     d = np.asarray(distortion_faces, dtype=float)
     norm = Normalize(*distortion_range(d))
     hi = norm.vmax
@@ -138,6 +136,35 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
     if title:
         fig.suptitle(title, fontsize=10)
     return write_png(fig, path, dpi, style.background)
+
+
+def rigid_fit(points: ArrayLike, target: ArrayLike) -> np.ndarray:
+    """``points`` moved by the rotation and translation that bring them closest to ``target`` (least squares).
+
+    A close-to-conformal deformation is defined up to a rigid motion; its pictures show it aligned
+    with the input (the orthogonal Procrustes problem, solved by an SVD, without reflection).
+
+    Parameters
+    ----------
+    points, target : (N, 3) float arrays
+        Corresponding points.
+
+    Returns
+    -------
+    (N, 3) float array
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> X = np.random.default_rng(0).normal(size=(5, 3))
+    >>> R = np.array([[0, -1, 0], [1, 0, 0], [0, 0, 1.0]])
+    >>> bool(np.allclose(rigid_fit(X @ R.T + 2.0, X), X))
+    True
+    """
+    A, B = np.asarray(points, dtype=np.float64), np.asarray(target, dtype=np.float64)
+    U, _, Vt = np.linalg.svd((A - A.mean(0)).T @ (B - B.mean(0)))
+    D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])
+    return (A - A.mean(0)) @ U @ D @ Vt + B.mean(0)
 
 
 def distortion_range(distortion: ArrayLike) -> tuple[float, float]:

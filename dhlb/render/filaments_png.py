@@ -19,7 +19,7 @@ from dhlb._coerce import curve_list
 from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import ShapeError
 from dhlb.mesh.arrays import mesh_arrays
-from dhlb.render._figure import _CAMERA, Camera, FilamentStyle, _matplotlib, _unit, finish_figure
+from dhlb.render._figure import _CAMERA, FILAMENT_COLORS, Camera, FilamentStyle, _matplotlib, _unit, finish_figure
 
 if TYPE_CHECKING:
     import os
@@ -28,14 +28,13 @@ if TYPE_CHECKING:
 
     from numpy.typing import ArrayLike
 
-__all__ = ["FILAMENT_CAMERA", "render_filaments_png"]
+__all__ = ["FILAMENT_CAMERA", "feature_edges", "render_filaments_png"]
 
 FILAMENT_CAMERA = Camera()
 """The default camera of :func:`render_filaments_png` (fitted to the domain, :meth:`Camera.fitted`)."""
 _FILAMENT_STYLE = ("line_width", "fill", "outline_color", "background")
 
-_COLORS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2", "#7f7f7f",
-           "#bcbd22")
+_COLORS = FILAMENT_COLORS
 
 
 def _curves(filaments):
@@ -44,9 +43,12 @@ def _curves(filaments):
     return curve_list([f if hasattr(f, "points") or isinstance(f, tuple) else (f, True) for f in items], "filaments")
 
 
-def _outline_edges(V, F, w):
-    """Contour and feature edges of the triangle surface (V, F) seen along ``w``: (edges (e, 2), front (e,) bool)."""
-    fn = _unit(np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]))
+def _edge_faces(F):
+    """The edges of the triangles F: interior ones with their two faces, and the border edges.
+
+    Returns ``(interior (e, 2), a (e,), b (e,), border (k, 2))``: each interior edge as a sorted vertex
+    pair with the rows ``a``, ``b`` of its two faces.
+    """
     E = np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]])
     face = np.tile(np.arange(F.shape[0]), 3)
     key = np.sort(E, axis=1)
@@ -54,15 +56,50 @@ def _outline_edges(V, F, w):
     key, face = key[order], face[order]
     same = np.all(key[1:] == key[:-1], axis=1)
     i = np.nonzero(same)[0]  # pairs (i, i+1) of the two faces at an edge
-    a, b = face[i], face[i + 1]
+    single = np.ones(key.shape[0], bool)
+    single[i] = single[i + 1] = False
+    return key[i], face[i], face[i + 1], key[single]
+
+
+def feature_edges(V: ArrayLike, F: ArrayLike, angle: float = 30.0) -> np.ndarray:
+    """The edges of a triangle surface where it bends by more than ``angle`` degrees, and its border.
+
+    Parameters
+    ----------
+    V : (N, 3) float array
+    F : (m, 3) int array
+    angle : float
+        Dihedral angle (between the two face normals) above which an edge is a feature edge.
+
+    Returns
+    -------
+    (e, 2) int array
+        Vertex pairs (e.g. the 12 edges of a box's boundary).
+
+    Examples
+    --------
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> m = box_tet_mesh(2)
+    >>> len(feature_edges(m.points, m.boundary_faces)) == 12 * 2
+    True
+    """
+    P, T = np.asarray(V, dtype=np.float64), np.asarray(F, dtype=np.int64)
+    fn = _unit(np.cross(P[T[:, 1]] - P[T[:, 0]], P[T[:, 2]] - P[T[:, 0]]))
+    inner, a, b, border = _edge_faces(T)
+    bent = np.einsum("ij,ij->i", fn[a], fn[b]) < np.cos(np.radians(angle))
+    return np.concatenate([inner[bent], border])
+
+
+def _outline_edges(V, F, w):
+    """Contour and feature edges of the triangle surface (V, F) seen along ``w``: (edges (e, 2), front (e,) bool)."""
+    fn = _unit(np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]))
+    inner, a, b, border = _edge_faces(F)
     contour = np.sign(fn[a] @ w) != np.sign(fn[b] @ w)
     feature = np.einsum("ij,ij->i", fn[a], fn[b]) < np.cos(np.radians(30))
     keep = contour | feature
     front = contour[keep] | ((fn[a[keep]] @ w > 0) | (fn[b[keep]] @ w > 0))
-    single = np.ones(key.shape[0], bool)  # open surfaces: their border is outline too
-    single[i] = single[i + 1] = False
-    edges = np.concatenate([key[i][keep], key[single]])
-    return edges, np.concatenate([front, np.ones(int(single.sum()), bool)])
+    # open surfaces: their border is outline too
+    return np.concatenate([inner[keep], border]), np.concatenate([front, np.ones(len(border), bool)])
 
 
 def render_filaments_png(
