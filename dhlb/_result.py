@@ -9,12 +9,15 @@ A result (:class:`~dhlb.fields.DirectionField`, :class:`~dhlb.stripes.StripePatt
 ``summary_rows() -> list[tuple[str, object]]``
     The headline numbers, as ``(label, value)`` pairs (the table of ``dhlb`` commands and notebooks).
 
-The base turns them into ``save(path)`` (format chosen by the extension), ``show()`` (polyscope) and
-``_repr_png_`` / ``_repr_html_`` (what Jupyter displays when a result ends a cell). Writing files is the
-io layer's job and pictures are the render layer's, both *above* the applications; so the base finds
-them at call time through the entry-point group ``dhlb.plugins`` (names ``write``, ``picture``,
-``show``; the pattern of pandas' plotting backends), which the package declares for its own
-:func:`dhlb.io.results.write` and :mod:`dhlb.render.registry`. Another package may declare its own.
+The base turns them into ``save(path)`` (format chosen by the extension), ``show()`` (polyscope, or
+an interactive view inline in a notebook with ``backend="web"``), ``to_html(path)`` (a page with the
+interactive view) and ``_repr_png_`` / ``_repr_html_`` (what Jupyter displays when a result ends a
+cell: the PNG picture, or the interactive view after :func:`set_notebook_display` ``("web")``).
+Writing files is the io layer's job and pictures are the render layer's, both *above* the
+applications; so the base finds them at call time through the entry-point group ``dhlb.plugins``
+(names ``write``, ``picture``, ``show``, ``html``, ``web``; the pattern of pandas' plotting
+backends), which the package declares for its own :func:`dhlb.io.results.write` and
+:mod:`dhlb.render.registry`. Another package may declare its own.
 
 Examples
 --------
@@ -32,7 +35,7 @@ from __future__ import annotations
 import importlib
 import os
 
-__all__ = ["PICTURE_SIZE", "Result", "plugin"]
+__all__ = ["PICTURE_SIZE", "Result", "plugin", "set_notebook_display"]
 
 PICTURE_SIZE = (320, 320)
 """Pixels of the notebook picture."""
@@ -41,8 +44,42 @@ _DEFAULTS = {
     "write": "dhlb.io.results:write",
     "picture": "dhlb.render.registry:picture",
     "show": "dhlb.render.registry:show",
+    "html": "dhlb.render.registry:to_html",
+    "web": "dhlb.render.registry:web_view",
 }
 _CACHE: dict[str, object] = {}
+_DISPLAY = {"notebook": "png"}
+
+
+def set_notebook_display(kind: str) -> str:
+    """What a result shows when it ends a notebook cell: ``"png"`` (default) or ``"web"`` (interactive).
+
+    ``"web"`` needs plotly (``pip install "dhlb[web]"``); without it the PNG picture is shown.
+
+    Parameters
+    ----------
+    kind : {"png", "web"}
+
+    Returns
+    -------
+    str
+        The previous setting.
+
+    Raises
+    ------
+    ValueError
+        Another kind.
+
+    Examples
+    --------
+    >>> old = set_notebook_display("web")
+    >>> set_notebook_display(old)
+    'web'
+    """
+    if kind not in ("png", "web"):
+        raise ValueError(f"the notebook display is 'png' or 'web', got {kind!r}")
+    old, _DISPLAY["notebook"] = _DISPLAY["notebook"], kind
+    return old
 
 
 def plugin(name: str):
@@ -126,27 +163,54 @@ class Result:
         """
         return plugin("write")(self, path)
 
-    def show(self, *, screenshot=None, **kwargs):
-        """Show the result in polyscope (``pip install 'dhlb[view]'``), or render it to ``screenshot`` (PNG).
+    def show(self, *, backend: str = "polyscope", screenshot=None, **kwargs):
+        """Show the result: in polyscope (``dhlb[view]``), or inline in a notebook (``backend="web"``, ``dhlb[web]``).
 
         Parameters
         ----------
+        backend : {"polyscope", "web"}
+            ``"polyscope"``: a window, or a PNG rendered headless to ``screenshot``. ``"web"``: an
+            interactive view that Jupyter displays inline (rotate, zoom, hover); without plotly the
+            PNG picture, with a note naming the extra.
         screenshot : str, optional
-            Render headless to this PNG instead of opening a window.
+            polyscope: render headless to this PNG instead of opening a window.
         **kwargs
-            Passed to :func:`dhlb.render.view.show`.
+            Passed to :func:`dhlb.render.view.show` or :func:`dhlb.render.web.notebook_view`.
 
         Returns
         -------
-        str or None
-            The screenshot path, if one was asked for.
+        str, None or WebView
+            The screenshot path, None after the window was closed, or the view to display.
 
         Raises
         ------
         ImportError, ViewerUnavailableError
             polyscope, or a display / EGL for a screenshot, is missing (the message says what to install).
         """
-        return plugin("show")(self, screenshot=screenshot, **kwargs)
+        return plugin("show")(self, backend=backend, screenshot=screenshot, **kwargs)
+
+    def to_html(self, path: str | os.PathLike[str], **kwargs) -> str:
+        """Write a page with the interactive 3-D view of the result; it opens offline (``dhlb[web]``).
+
+        Parameters
+        ----------
+        path : str or path-like
+            The HTML file (written atomically).
+        **kwargs
+            Passed to :func:`dhlb.render.web.to_html` (``plotlyjs="inline"`` or ``"directory"``,
+            ``camera``, ``title``, ...).
+
+        Returns
+        -------
+        str
+            The path written.
+
+        Raises
+        ------
+        ImportError
+            plotly is not installed (the message names the extra).
+        """
+        return plugin("html")(self, path, **kwargs)
 
     def _repr_png_(self) -> bytes:
         """A small picture for notebooks."""
@@ -164,9 +228,13 @@ class Result:
                        for k, v in self.summary_rows())
 
     def _repr_html_(self) -> str:
-        """The picture of :meth:`_repr_png_` beside a table of the summary numbers (notebooks)."""
+        """The picture of :meth:`_repr_png_` (or the interactive view) beside a table of the summary numbers."""
         import base64
 
+        if _DISPLAY["notebook"] == "web":
+            view = plugin("web")(self)
+            if view is not None:  # None: plotly is missing, the picture instead
+                return f"<div>{view}<table>{self._summary_table()}</table></div>"
         png = base64.b64encode(self._repr_png_()).decode("ascii")
         return (f"<div style='display:flex;gap:1em;align-items:center'><img src='data:image/png;base64,{png}' "
                 f"width='{PICTURE_SIZE[0]}'/><table>{self._summary_table()}</table></div>")

@@ -73,6 +73,19 @@ def _views(res, out: str, name: str) -> str | None:
     return write_gallery(os.path.join(out, f"{name}-views.html"), f"{name}: polyscope views", shots)
 
 
+def _web(res, out: str, name: str) -> str | None:
+    """The interactive view of ``res`` beside its PNG (``NAME.html``, sharing ``plotly.min.js``), if plotly is there.
+
+    Without the extra ``dhlb[web]`` the demo page shows the pictures only (and says so).
+    """
+    try:
+        from dhlb.render.web import to_html
+
+        return to_html(res, os.path.join(out, f"{name}.html"), plotlyjs="directory")
+    except ImportError:
+        return None
+
+
 def _spot():
     from dhlb.io import example_path, read_surface
 
@@ -109,7 +122,8 @@ def _field(out, progress, name, V, F, mesh_name, caption, view, **kw):
         return res, png, time.perf_counter() - t0
 
     res, png, sec = progress.run(caption, work)
-    return {**_field_record(name.split("-")[0], res, png, caption, sec, mesh_name), "views": _views(res, out, name)}
+    return {**_field_record(name.split("-")[0], res, png, caption, sec, mesh_name), "views": _views(res, out, name),
+            "web": _web(res, out, name)}
 
 
 def fields(out, progress, *, backend=None) -> list[dict]:
@@ -169,6 +183,7 @@ def stripes(out, progress, *, backend=None) -> list[dict]:
     return [{"step": "stripes", "mesh": f"spot ({len(V)} v, {len(F)} f)",
              "result": f"{n_zero} zero faces, {n_branch} branch faces", "check": "continuous texture",
              "ok": True, "seconds": sec, "picture": png, "caption": caption, "views": _views(res, out, "stripes"),
+             "web": _web(res, out, "stripes"),
              "details": {"zero_faces": n_zero, "branch_faces": n_branch, "timings": info.get("timings", {})}}]
 
 
@@ -209,7 +224,7 @@ def vortex(out, progress, *, backend=None) -> list[dict]:
             result += f", linking {int(L[0, 1])}"
         recs.append({"step": "vortex " + kind, "mesh": f"cube ({len(mesh.points)} v, {len(mesh.tets)} tets)",
                      "result": result, "check": check, "ok": bool(ok), "seconds": sec, "picture": png,
-                     "views": _views(res, out, name),
+                     "views": _views(res, out, name), "web": _web(res, out, name),
                      "caption": caption, "details": {"filaments": len(res.filaments), "linking_numbers": L.tolist(),
                                                      "timings": res.timings}})
     return recs
@@ -259,6 +274,6 @@ def conformal(out, progress, *, backend=None) -> list[dict]:
                      "mesh": f"{label} ({len(mesh.points)} v, {len(mesh.tets)} tets)",
                      "result": f"λ₁ = {res.eigenvalue:.2g}, distortion {res.distortion.mean():.3f} mean",
                      "check": check, "ok": bool(ok),
-                     "seconds": sec, "picture": png, "caption": caption,
+                     "seconds": sec, "picture": png, "caption": caption, "web": _web(res, out, name),
                      "details": {"eigenvalue": float(res.eigenvalue), "timings": res.timings}})
     return recs

@@ -103,12 +103,16 @@ def run(args) -> int:
         if r.get("picture"):
             back = r["picture"][:-4] + "-back.png"
             link = r.get("views")  # polyscope views from several angles, where the environment allows it
-            pictures += [(r["picture"], r["caption"], link)] + ([(back, r["caption"] + " (back)", link)]
-                                                               if os.path.exists(back) else [])
+            pictures += [(r["picture"], r["caption"], link, r.get("web"))] + (
+                [(back, r["caption"] + " (back)", link)] if os.path.exists(back) else [])
     table = [["step", "mesh", "result", "check", "seconds"]] + [
         [r["step"], r["mesh"], r["result"], r["check"], f"{r['seconds']:.2f}"] for r in records]
-    page = write_gallery(os.path.join(out, "index.html"), "dhlb demo", pictures, table=table,
-                         intro=f"dhlb demo: {len(records)} computations in {total:.1f} s.")
+    web = any(r.get("web") for r in records)
+    intro = f"dhlb demo: {len(records)} computations in {total:.1f} s. " + (
+        "Rotate any result in 3-D with the button on its picture (drag to turn, scroll to zoom, hover over a "
+        "singularity for its face and index); the views need no network: plotly's script is in this folder."
+        if web else 'Interactive 3-D views need the extra dhlb[web]: pip install "dhlb[web]".')
+    page = write_gallery(os.path.join(out, "index.html"), "dhlb demo", pictures, table=table, intro=intro)
     summary = {"output": os.path.abspath(out), "index": os.path.abspath(page), "seconds": total,
                "steps": [{k: v for k, v in r.items() if k != "details"} | {"details": r.get("details", {})}
                          for r in records],

@@ -1,7 +1,8 @@
-"""How each kind of result is drawn: :func:`picture` (a PNG) and :func:`show` (polyscope), one registry.
+"""How each kind of result is drawn: :func:`picture` (a PNG), :func:`show` (polyscope or web), :func:`to_html`.
 
-The results of the applications find these two functions at call time (``Result._repr_png_``,
-``Result.show``; see :mod:`dhlb._result`), so that no application imports the render layer.
+The results of the applications find these functions at call time (``Result._repr_png_``,
+``Result.show``, ``Result.to_html``, ``Result._repr_html_`` through :func:`web_view`; see
+:mod:`dhlb._result`), so that no application imports the render layer.
 A new kind of result registers its picture with ``@picture.register``. A result read back from its
 files (:func:`dhlb.io.read_result`) draws through the same function as the result that was written.
 
@@ -31,7 +32,7 @@ from dhlb.io.volume import LoadedConformal
 from dhlb.stripes.result import StripePattern
 from dhlb.vortex.result import VortexResult
 
-__all__ = ["picture", "show"]
+__all__ = ["picture", "show", "to_html", "web_view"]
 
 
 @functools.singledispatch
@@ -107,23 +108,124 @@ def _(result, path, size=(320, 320)) -> str:
                                 camera=dataclasses.replace(CONFORMAL_CAMERA, size=size))
 
 
-def show(result, *, screenshot=None, **kwargs):
-    """Show ``result`` in polyscope, or render it headless to ``screenshot`` (see :func:`dhlb.render.view.show`).
+def show(result, *, backend: str = "polyscope", screenshot=None, **kwargs):
+    """Show ``result`` in polyscope (or render it headless to ``screenshot``), or inline in a notebook.
 
     Parameters
     ----------
     result : DirectionField, StripePattern, VortexResult, ConformalResult or Scene
         What to show (or a result of :func:`dhlb.io.read_result`).
+    backend : {"polyscope", "web"}
+        ``"polyscope"``: :func:`dhlb.render.view.show`. ``"web"``: a :class:`WebView` that Jupyter
+        displays inline (:func:`dhlb.render.web.notebook_view`); without plotly it displays the PNG
+        picture with a note naming the extra ``dhlb[web]``.
     screenshot : str, optional
-        A PNG to render to instead of opening a window.
+        polyscope: a PNG to render to instead of opening a window.
     **kwargs
-        ``view``, ``size``, ``isolines`` of :func:`dhlb.render.view.show`.
+        ``view``, ``size``, ``isolines`` of :func:`dhlb.render.view.show`; ``height``, ``camera``,
+        ``isolines`` of :func:`dhlb.render.web.notebook_view`.
+
+    Returns
+    -------
+    str, None or WebView
+        The screenshot path, None after the window was closed, or the view to display.
+
+    Raises
+    ------
+    InvalidParameterError
+        An unknown backend, or a screenshot asked of the web view.
+    """
+    if backend == "web":
+        if screenshot is not None:
+            raise InvalidParameterError("the web view draws in the browser: write a page with "
+                                        "result.to_html(path), or use backend='polyscope' for a screenshot")
+        return WebView(result, **kwargs)
+    if backend != "polyscope":
+        raise InvalidParameterError(f"backend must be 'polyscope' or 'web', got {backend!r}")
+    from dhlb.render.view import show as _show
+
+    return _show(result, screenshot=screenshot, **kwargs)
+
+
+def to_html(result, path: str | os.PathLike[str], **kwargs) -> str:
+    """Write a page with the interactive view of ``result`` (:func:`dhlb.render.web.to_html`).
+
+    Parameters
+    ----------
+    result : a result, a result read back, or a Scene
+    path : str or path-like
+    **kwargs
+        Of :func:`dhlb.render.web.to_html`.
+
+    Returns
+    -------
+    str
+        The path written.
+    """
+    from dhlb.render.web import to_html as _to_html
+
+    return _to_html(result, path, **kwargs)
+
+
+def web_view(result, **kwargs) -> str | None:
+    """The notebook HTML of the interactive view of ``result``, or None when plotly is missing.
+
+    Parameters
+    ----------
+    result : a result, a result read back, or a Scene
+    **kwargs
+        Of :func:`dhlb.render.web.notebook_view`.
 
     Returns
     -------
     str or None
-        The screenshot path, or None after the window was closed.
     """
-    from dhlb.render.view import show as _show
+    from dhlb.render.web import notebook_view
 
-    return _show(result, screenshot=screenshot, **kwargs)
+    try:
+        return notebook_view(result, **kwargs)
+    except ImportError:
+        return None
+
+
+class WebView:
+    """What ``result.show(backend="web")`` returns: Jupyter displays it inline as an interactive view.
+
+    Without plotly it displays the result's PNG picture and a note naming the extra ``dhlb[web]``.
+
+    Parameters
+    ----------
+    result : a result, a result read back, or a Scene
+    **kwargs
+        Of :func:`dhlb.render.web.notebook_view` (``height``, ``camera``, ``isolines``, ...).
+
+    Attributes
+    ----------
+    interactive : bool
+        Whether plotly was there to draw the interactive view.
+    """
+
+    def __init__(self, result, **kwargs):
+        self.result = result
+        self.html = web_view(result, **kwargs)
+        self.interactive = self.html is not None
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        if self.interactive:
+            return {"text/html": self.html}
+        import base64
+        import tempfile
+
+        from dhlb._result import PICTURE_SIZE
+
+        with tempfile.TemporaryDirectory() as d:
+            with open(picture(self.result, os.path.join(d, "view.png"), PICTURE_SIZE), "rb") as fh:
+                png = fh.read()
+        note = 'for an interactive view: pip install "dhlb[web]"'
+        img = base64.b64encode(png).decode("ascii")
+        return {"image/png": png, "text/html": f"<img src='data:image/png;base64,{img}'/><p><small>{note}</small></p>",
+                "text/plain": f"<picture of the result; {note}>"}
+
+    def __repr__(self) -> str:
+        kind = "interactive view" if self.interactive else "picture (plotly is missing)"
+        return f"<WebView: {kind} of a {type(self.result).__name__}; Jupyter displays it>"

@@ -1,0 +1,591 @@
+"""Interactive 3-D views in a browser and in notebooks, with `plotly <https://plotly.com/python/>`_ (``dhlb[web]``).
+
+The view draws the :class:`~dhlb.render.scene.Scene` of a result (:func:`~dhlb.render.scene.scene_of`,
+the scene the polyscope viewer draws) as plotly traces, with the camera, the colours and the glyph
+sizes of the PNG pictures:
+
+- surfaces shaded, or coloured by a scalar with a colour bar (the distortion of a conformal map);
+- vector quantities as glyphs from each vertex: one quantity (n = 1) as arrows, several (n = 2, 4)
+  as symmetric crosses, at most :data:`MAX_GLYPHS` vertices (evenly spread);
+- a stripe texture on an unwelded refined copy of the mesh: each sub-triangle on which α is linear
+  (:meth:`~dhlb.stripes.StripeTexture.subdivision`: faces, the cones of branch faces, the grid of zero
+  faces) is refined until a period has about six samples, and carries ``cos α`` at its own corners,
+  so the branch cuts stay sharp;
+- points as markers whose hover text names the face and the index; curves as thick lines.
+
+:func:`figure` gives the plotly figure (to restyle, or to show with plotly's own tools);
+:func:`to_html` writes a page that opens offline (plotly's script inline, or one shared copy beside
+the page, :func:`write_plotlyjs`); :func:`notebook_view` is what ``result.show(backend="web")``
+displays in Jupyter (:class:`dhlb.render.registry.WebView`). Meshes above :data:`MAX_FACES` faces
+are decimated for the view only (vertex clustering), and the view says so in its title.
+
+Examples
+--------
+>>> from dhlb.io import example_path, read_surface
+>>> from dhlb.fields import direction_field
+>>> spec = figure_spec(direction_field(*read_surface(example_path("torus.obj")), n=4))
+>>> [t["name"] for t in spec["data"]]
+['mesh', 'mesh: glyphs', 'singularities']
+>>> spec["data"][2]["hovertext"][0]
+'face 60, index -1/4'
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import json
+import os
+import uuid
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from dhlb.errors import InvalidParameterError, OutputError
+from dhlb.render._figure import STRIPE_DARK, STRIPE_LIGHT, Camera, up_vector
+from dhlb.render.scene import Scene, scene_of
+
+if TYPE_CHECKING:
+    from dhlb.render.scene import SceneCurves, SceneMesh, ScenePoints
+
+__all__ = ["MAX_FACES", "MAX_GLYPHS", "WEB_EXTRA", "decimate", "figure", "figure_spec", "notebook_view",
+           "plotlyjs_path", "stripe_surface", "to_html", "write_plotlyjs"]
+
+WEB_EXTRA = 'plotly is not installed: pip install "dhlb[web]" (or: pip install plotly)'
+"""The message of the ``ImportError`` raised when plotly is missing."""
+MAX_FACES = 200_000
+"""Meshes with more faces are decimated for the web view (the page stays light)."""
+MAX_GLYPHS = 3000
+"""At most this many vertices carry direction glyphs."""
+STRIPE_TRIANGLES = 60_000
+"""Budget of sub-triangles of the refined copy that carries a stripe texture."""
+GLYPH_COLOR = "#1a1a1a"
+PLOTLYJS = "plotly.min.js"
+"""The file name of the shared copy of plotly's script (:func:`write_plotlyjs`)."""
+_DEFAULT_CAMERA = Camera()
+ZOOM = 1.8
+"""plotly's orthographic zoom (the aspect ratio of a cube around the scene's bounding sphere) that frames it."""
+
+
+# ---------------------------------------------------------------------------- pieces of geometry
+def decimate(V, F, max_faces: int = MAX_FACES) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A coarser copy of the triangle mesh (V, F) with at most ``max_faces`` faces (vertex clustering).
+
+    Vertices are merged per cell of a uniform grid (the cell grows until few enough faces remain)
+    at the mean of their positions; faces that collapse are dropped, duplicates kept once. For
+    drawing only: the topology may change at the scale of a cell.
+
+    Parameters
+    ----------
+    V : (N, 3) float array
+    F : (m, 3) int array
+    max_faces : int
+
+    Returns
+    -------
+    points : (N', 3) float array
+    faces : (m', 3) int array
+        ``m' <= max_faces``.
+    kept : (m',) int array
+        The row of F each face comes from (to carry face quantities over).
+
+    Examples
+    --------
+    >>> from dhlb.io import example_path, read_surface
+    >>> V, F = read_surface(example_path("spot.obj"))
+    >>> P, T, kept = decimate(V, F, 1000)
+    >>> len(T) <= 1000 < len(F), bool(np.array_equal(T.max() + 1, len(P)) or T.max() < len(P))
+    (True, True)
+    """
+    P, T = np.asarray(V, dtype=np.float64), np.asarray(F, dtype=np.int64)
+    if len(T) <= max_faces:
+        return P, T, np.arange(len(T))
+    lo, span = P.min(axis=0), max(float(np.ptp(P, axis=0).max()), 1e-300)
+    cells = max(2, int(np.sqrt(max_faces / 2.0)))                  # about 2 cells² faces on a surface
+    while True:
+        key = np.floor((P - lo) / span * cells).astype(np.int64)
+        _, cluster = np.unique(key[:, 0] * (cells + 1) ** 2 + key[:, 1] * (cells + 1) + key[:, 2],
+                               return_inverse=True)
+        C = cluster.reshape(-1)[T]
+        alive = (C[:, 0] != C[:, 1]) & (C[:, 1] != C[:, 2]) & (C[:, 2] != C[:, 0])
+        _, first = np.unique(np.sort(C[alive], axis=1), axis=0, return_index=True)
+        kept = np.nonzero(alive)[0][np.sort(first)]
+        if len(kept) <= max_faces or cells <= 2:
+            break
+        cells = int(cells * 0.85)
+    cluster = cluster.reshape(-1)
+    counts = np.bincount(cluster)
+    Q = np.stack([np.bincount(cluster, P[:, d]) for d in range(3)], axis=1) / counts[:, None]
+    return Q, cluster[T[kept]], kept
+
+
+def stripe_surface(texture, max_triangles: int = STRIPE_TRIANGLES, samples: float = 6.0):
+    """The unwelded refined copy of a stripe texture's mesh that the web view colours by ``cos α``.
+
+    Every sub-triangle of :meth:`~dhlb.stripes.StripeTexture.subdivision` (on which α is linear) is
+    split k × k, k chosen per sub-triangle for about ``samples`` nodes per period of α (fewer when
+    the total would exceed ``max_triangles``); α at the nodes interpolates the sub-triangle's own
+    corner values, so no value is shared across a face, a cone or a branch cut.
+
+    Parameters
+    ----------
+    texture : StripeTexture
+    max_triangles : int
+        Budget of triangles (the copy has at least one per sub-triangle).
+    samples : float
+        Nodes per period of α along the steepest direction.
+
+    Returns
+    -------
+    points : (K, 3) float array
+    faces : (T, 3) int array
+    alpha : (K,) float array
+        α at the nodes.
+    face : (K,) int array
+        The face of ``texture.mesh.faces`` each node lies in.
+    bary : (K, 3) float array
+        Its barycentric coordinates in that face.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.mesh import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.0]])
+    >>> form = stripe_form(validate_surface(V, [[0, 1, 2], [1, 3, 2]]), np.tile([1.0, 0, 0], (4, 1)),
+    ...                    frequency=2, warn_aliasing=False)
+    >>> tex = texture_coordinates(form, np.exp(4j * np.pi * V[:, 0]))
+    >>> P, T, alpha, face, bary = stripe_surface(tex)
+    >>> corner = np.isclose(bary, 1).any(axis=1)                      # nodes at a corner of their face
+    >>> c = np.argmax(bary[corner], axis=1)
+    >>> bool(np.allclose(alpha[corner], tex.corner_alpha[face[corner], c]))
+    True
+    """
+    from dhlb.render.stripes_png import face_grid
+
+    sub = texture.subdivision()
+    span = np.ptp(sub.alpha, axis=1)
+    k = np.clip(np.ceil(samples * span / (2 * np.pi)), 1, 16).astype(np.int64)
+    while int(np.sum(k * k)) > max_triangles and k.max() > 1:
+        k = np.maximum(1, np.ceil(0.8 * k)).astype(np.int64) if k.max() > 1 else k
+    mesh = texture.mesh
+    X = mesh.points[mesh.faces[sub.face]]                          # (t, 3, 3) corners of each face
+    parts, base = [], 0
+    for kk in np.unique(k):
+        rows = np.nonzero(k == kk)[0]
+        nodes, tris = face_grid(int(kk))                          # (G, 3) weights of the sub-triangle's corners
+        b = np.einsum("gc,tcd->tgd", nodes, sub.bary[rows])       # barycentric in the face, (r, G, 3)
+        a = np.einsum("gc,tc->tg", nodes, sub.alpha[rows])        # α: linear on the sub-triangle
+        p = np.einsum("tgc,tcd->tgd", b, X[rows])
+        G = len(nodes)
+        f = (base + G * np.arange(len(rows)))[:, None, None] + tris[None]
+        parts.append((p.reshape(-1, 3), f.reshape(-1, 3), a.reshape(-1), np.repeat(sub.face[rows], G),
+                      b.reshape(-1, 3)))
+        base += G * len(rows)
+    return tuple(np.concatenate([q[i] for q in parts]) for i in range(5))
+
+
+def _vertex_normals(P, T):
+    n = np.cross(P[T[:, 1]] - P[T[:, 0]], P[T[:, 2]] - P[T[:, 0]])
+    vn = np.zeros_like(P)
+    for c in range(3):
+        np.add.at(vn, T[:, c], n)
+    return vn / np.maximum(np.linalg.norm(vn, axis=1, keepdims=True), 1e-300)
+
+
+def _mean_edge(P, T) -> float:
+    return float(np.linalg.norm(P[T[:, [1, 2, 0]]] - P[T], axis=2).mean()) if len(T) else 1.0
+
+
+def _gaps(pieces) -> np.ndarray:
+    """Polylines ``[(k_i, 3), ...]`` as one array with a NaN row after each (a line trace's gaps)."""
+    if not pieces:
+        return np.zeros((0, 3))
+    gap = np.full((1, 3), np.nan)
+    return np.concatenate([x for p in pieces for x in (p, gap)])
+
+
+# ---------------------------------------------------------------------------- traces
+def _rgb(c) -> str:
+    r, g, b = (round(255 * float(x)) for x in c[:3])
+    return f"rgb({r},{g},{b})"
+
+
+def _colorscale(name: str, samples: int = 11) -> list:
+    from matplotlib import colormaps
+
+    cmap = colormaps[name]
+    return [[t, _rgb(cmap(t))] for t in np.linspace(0.0, 1.0, samples).tolist()]
+
+
+def _xyz(X) -> dict:
+    X = np.asarray(X, dtype=np.float32)
+    return {"x": X[:, 0], "y": X[:, 1], "z": X[:, 2]}
+
+
+_LIGHTING = {"ambient": 0.45, "diffuse": 0.7, "specular": 0.05, "roughness": 0.9, "fresnel": 0.05}
+
+
+def _mesh_traces(m: SceneMesh, max_faces: int, max_glyphs: int, colorbar: bool, notes: list) -> list:
+    P, T = m.points, m.faces
+    if m.texture is not None:
+        X, S, alpha, _, _ = stripe_surface(m.texture)
+        return [{"type": "mesh3d", "name": m.name, **_xyz(X), "i": S[:, 0].astype(np.int32),
+                 "j": S[:, 1].astype(np.int32), "k": S[:, 2].astype(np.int32),
+                 "intensity": np.nan_to_num(np.cos(alpha)).astype(np.float32), "cmin": -1.0, "cmax": 1.0,
+                 "colorscale": [[0.0, _rgb(STRIPE_DARK)], [1.0, _rgb(STRIPE_LIGHT)]], "showscale": False,
+                 "lighting": _LIGHTING, "hoverinfo": "skip"}]
+    Q, F, kept = decimate(P, T, max_faces)
+    if len(F) < len(T):
+        notes.append(f"{m.name}: {len(T):,} faces, decimated to {len(F):,} for this view")
+    trace = {"type": "mesh3d", "name": m.name, **_xyz(Q), "i": F[:, 0].astype(np.int32),
+             "j": F[:, 1].astype(np.int32), "k": F[:, 2].astype(np.int32), "color": _rgb(m.color),
+             "opacity": float(m.transparency), "lighting": _LIGHTING, "flatshading": False, "hoverinfo": "skip"}
+    if m.shown_scalar is not None:
+        v = m.scalars[m.shown_scalar]
+        per_face = len(v) == len(T) and len(v) != len(P)
+        if per_face:
+            v = v[kept]
+        elif len(F) < len(T):   # per-vertex values of a decimated mesh: the value of a vertex of each cluster
+            w = np.zeros(len(Q))
+            w[F.reshape(-1)] = np.asarray(v)[T[kept].reshape(-1)]
+            v = w
+        lo, hi = m.scalar_range if m.scalar_range is not None else (float(np.nanmin(v)), float(np.nanmax(v)))
+        trace.update(intensity=np.asarray(v, dtype=np.float32), intensitymode="cell" if per_face else "vertex",
+                     colorscale=_colorscale(m.colormap), cmin=lo, cmax=hi, showscale=colorbar,
+                     colorbar={"title": {"text": m.scalar_label or m.shown_scalar, "side": "top"},
+                               "orientation": "h", "len": 0.5, "thickness": 12, "y": 0.02, "yanchor": "bottom"})
+        del trace["color"]
+    traces = [trace]
+    if m.vectors:
+        traces.append(_glyphs(m, max_glyphs))
+    return traces
+
+
+def _glyphs(m: SceneMesh, max_glyphs: int) -> dict:
+    """Glyphs of the vector quantities of ``m``: arrows for one quantity, symmetric crosses for several."""
+    P, T = m.points, m.faces
+    D = np.stack(list(m.vectors.values()), axis=1)                # (N, n, 3)
+    n = D.shape[1]
+    verts = np.nonzero(np.any(D != 0, axis=(1, 2)))[0]
+    if verts.size > max_glyphs:
+        verts = verts[np.linspace(0, verts.size - 1, max_glyphs).astype(np.int64)]
+    ell = 0.45 * _mean_edge(P, T)
+    base = P[verts] + 0.08 * ell * _vertex_normals(P, T)[verts]   # just above the surface
+    gap = np.full((len(verts), 1, 3), np.nan)
+    if n == 1:                                                    # an arrow: shaft, then a head at the tip
+        d = D[verts, 0]
+        tip = base + ell * d
+        side = np.cross(_vertex_normals(P, T)[verts], d)
+        h = 0.35 * ell
+        parts = [base, tip, gap[:, 0], tip - h * d + 0.45 * h * side, tip, tip - h * d - 0.45 * h * side]
+        X = np.concatenate([np.stack(parts, axis=1), gap], axis=1)
+    else:                                                         # crosses: opposite directions joined
+        half = n // 2 if n % 2 == 0 else n
+        segs = []
+        for k in range(half):
+            a = base + ell * D[verts, (k + n // 2) % n] if n % 2 == 0 else base
+            segs += [a, base + ell * D[verts, k], gap[:, 0]]
+        X = np.stack(segs, axis=1)
+    return {"type": "scatter3d", "mode": "lines", "name": f"{m.name}: glyphs", **_xyz(X.reshape(-1, 3)),
+            "line": {"color": GLYPH_COLOR, "width": 1}, "hoverinfo": "skip"}
+
+
+def _points_trace(p: ScenePoints) -> dict:
+    t = {"type": "scatter3d", "mode": "markers", "name": p.name, **_xyz(p.points),
+         "marker": {"size": float(np.clip(p.radius * 700, 4, 12)), "color": [_rgb(c) for c in p.colors],
+                    "line": {"width": 0}}}
+    if p.labels is not None:
+        t.update(hovertext=list(p.labels), hoverinfo="text")
+    else:
+        t["hoverinfo"] = "skip"
+    return t
+
+
+def _curves_trace(c: SceneCurves) -> dict:
+    E = c.edges
+    if len(E):   # chain consecutive edges (a, b), (b, c), ... into polylines
+        breaks = np.nonzero(E[1:, 0] != E[:-1, 1])[0] + 1
+        starts, ends = np.r_[0, breaks], np.r_[breaks, len(E)]
+        pieces = [c.nodes[np.r_[E[s:e, 0], E[e - 1, 1]]] for s, e in zip(starts.tolist(), ends.tolist())]
+    else:
+        pieces = []
+    return {"type": "scatter3d", "mode": "lines", "name": c.name, **_xyz(_gaps(pieces)),
+            "line": {"color": _rgb(c.color), "width": float(np.clip(c.radius * 1000, 2, 8))},
+            "hovertext": c.name, "hoverinfo": "text" if c.name.startswith("filament") else "skip"}
+
+
+# ---------------------------------------------------------------------------- the figure
+def _camera(scene: Scene, camera: Camera | None) -> tuple[dict, dict]:
+    """The plotly scene camera and axis ranges for ``camera`` (fitted as in the PNG pictures when not given)."""
+    lo, hi = scene.bounds()
+    c, r = 0.5 * (lo + hi), max(0.5 * float(np.linalg.norm(hi - lo)), 1e-12)
+    cam = (camera or _DEFAULT_CAMERA).fitted(np.vstack([lo, hi]))
+    w = np.asarray(cam.view, dtype=np.float64)
+    eye = 2.0 * w / np.linalg.norm(w)
+    axes = {a: {"range": [float(c[i] - r), float(c[i] + r)], "visible": False} for i, a in enumerate("xyz")}
+    up = up_vector(cam.up)
+    return ({"eye": dict(zip("xyz", eye.tolist())), "up": dict(zip("xyz", up.tolist())),
+             "center": {"x": 0.0, "y": 0.0, "z": 0.0}, "projection": {"type": "orthographic"}}, axes)
+
+
+def figure_spec(result: Any, *, camera: Camera | None = None, isolines: bool = True, title: str | None = None,
+                max_faces: int = MAX_FACES, max_glyphs: int = MAX_GLYPHS) -> dict:
+    """The plotly figure of a result as a plain dict (``data``, ``layout``) with numpy arrays.
+
+    Parameters
+    ----------
+    result : a result of the applications, of :func:`dhlb.io.read_result`, or a Scene
+        See :func:`~dhlb.render.scene.scene_of`.
+    camera : Camera, optional
+        Its ``view`` and ``up`` (default: fitted as in the PNG pictures).
+    isolines : bool
+        Stripe patterns: draw the isolines.
+    title : str, optional
+        Default: the scene's title (with a note when a mesh was decimated).
+    max_faces, max_glyphs : int
+        Decimate meshes above ``max_faces`` faces; glyphs on at most ``max_glyphs`` vertices.
+
+    Returns
+    -------
+    dict
+        ``{"data": [...], "layout": {...}}``, as ``plotly.graph_objects.Figure`` takes it.
+    """
+    for name, v in (("max_faces", max_faces), ("max_glyphs", max_glyphs)):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
+            raise InvalidParameterError(f"{name} must be a positive integer, got {v!r}")
+    scene = scene_of(result, isolines=isolines)
+    notes: list[str] = []
+    data = []
+    bars = [i for i, m in enumerate(scene.meshes) if m.shown_scalar is not None]
+    for i, m in enumerate(scene.meshes):
+        data += _mesh_traces(m, int(max_faces), int(max_glyphs), bool(bars) and i == bars[-1], notes)
+    data += [_curves_trace(c) for c in scene.curves if len(c.edges)]
+    data += [_points_trace(p) for p in scene.points if len(p.points)]
+    cam, axes = _camera(scene, camera)
+    plain = scene.title if title is None else title
+    text = html.escape(plain) + (f"<br><sub>{html.escape('; '.join(notes))}</sub>" if notes else "")
+    layout = {"title": {"text": text, "x": 0.02, "y": 0.98, "font": {"size": 14}},
+              "showlegend": False, "paper_bgcolor": "white", "margin": {"l": 0, "r": 0, "t": 36, "b": 0},
+              "scene": {"camera": cam, "aspectmode": "manual", "aspectratio": dict.fromkeys("xyz", ZOOM),
+                        **{f"{a}axis": v for a, v in axes.items()}, "bgcolor": "white"},
+              "hovermode": "closest", "meta": {"dhlb": {"title": plain, "notes": notes}}}
+    return {"data": data, "layout": layout}
+
+
+def _plotly():
+    try:
+        import plotly
+    except ImportError:
+        raise ImportError(WEB_EXTRA) from None
+    return plotly
+
+
+def figure(result: Any, **kwargs: Any):
+    """The plotly figure of a result (``plotly.graph_objects.Figure``): :func:`figure_spec`, validated by plotly.
+
+    Parameters
+    ----------
+    result : a result, a result read back, or a Scene
+    **kwargs
+        Of :func:`figure_spec`.
+
+    Returns
+    -------
+    plotly.graph_objects.Figure
+
+    Raises
+    ------
+    ImportError
+        plotly is not installed (names the extra ``dhlb[web]``).
+    """
+    _plotly()
+    import plotly.graph_objects as go
+
+    return go.Figure(figure_spec(result, **kwargs))
+
+
+# ---------------------------------------------------------------------------- HTML
+_DTYPES = {np.dtype(np.float32): "f4", np.dtype(np.float64): "f8", np.dtype(np.int32): "i4",
+           np.dtype(np.uint8): "u1", np.dtype(np.int16): "i2", np.dtype(np.uint32): "u4"}
+
+
+def _encode(obj):
+    """JSON of numpy arrays: plotly.js's typed-array form ``{"dtype", "bdata"}`` (base64), compact and exact."""
+    if isinstance(obj, np.ndarray):
+        a = obj.astype(np.int32) if obj.dtype == np.int64 else obj
+        if a.dtype not in _DTYPES:
+            return a.tolist()
+        return {"dtype": _DTYPES[a.dtype], "bdata": base64.b64encode(np.ascontiguousarray(a).tobytes()).decode()}
+    if isinstance(obj, np.generic):
+        return obj.item()
+    raise TypeError(f"cannot write a {type(obj).__name__} into a web view")
+
+
+def figure_json(spec: dict) -> str:
+    """The JSON of :func:`figure_spec` (arrays as base64 typed arrays), safe to put inside a ``<script>``."""
+    text = json.dumps(spec, default=_encode, separators=(",", ":"), allow_nan=False)
+    return text.replace("</", "<\\/")
+
+
+def plotlyjs_path() -> str:
+    """The file of plotly's minified script inside the installed plotly package (no network needed).
+
+    Raises
+    ------
+    ImportError
+        plotly is not installed (names the extra ``dhlb[web]``).
+    """
+    plotly = _plotly()
+    path = os.path.join(os.path.dirname(plotly.__file__), "package_data", PLOTLYJS)
+    if not os.path.isfile(path):  # pragma: no cover - a broken plotly installation
+        raise ImportError(f"plotly is installed but its script {path} is missing; reinstall plotly")
+    return path
+
+
+def write_plotlyjs(folder: str | os.PathLike[str]) -> str:
+    """Copy plotly's script into ``folder`` (once: an existing copy of the same size is kept); return its path.
+
+    Parameters
+    ----------
+    folder : str or path-like
+        Where the pages that share the script live.
+
+    Returns
+    -------
+    str
+        ``folder/plotly.min.js``.
+    """
+    from dhlb._files import atomic_write
+
+    src, dst = plotlyjs_path(), os.path.join(os.fspath(folder), PLOTLYJS)
+    if not (os.path.isfile(dst) and os.path.getsize(dst) == os.path.getsize(src)):
+        with open(src, "rb") as fh, atomic_write(dst, "wb") as out:
+            out.write(fh.read())
+    return dst
+
+
+_GUARD = ("<script>window.PlotlyConfig = {MathJaxConfig: 'local'}; window.__dhlbDefine = window.define; "
+          "window.define = undefined;</script>\n{script}\n<script>window.define = window.__dhlbDefine;</script>")
+
+
+def _script_tag(plotlyjs: str) -> str:
+    """``<script>`` loading plotly: inline, or from a file; hidden from require.js (an AMD loader would swallow it)."""
+    if plotlyjs == "inline":
+        with open(plotlyjs_path(), encoding="utf-8") as fh:
+            tag = f"<script>{fh.read()}</script>"
+    else:
+        tag = f'<script src="{html.escape(plotlyjs)}"></script>'
+    return _GUARD.replace("{script}", tag)
+
+
+def _plot_call(div: str, spec: dict, config: dict) -> str:
+    return (f"<script>(function () {{ var fig = {figure_json(spec)}; var gd = document.getElementById('{div}');"
+            f" Plotly.newPlot(gd, fig.data, fig.layout, {json.dumps(config)}).then(function () {{"
+            " gd.setAttribute('data-ready', '1'); }); })();</script>")
+
+
+_CONFIG = {"displaylogo": False, "responsive": True, "scrollZoom": True}
+
+
+def to_html(result: Any, path: str | os.PathLike[str], *, plotlyjs: str = "inline", title: str | None = None,
+            **kwargs: Any) -> str:
+    """Write an HTML page with the interactive 3-D view of ``result``; it opens from the file system, offline.
+
+    Parameters
+    ----------
+    result : a result, a result read back, or a Scene
+    path : str or path-like
+        The page (written atomically).
+    plotlyjs : {"inline", "directory"} or str
+        ``"inline"``: plotly's script inside the page (self-contained, about 5 MB); ``"directory"``:
+        one shared copy ``plotly.min.js`` beside the page (written if missing, :func:`write_plotlyjs`);
+        any other string: the URL or relative path of plotly's script, used as given.
+    title : str, optional
+        The page's title (default: the scene's).
+    **kwargs
+        Of :func:`figure_spec` (``camera``, ``isolines``, ``max_faces``, ``max_glyphs``).
+
+    Returns
+    -------
+    str
+        The path written.
+
+    Raises
+    ------
+    ImportError
+        plotly is not installed (names the extra ``dhlb[web]``).
+    OutputError
+        The folder does not exist.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from dhlb.mesh import box_tet_mesh
+    >>> from dhlb.vortex import uniform_flow, vortex_filaments
+    >>> res = vortex_filaments(box_tet_mesh(2), None, uniform_flow([0.1, 0, 0]), hbar=1.0)
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     page = to_html(res, os.path.join(d, "v.html"), plotlyjs="directory")
+    ...     sorted(os.listdir(d)), "http" in open(page).read()
+    (['plotly.min.js', 'v.html'], False)
+    """
+    from dhlb._files import atomic_write
+
+    out = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(out))
+    if not os.path.isdir(folder):
+        raise OutputError(out, "the folder does not exist")
+    spec = figure_spec(result, title=title, **kwargs)
+    if plotlyjs == "directory":
+        write_plotlyjs(folder)
+        plotlyjs = PLOTLYJS
+    script = _script_tag(plotlyjs)
+    name = html.escape(spec["layout"]["meta"]["dhlb"]["title"])
+    page = (f'<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n<title>{name}</title>\n'
+            "<style>html, body { height: 100%; margin: 0; } #dhlb-view { width: 100%; height: 100%; }</style>\n"
+            f"{script}\n</head>\n<body>\n<div id=\"dhlb-view\" class=\"dhlb-web-view\"></div>\n"
+            f"{_plot_call('dhlb-view', spec, _CONFIG)}\n</body>\n</html>\n")
+    with atomic_write(out) as fh:
+        fh.write(page)
+    return out
+
+
+# ---------------------------------------------------------------------------- notebooks
+_SENT: dict = {}
+
+
+def notebook_view(result: Any, *, height: int = 480, **kwargs: Any) -> str:
+    """The HTML of an inline interactive view (a div and a script) for a notebook cell.
+
+    plotly's script is included with the first view of the process (a kernel: once per notebook) and
+    reused by the next ones. With the environment variable ``DHLB_WEB_SCRIPT=page`` it is never
+    included (the page provides it, as the documentation does).
+
+    Parameters
+    ----------
+    result : a result, a result read back, or a Scene
+    height : int
+        Pixels.
+    **kwargs
+        Of :func:`figure_spec`.
+
+    Returns
+    -------
+    str
+        HTML.
+
+    Raises
+    ------
+    ImportError
+        plotly is not installed (names the extra ``dhlb[web]``).
+    """
+    spec = figure_spec(result, **kwargs)
+    script = ""
+    if os.environ.get("DHLB_WEB_SCRIPT") != "page" and not _SENT.get("plotlyjs"):
+        script = _script_tag("inline")
+        _SENT["plotlyjs"] = True
+    else:
+        _plotly()
+    div = f"dhlb-view-{uuid.uuid4().hex[:12]}"
+    return (f'{script}<div id="{div}" class="dhlb-web-view" style="width:100%;height:{int(height)}px"></div>'
+            f"{_plot_call(div, spec, _CONFIG)}")
