@@ -6,7 +6,8 @@ sizes of the PNG pictures:
 
 - surfaces shaded, or coloured by a scalar with a colour bar (the distortion of a conformal map);
 - vector quantities as glyphs from each vertex: one quantity (n = 1) as arrows, several (n = 2, 4)
-  as symmetric crosses, at most :data:`MAX_GLYPHS` vertices (evenly spread);
+  as crosses (arms of 0.45 mean edge lengths along each direction, as in the PNG pictures), at
+  most :data:`MAX_GLYPHS` vertices (evenly spread);
 - a stripe texture on an unwelded refined copy of the mesh: each sub-triangle on which α is linear
   (:meth:`~dhlb.stripes.StripeTexture.subdivision`: faces, the cones of branch faces, the grid of zero
   faces) is refined until a period has about six samples, and carries ``cos α`` at its own corners,
@@ -280,13 +281,13 @@ def _glyphs(m: SceneMesh, max_glyphs: int) -> dict:
         h = 0.35 * ell
         parts = [base, tip, gap[:, 0], tip - h * d + 0.45 * h * side, tip, tip - h * d - 0.45 * h * side]
         X = np.concatenate([np.stack(parts, axis=1), gap], axis=1)
-    else:                                                         # crosses: opposite directions joined
-        half = n // 2 if n % 2 == 0 else n
+    elif n % 2 == 0:                                              # crosses: arms k and k + n/2 through the vertex
         segs = []
-        for k in range(half):
-            a = base + ell * D[verts, (k + n // 2) % n] if n % 2 == 0 else base
-            segs += [a, base + ell * D[verts, k], gap[:, 0]]
+        for k in range(n // 2):
+            segs += [base + ell * D[verts, k + n // 2], base, base + ell * D[verts, k], gap[:, 0]]
         X = np.stack(segs, axis=1)
+    else:                                                         # an odd star: an arm per direction
+        X = np.stack([x for k in range(n) for x in (base, base + ell * D[verts, k], gap[:, 0])], axis=1)
     return {"type": "scatter3d", "mode": "lines", "name": f"{m.name}: glyphs", **_xyz(X.reshape(-1, 3)),
             "line": {"color": GLYPH_COLOR, "width": 1}, "hoverinfo": "skip"}
 
