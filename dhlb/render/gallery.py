@@ -66,7 +66,7 @@ _SCRIPT = """
 def write_gallery(
     path: str | os.PathLike[str], title: str, pictures: Sequence[Any], *, table: Any = None, intro: str = ""
 ) -> str:
-    """Write ``path`` (an HTML file) showing ``pictures`` = [(file, caption), ...] or [(file, caption, link, view), ...].
+    """Write ``path`` (an HTML file) showing ``pictures`` = [(file, caption[, link[, view]]), ...].
 
     Picture files are referenced relative to the page's directory (they must lie beside it or
     below). ``link`` (or None) is a page the picture links to; ``view`` (or None) a page with the
