@@ -73,15 +73,16 @@ def _views(res, out: str, name: str) -> str | None:
     return write_gallery(os.path.join(out, f"{name}-views.html"), f"{name}: polyscope views", shots)
 
 
-def _web(res, out: str, name: str) -> str | None:
+def _web(res, out: str, name: str, camera=None) -> str | None:
     """The interactive view of ``res`` beside its PNG (``NAME.html``, sharing ``plotly.min.js``), if plotly is there.
 
-    Without the extra ``dhlb[web]`` the demo page shows the pictures only (and says so).
+    It opens with the camera of the PNG. Without the extra ``dhlb[web]`` the demo page shows the
+    pictures only (and says so).
     """
     try:
         from dhlb.render.web import to_html
 
-        return to_html(res, os.path.join(out, f"{name}.html"), plotlyjs="directory")
+        return to_html(res, os.path.join(out, f"{name}.html"), plotlyjs="directory", camera=camera)
     except ImportError:
         return None
 
@@ -123,7 +124,7 @@ def _field(out, progress, name, V, F, mesh_name, caption, view, **kw):
 
     res, png, sec = progress.run(caption, work)
     return {**_field_record(name.split("-")[0], res, png, caption, sec, mesh_name), "views": _views(res, out, name),
-            "web": _web(res, out, name)}
+            "web": _web(res, out, name, view)}
 
 
 def fields(out, progress, *, backend=None) -> list[dict]:
@@ -183,7 +184,7 @@ def stripes(out, progress, *, backend=None) -> list[dict]:
     return [{"step": "stripes", "mesh": f"spot ({len(V)} v, {len(F)} f)",
              "result": f"{n_zero} zero faces, {n_branch} branch faces", "check": "continuous texture",
              "ok": True, "seconds": sec, "picture": png, "caption": caption, "views": _views(res, out, "stripes"),
-             "web": _web(res, out, "stripes"),
+             "web": _web(res, out, "stripes", _SPOT_VIEW),
              "details": {"zero_faces": n_zero, "branch_faces": n_branch, "timings": info.get("timings", {})}}]
 
 
@@ -224,7 +225,7 @@ def vortex(out, progress, *, backend=None) -> list[dict]:
             result += f", linking {int(L[0, 1])}"
         recs.append({"step": "vortex " + kind, "mesh": f"cube ({len(mesh.points)} v, {len(mesh.tets)} tets)",
                      "result": result, "check": check, "ok": bool(ok), "seconds": sec, "picture": png,
-                     "views": _views(res, out, name), "web": _web(res, out, name),
+                     "views": _views(res, out, name), "web": _web(res, out, name, FILAMENT_CAMERA),
                      "caption": caption, "details": {"filaments": len(res.filaments), "linking_numbers": L.tolist(),
                                                      "timings": res.timings}})
     return recs
@@ -274,6 +275,7 @@ def conformal(out, progress, *, backend=None) -> list[dict]:
                      "mesh": f"{label} ({len(mesh.points)} v, {len(mesh.tets)} tets)",
                      "result": f"λ₁ = {res.eigenvalue:.2g}, distortion {res.distortion.mean():.3f} mean",
                      "check": check, "ok": bool(ok),
-                     "seconds": sec, "picture": png, "caption": caption, "web": _web(res, out, name),
+                     "seconds": sec, "picture": png, "caption": caption,
+                     "web": _web(res, out, name, CONFORMAL_CAMERA),
                      "details": {"eigenvalue": float(res.eigenvalue), "timings": res.timings}})
     return recs

@@ -117,6 +117,9 @@ class Scene:
     points : list of ScenePoints
     curves : list of SceneCurves
     title : str
+    view : (3,) float or None
+        The direction toward the camera the scene is arranged for (conformal maps: before and after
+        side by side across it); None: fitted to the scene (:meth:`dhlb.render.Camera.fitted`).
 
     Examples
     --------
@@ -131,6 +134,7 @@ class Scene:
     points: list = field(default_factory=list)
     curves: list = field(default_factory=list)
     title: str = ""
+    view: tuple | None = None
 
     def add_mesh(self, name: str, V: ArrayLike, F: ArrayLike, *, vectors: dict | None = None,
                  scalars: dict | None = None, corner_uv: ArrayLike | None = None,
@@ -305,8 +309,11 @@ def _conformal_scene(res) -> Scene:
     before = np.asarray(res.mesh.points, dtype=np.float64)
     after = rigid_fit(res.points, before)
     # side by side as in the PNG picture: the input on the left, the deformation on the right
-    right = Camera().fitted(before).frame()[0]
+    fitted = Camera().fitted(before)
+    s.view = fitted.view
+    right = fitted.frame()[0]
     width = float(np.ptp(before @ right)) or 1.0
+    s.title += ": the input (left) and its deformation (right), coloured by the distortion of the tets"
     s.add_mesh("before", before - 0.6 * width * right, F, **common)
     s.add_mesh("deformed", after + 0.6 * width * right, F, **common)
     return s

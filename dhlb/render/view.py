@@ -141,7 +141,8 @@ def camera_for(scene: Scene, view: Sequence[float] | None = None, up=None, dista
         d = np.asarray(view, dtype=np.float64).reshape(-1)
         if d.shape != (3,) or not np.all(np.isfinite(d)) or not np.any(d):
             raise InvalidParameterError(f"view must be a nonzero 3-vector, got {view!r}")
-    cam = Camera(view=None if view is None else tuple(float(x) for x in d), up=up).fitted(np.vstack([lo, hi]))
+    given = scene.view if view is None else tuple(float(x) for x in d)   # else: as the scene is arranged
+    cam = Camera(view=given, up=up).fitted(np.vstack([lo, hi]))
     w = np.asarray(cam.view, dtype=np.float64)
     if distance is None:
         distance = 1.04 / np.sin(np.radians(FIELD_OF_VIEW / 2))

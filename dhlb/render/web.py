@@ -321,7 +321,10 @@ def _camera(scene: Scene, camera: Camera | None) -> tuple[dict, dict]:
     """The plotly scene camera and axis ranges for ``camera`` (fitted as in the PNG pictures when not given)."""
     lo, hi = scene.bounds()
     c, r = 0.5 * (lo + hi), max(0.5 * float(np.linalg.norm(hi - lo)), 1e-12)
-    cam = (camera or _DEFAULT_CAMERA).fitted(np.vstack([lo, hi]))
+    cam = camera or _DEFAULT_CAMERA
+    if cam.view is None and scene.view is not None:        # the direction the scene is arranged for
+        cam = cam.replace(view=scene.view)
+    cam = cam.fitted(np.vstack([lo, hi]))
     w = np.asarray(cam.view, dtype=np.float64)
     eye = 2.0 * w / np.linalg.norm(w)
     axes = {a: {"range": [float(c[i] - r), float(c[i] + r)], "visible": False} for i, a in enumerate("xyz")}
