@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from dhlb.fields import direction_field
 from dhlb.render import Camera, FieldStyle, render_field_png
 from dhlb.render._figure import BRANCH, NEGATIVE, POSITIVE
 
@@ -29,10 +30,17 @@ def test_an_n1_glyph_has_a_head_at_its_tip(tmp_path):
     assert tip > 4 * base, (tip, base)                                # the head is at the +x end
 
 
-def test_one_colour_per_kind_of_point_in_pictures_and_viewer():
-    from dhlb.render import view
+def test_one_colour_per_kind_of_point_in_pictures_viewer_and_web():
+    from dhlb.io import example_path, read_surface
+    from dhlb.render.scene import index_colors, scene_of
+    from dhlb.stripes import stripe_pattern
 
-    assert view.POSITIVE == POSITIVE and view.NEGATIVE == NEGATIVE and view.BRANCH == BRANCH
+    assert index_colors([2, -1, 0]).tolist() == [list(POSITIVE), list(NEGATIVE), [0.5, 0.5, 0.5]]
+    V, F = read_surface(example_path("spot.obj"))
+    scene = scene_of(stripe_pattern(V, F, direction_field(V, F, n=2), spacing=6.0))   # the viewer's and the web's
+    points = {p.name: p for p in scene.points}
+    assert {tuple(c) for c in points["branch points"].colors} == {BRANCH}
+    assert {tuple(c) for c in points["zeros"].colors} <= {POSITIVE, NEGATIVE}
 
 
 def test_distortion_colours_have_a_legend_and_ignore_one_outlier(tmp_path):

@@ -37,6 +37,8 @@ BRANCH = (0.10, 0.65, 0.25)
 """Colour of the branch points of a stripe pattern."""
 FACE_COLOR = (0.78, 0.80, 0.86)
 """Colour of a surface without a quantity on it (shaded)."""
+GLYPH_COLOR = (0.10, 0.10, 0.10)
+"""Colour of the direction glyphs."""
 STRIPE_DARK, STRIPE_LIGHT = (0.10, 0.10, 0.14), (0.96, 0.94, 0.88)
 """Colours of a stripe pattern at ``cos α = −1`` and ``+1``."""
 FILAMENT_COLORS = ((0.839, 0.153, 0.157), (0.122, 0.467, 0.706), (0.173, 0.627, 0.173), (0.580, 0.404, 0.741),
@@ -236,7 +238,7 @@ class FieldStyle(_Replace):
 
     glyph_length: float | None = None
     glyph_width: float = 0.7
-    glyph_color: Any = "#1a1a1a"
+    glyph_color: Any = GLYPH_COLOR
     face_color: Any = FACE_COLOR
     ambient: float = 0.3
     max_glyphs: int = 40000

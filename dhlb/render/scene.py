@@ -313,7 +313,7 @@ def _conformal_scene(res) -> Scene:
     s.view = fitted.view
     right = fitted.frame()[0]
     width = float(np.ptp(before @ right)) or 1.0
-    s.title += ": the input (left) and its deformation (right), coloured by the distortion of the tets"
+    s.title += ": the input (left), deformed (right)"
     s.add_mesh("before", before - 0.6 * width * right, F, **common)
     s.add_mesh("deformed", after + 0.6 * width * right, F, **common)
     return s

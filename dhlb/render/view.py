@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from dhlb.errors import InvalidParameterError, OutputError, ViewerUnavailableError
+from dhlb.render._figure import GLYPH_COLOR, STRIPE_DARK, STRIPE_LIGHT  # the one palette
 from dhlb.render.scene import Scene, index_colors, scene_of  # the one scene builder (re-exported)
 
 if TYPE_CHECKING:
@@ -157,7 +158,7 @@ def _register(ps, scene: Scene) -> None:
         e = np.linalg.norm(m.points[m.faces[:, [1, 2, 0]]] - m.points[m.faces], axis=2).mean() if len(m.faces) else 0
         for k, v in m.vectors.items():  # glyphs of 0.45 mean edge lengths, as in the PNG pictures
             sm.add_vector_quantity(k, 0.45 * e * v, defined_on="vertices", enabled=True, vectortype="ambient",
-                                   radius=0.0012, color=(0.1, 0.1, 0.1))
+                                   radius=0.0012, color=GLYPH_COLOR)
         for k, v in m.scalars.items():
             rng = {} if m.scalar_range is None or k != m.shown_scalar else {"vminmax": m.scalar_range}
             sm.add_scalar_quantity(k, v, defined_on="vertices" if len(v) == len(m.points) else "faces",
@@ -165,7 +166,7 @@ def _register(ps, scene: Scene) -> None:
         if m.corner_uv is not None:
             sm.add_parameterization_quantity("stripes", m.corner_uv.reshape(-1, 2), defined_on="corners",
                                              coords_type="unit", viz_style="checker", checker_size=0.25,
-                                             checker_colors=((0.10, 0.10, 0.14), (0.96, 0.94, 0.88)), enabled=True)
+                                             checker_colors=(STRIPE_DARK, STRIPE_LIGHT), enabled=True)
     for p in scene.points:
         pc = ps.register_point_cloud(p.name, p.points, radius=p.radius)
         pc.add_color_quantity("index", p.colors, enabled=True)

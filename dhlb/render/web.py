@@ -43,7 +43,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from dhlb.errors import InvalidParameterError, OutputError
-from dhlb.render._figure import STRIPE_DARK, STRIPE_LIGHT, Camera, up_vector
+from dhlb.render._figure import GLYPH_COLOR, STRIPE_DARK, STRIPE_LIGHT, Camera, up_vector
 from dhlb.render.scene import Scene, scene_of
 
 if TYPE_CHECKING:
@@ -60,7 +60,6 @@ MAX_GLYPHS = 3000
 """At most this many vertices carry direction glyphs."""
 STRIPE_TRIANGLES = 60_000
 """Budget of sub-triangles of the refined copy that carries a stripe texture."""
-GLYPH_COLOR = "#1a1a1a"
 PLOTLYJS = "plotly.min.js"
 """The file name of the shared copy of plotly's script (:func:`write_plotlyjs`)."""
 _DEFAULT_CAMERA = Camera()
@@ -289,7 +288,7 @@ def _glyphs(m: SceneMesh, max_glyphs: int) -> dict:
     else:                                                         # an odd star: an arm per direction
         X = np.stack([x for k in range(n) for x in (base, base + ell * D[verts, k], gap[:, 0])], axis=1)
     return {"type": "scatter3d", "mode": "lines", "name": f"{m.name}: glyphs", **_xyz(X.reshape(-1, 3)),
-            "line": {"color": GLYPH_COLOR, "width": 1}, "hoverinfo": "skip"}
+            "line": {"color": _rgb(GLYPH_COLOR), "width": 1}, "hoverinfo": "skip"}
 
 
 def _points_trace(p: ScenePoints) -> dict:
