@@ -20,7 +20,7 @@ TEXT_OPTIONS = {  # (command, option) whose values are text (paths, names, specs
     ("conformal", "mesh"), ("conformal", "--format"), ("conformal", "--u"), ("conformal", "--backend"),
     ("field", "mesh"), ("field", "--align"), ("field", "--backend"), ("field", "--format"),
     ("stripes", "file"), ("stripes", "--field"), ("stripes", "--backend"), ("stripes", "--format"),
-    ("view", "base"), ("view", "--screenshot"),
+    ("view", "base"), ("view", "--screenshot"), ("view", "--html"),
     ("vortex", "mesh"), ("vortex", "--format"), ("vortex", "--backend"),
     ("info", "file"), ("info", "--format"), ("demo", "--backend"), ("demo", "--only"),
 }

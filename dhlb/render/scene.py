@@ -84,6 +84,17 @@ class SceneMesh:
     scalar_range: tuple | None = None
     scalar_label: str = ""
 
+    def show_scalar(self, name: str, *, colormap: str = "coolwarm", limits: tuple[float, float] | None = None,
+                    label: str = "") -> None:
+        """Draw the scalar ``name`` with ``colormap`` (a matplotlib name) over ``limits`` (default: its range).
+
+        ``label`` is the colour bar's title (default: the scalar's name).
+        """
+        if name not in self.scalars:
+            raise ShapeError(f"mesh {self.name!r}: {name!r} is not one of its scalars {sorted(self.scalars)}")
+        self.shown_scalar, self.colormap, self.scalar_label = name, str(colormap), str(label)
+        self.scalar_range = None if limits is None else (float(limits[0]), float(limits[1]))
+
 
 @dataclass
 class ScenePoints:
@@ -124,7 +135,7 @@ class Scene:
     Examples
     --------
     >>> s = Scene()
-    >>> s.add_mesh("tri", [[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], vectors={"x": [[1, 0, 0]] * 3})
+    >>> _ = s.add_mesh("tri", [[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], vectors={"x": [[1, 0, 0]] * 3})
     >>> s.add_curves("edge", [(np.eye(3), True)])
     >>> s.meshes[0].vectors["x"].shape, s.curves[0].edges.tolist(), s.bounds()[1].tolist()
     ((3, 3), [[0, 1], [1, 2], [2, 0]], [1.0, 1.0, 1.0])
@@ -138,16 +149,14 @@ class Scene:
 
     def add_mesh(self, name: str, V: ArrayLike, F: ArrayLike, *, vectors: dict | None = None,
                  scalars: dict | None = None, corner_uv: ArrayLike | None = None,
-                 color: Sequence[float] = FACE_COLOR, shown_scalar: str | None = None, texture: Any = None,
-                 colormap: str = "coolwarm", scalar_range: tuple[float, float] | None = None,
-                 scalar_label: str = "") -> None:
+                 color: Sequence[float] = FACE_COLOR, shown_scalar: str | None = None) -> SceneMesh:
         """Add a triangle mesh with ``vectors`` per vertex, ``scalars`` per vertex or face, ``corner_uv`` per corner.
 
         ``corner_uv`` is (m, 3) or (m, 3, 2); ``color`` is RGB or RGBA (alpha: the opacity, 1 = opaque);
-        ``shown_scalar`` names the scalar drawn (none by default), with ``colormap`` (a matplotlib name),
-        ``scalar_range`` (default: its range) and ``scalar_label`` (the colour bar's title);
-        ``texture`` is a :class:`~dhlb.stripes.StripeTexture` on these faces, which the web view
-        evaluates on a refined copy of the mesh (the viewer draws ``corner_uv``).
+        ``shown_scalar`` names the scalar drawn (none by default; :meth:`SceneMesh.show_scalar` sets its
+        colours). Returns the :class:`SceneMesh` (its ``texture`` may be set to a
+        :class:`~dhlb.stripes.StripeTexture` on these faces, which the web view evaluates on a refined
+        copy of the mesh; the viewer draws ``corner_uv``).
         """
         P = np.asarray(V, dtype=np.float64)
         T = np.asarray(F, dtype=np.int64)
@@ -180,10 +189,9 @@ class Scene:
         rgba = tuple(float(c) for c in color)
         if len(rgba) not in (3, 4):
             raise ShapeError(f"mesh {name!r}: color must be RGB or RGBA, got {color!r}")
-        self.meshes.append(SceneMesh(name, P, T, vec, sca, uv, rgba[:3], rgba[3] if len(rgba) == 4 else 1.0,
-                                     shown_scalar, texture, colormap,
-                                     None if scalar_range is None else tuple(float(x) for x in scalar_range),
-                                     scalar_label))
+        mesh = SceneMesh(name, P, T, vec, sca, uv, rgba[:3], rgba[3] if len(rgba) == 4 else 1.0, shown_scalar)
+        self.meshes.append(mesh)
+        return mesh
 
     def add_points(self, name: str, P: ArrayLike, colors: ArrayLike, *, radius: float = 0.01,
                    labels: Sequence[str] | None = None) -> None:
@@ -266,7 +274,7 @@ def _stripes_scene(res, isolines: bool = True) -> Scene:
     # alone; checker cells of 1/4 then show the bands cos α > 0 and cos α < 0, the stripes.
     u = tex.corner_alpha / (2 * np.pi)
     s.add_mesh("mesh", mesh.points, mesh.faces, corner_uv=np.abs(u - np.round(u)),
-               scalars={"zero index": tex.zero_index}, texture=tex)
+               scalars={"zero index": tex.zero_index}).texture = tex
     if isolines:
         iso = trace(tex)
         s.add_curves("isolines", [iso.points[p] for p in iso.polylines], color=(0.05, 0.05, 0.08), radius=0.0015)
@@ -301,10 +309,9 @@ def _conformal_scene(res) -> Scene:
         s.add_mesh("deformed", res.points, res.mesh.boundary_faces)
         return s
     F, dF = boundary_distortion(res)
-    common = {"scalars": {"distortion": dF}, "shown_scalar": "distortion", "colormap": "viridis",
-              "scalar_range": distortion_range(dF), "scalar_label": "distortion of the tet (1 = conformal)"}
+    shown = {"colormap": "viridis", "limits": distortion_range(dF), "label": "distortion of the tet (1 = conformal)"}
     if not getattr(res, "input_known", True):  # the .json of result.save: the deformed mesh and its distortion
-        s.add_mesh("deformed", res.points, F, **common)
+        s.add_mesh("deformed", res.points, F, scalars={"distortion": dF}).show_scalar("distortion", **shown)
         return s
     before = np.asarray(res.mesh.points, dtype=np.float64)
     after = rigid_fit(res.points, before)
@@ -314,8 +321,8 @@ def _conformal_scene(res) -> Scene:
     right = fitted.frame()[0]
     width = float(np.ptp(before @ right)) or 1.0
     s.title += ": the input (left), deformed (right)"
-    s.add_mesh("before", before - 0.6 * width * right, F, **common)
-    s.add_mesh("deformed", after + 0.6 * width * right, F, **common)
+    for name, X in (("before", before - 0.6 * width * right), ("deformed", after + 0.6 * width * right)):
+        s.add_mesh(name, X, F, scalars={"distortion": dF}).show_scalar("distortion", **shown)
     return s
 
 
