@@ -1,16 +1,23 @@
 """Sphinx configuration for the dhlb documentation."""
+import os
+
 import dhlb
+
+# the teaching notebooks are executed at build time (myst-nb); their kernels inherit this environment:
+# interactive views without plotly's script (every page loads it once, below), figures drawn as in Jupyter
+os.environ["DHLB_WEB_SCRIPT"] = "page"
+os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
 
 project = "dhlb"
 author = "dhlb developers"
 release = dhlb.__version__
 extensions = [
-    "myst_parser",
+    "myst_nb",  # MyST markdown (it includes myst-parser) and the executed notebooks
     "sphinx.ext.autodoc",
     "sphinx.ext.napoleon",
     "sphinx.ext.mathjax",
 ]
-source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
+source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb", ".rst": "restructuredtext"}
 myst_enable_extensions = ["dollarmath", "amsmath"]
 myst_heading_anchors = 3
 napoleon_numpy_docstring = True
@@ -19,6 +26,17 @@ autodoc_member_order = "bysource"
 autodoc_typehints = "description"
 exclude_patterns = ["_build", "_generated"]  # _generated: includes written at build time
 html_theme = "alabaster"
+# the notebooks (copied from ../notebooks by _copy_notebooks) run on every build, so the docs show what the
+# code does now (jupyter-cache keys on the notebook's text only, not on dhlb); a failing cell fails the build.
+# DHLB_DOCS_EXECUTE=cache (or off) for quicker local rebuilds
+nb_execution_mode = os.environ.get("DHLB_DOCS_EXECUTE", "force")
+nb_execution_timeout = 900
+nb_execution_raise_on_error = True
+nb_execution_show_tb = True
+nb_ipywidgets_js = {}  # no require.js (an AMD loader would swallow plotly's script); the notebooks use no widgets
+# plotly's script, once per page before any view (copied from the installed plotly by _write_plotlyjs)
+html_static_path = ["_generated/static"]
+html_js_files = [(None, {"body": "window.PlotlyConfig = {MathJaxConfig: 'local'};"}), "plotly.min.js"]
 # ref.python: "more than one target found" for words of numpydoc type lines that Sphinx turns into
 # cross-references, e.g. the ``n`` of ``(n, 3) float array`` against every attribute named n
 suppress_warnings = ["myst.xref_missing", "ref.python"]
@@ -68,6 +86,52 @@ def _generate_layers(app):
     module.generate()  # the source tree next to docs/ (dhlb/), into docs/_generated/
 
 
+# --- the teaching notebooks (../notebooks) and plotly's script, put in place before Sphinx reads -------
+def _copy_notebooks(app, config):
+    """Copy ``../notebooks/*.ipynb`` into ``docs/notebooks/`` (Sphinx reads documents under docs/ only).
+
+    A copy is rewritten only when its text changes (Sphinx re-reads by modification time); copies of
+    notebooks that no longer exist are removed. Links into the documentation (``../docs/x.md``) are
+    made relative to the copy (``../x.md``).
+    """
+    import glob
+    import json
+
+    source = os.path.join(app.confdir, os.pardir, "notebooks")
+    target = os.path.join(app.confdir, "notebooks")
+    os.makedirs(target, exist_ok=True)
+    names = set()
+    for path in sorted(glob.glob(os.path.join(source, "*.ipynb"))):
+        name = os.path.basename(path)
+        names.add(name)
+        with open(path, encoding="utf-8") as fh:
+            nb = json.load(fh)
+        for cell in nb["cells"]:
+            if cell["cell_type"] == "markdown":
+                text = "".join(cell["source"]).replace("](../docs/", "](../")
+                cell["source"] = text.splitlines(keepends=True)
+        text = json.dumps(nb, indent=1, ensure_ascii=False) + "\n"
+        out = os.path.join(target, name)
+        if os.path.isfile(out):
+            with open(out, encoding="utf-8") as fh:
+                if fh.read() == text:
+                    continue
+        with open(out, "w", encoding="utf-8") as fh:
+            fh.write(text)
+    for stale in set(os.listdir(target)) - names:
+        if stale.endswith(".ipynb"):
+            os.remove(os.path.join(target, stale))
+
+
+def _write_plotlyjs(app, config):
+    """Copy plotly's script from the installed plotly into ``docs/_generated/static/`` (``html_static_path``)."""
+    from dhlb.render.web import write_plotlyjs
+
+    folder = os.path.join(app.confdir, "_generated", "static")
+    os.makedirs(folder, exist_ok=True)
+    write_plotlyjs(folder)
+
+
 def setup(app):
     from docutils import nodes
     from docutils.parsers.rst import Directive
@@ -102,4 +166,7 @@ def setup(app):
 
     app.add_directive("dhlb-help", DhlbHelp)
     app.connect("builder-inited", _generate_layers)
+    # before the html builder checks html_static_path (config-inited, priority 500) and before Sphinx reads
+    app.connect("config-inited", _copy_notebooks, priority=100)
+    app.connect("config-inited", _write_plotlyjs, priority=100)
     return {"parallel_read_safe": True}

@@ -1,10 +1,12 @@
-"""Every teaching notebook in notebooks/ runs in the environment its first cell names, shows a picture, prints
-no warning and writes nothing beside itself.
+"""Every teaching notebook in notebooks/ runs in the environment its first cell names, shows a picture (a PNG or
+an interactive 3-D view), prints no warning and writes nothing beside itself.
 
 The environment is the line ``pip install dhlb`` or ``pip install "dhlb[extra,...]"`` of the first (markdown)
 cell, plus the Jupyter kernel. The notebook runs with every other installed distribution hidden from it
 (``sys.modules[name] = None``: ``import`` raises ModuleNotFoundError and ``importlib.util.find_spec`` returns
-None, as if it were not installed), so a notebook that needs an extra it does not name fails here.
+None, as if it were not installed) and its entry points unlisted (``importlib.metadata.entry_points(group=...)``:
+a plugin such as trio's hook for hypothesis is not loaded), so a notebook that needs an extra it does not name
+fails here.
 """
 import re
 import shutil
@@ -66,19 +68,43 @@ def _closure(names):
     return seen
 
 
-def _hidden_modules(extras):
-    """Top-level modules of installed distributions outside the named environment and the kernel."""
+def _hidden(extras):
+    """Top-level modules and canonical names of the installed distributions outside the environment and the kernel."""
     requirements = _requirements(extras)
     missing = [r.name for r in requirements if not _installed(r.name)]
     if missing:
         pytest.skip(f"the notebook's environment dhlb[{','.join(extras)}] is not installed here (missing {missing})")
     allowed = _closure([r.name for r in requirements] + KERNEL)
-    return sorted(
+    modules = sorted(
         module
         for module, dists in metadata.packages_distributions().items()
         if module.isidentifier() and module != "dhlb" and module not in sys.stdlib_module_names
         and not any(canonicalize_name(d) in allowed for d in dists)
     )
+    dists = sorted({canonicalize_name(d.metadata["Name"]) for d in metadata.distributions()} - allowed - {"dhlb"})
+    return modules, dists
+
+
+# the first cell of the run: hide the modules and the entry points of the distributions outside the environment
+HIDE = """\
+import importlib.metadata
+import re
+import sys
+
+sys.modules.update(dict.fromkeys(m for m in {modules!r} if m not in sys.modules))
+_entry_points = importlib.metadata.entry_points
+
+
+def _visible_entry_points(**params):
+    found = _entry_points(**params)
+    if not params:
+        return found
+    return importlib.metadata.EntryPoints(
+        e for e in found if e.dist is None or re.sub(r"[-_.]+", "-", e.dist.name).lower() not in {dists!r})
+
+
+importlib.metadata.entry_points = _visible_entry_points
+"""
 
 
 def _installed(name):
@@ -89,27 +115,36 @@ def _installed(name):
     return True
 
 
+WEB_VIEW = "dhlb-web-view"  # the class of the div of an interactive view (dhlb.render.web.notebook_view)
+FIRST_3D = "06_direction_fields"  # the first notebook with a 3-D result: it must show it interactively
+
+
+def _displayed(nb):
+    return [o.get("data", {}) for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
+            if o.get("output_type") in ("display_data", "execute_result")]
+
+
+def _web_views(nb):
+    return [d for d in _displayed(nb) if WEB_VIEW in d.get("text/html", "")]
+
+
 def _pictures(nb):
-    return [
-        o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
-        if o.get("output_type") in ("display_data", "execute_result") and "image/png" in o.get("data", {})
-    ]
+    """PNG pictures and interactive views."""
+    return [d for d in _displayed(nb) if "image/png" in d or WEB_VIEW in d.get("text/html", "")]
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
 def test_notebook_runs_in_its_environment_shows_a_picture_and_writes_nothing_beside_itself(path, tmp_path, monkeypatch):
     # the kernel draws as Jupyter does (inline PNGs), not into the suite's Agg backend
     monkeypatch.setenv("MPLBACKEND", "module://matplotlib_inline.backend_inline")
+    monkeypatch.delenv("DHLB_WEB_SCRIPT", raising=False)  # interactive views carry plotly's script, as in Jupyter
     nb = nbformat.read(path, as_version=4)
-    hidden = _hidden_modules(_environment(nb))
+    hidden, dists = _hidden(_environment(nb))
     assert "pytest" in hidden  # the test can fail: the suite's own tools are not the notebook's environment
     here = tmp_path / "notebooks"  # a fresh copy, run where it lies, as a reader does
     here.mkdir()
     shutil.copy(path, here / path.name)
-    hide = nbformat.v4.new_code_cell(
-        "import sys\n"
-        f"sys.modules.update(dict.fromkeys(m for m in {hidden!r} if m not in sys.modules))"
-    )
+    hide = nbformat.v4.new_code_cell(HIDE.format(modules=hidden, dists=set(dists)))
     nb.cells.insert(0, hide)
     nbclient.NotebookClient(nb, timeout=300, kernel_name="python3",
                             resources={"metadata": {"path": str(here)}}).execute()
@@ -119,6 +154,8 @@ def test_notebook_runs_in_its_environment_shows_a_picture_and_writes_nothing_bes
     warned = [o.text for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
               if o.output_type == "stream" and o.name == "stderr" and "Warning" in o.text]
     assert not warned, f"the notebook printed warnings (a deprecated call? catch and explain an intended one): {warned}"
-    assert _pictures(nb), "the notebook shows no picture (no image/png output)"
+    assert _pictures(nb), "the notebook shows no picture (no image/png output, no interactive view)"
+    if path.stem == FIRST_3D:
+        assert _web_views(nb), "the first notebook with a 3-D result shows no interactive view (backend='web')"
     written = sorted(p.name for p in here.iterdir() if p.name != path.name)
     assert not written, f"the notebook wrote {written} beside itself; write into a temporary or output folder"
