@@ -160,14 +160,16 @@ def stripe_surface(texture, max_triangles: int = STRIPE_TRIANGLES, samples: floa
     >>> c = np.argmax(bary[corner], axis=1)
     >>> bool(np.allclose(alpha[corner], tex.corner_alpha[face[corner], c]))
     True
+    >>> len(stripe_surface(tex, max_triangles=20)[1])          # the budget: one triangle per face at least
+    2
     """
     from dhlb.render.stripes_png import face_grid
 
     sub = texture.subdivision()
     span = np.ptp(sub.alpha, axis=1)
     k = np.clip(np.ceil(samples * span / (2 * np.pi)), 1, 16).astype(np.int64)
-    while int(np.sum(k * k)) > max_triangles and k.max() > 1:
-        k = np.maximum(1, np.ceil(0.8 * k)).astype(np.int64) if k.max() > 1 else k
+    while int(np.sum(k * k)) > max_triangles and k.max() > 1:   # shrink strictly until within budget or k = 1
+        k = np.maximum(1, np.minimum(k - 1, np.ceil(0.8 * k))).astype(np.int64)
     mesh = texture.mesh
     X = mesh.points[mesh.faces[sub.face]]                          # (t, 3, 3) corners of each face
     parts, base = [], 0
