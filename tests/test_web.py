@@ -142,6 +142,9 @@ def test_stripe_view_carries_the_texture_per_corner():
     assert set(face[corner].tolist()) == set(range(len(F)))            # every face's corners are drawn
     assert np.allclose(X, np.einsum("kc,kcd->kd", bary, res.mesh.points[res.mesh.faces[face]]))
     assert (np.ptp(face[T], axis=1) == 0).all()                             # no triangle straddles two faces
+    coarse = _trace(rw.figure_spec(res, max_faces=1000), "mesh")               # above the limit: decimated
+    assert len(coarse["i"]) <= 1000 and len(coarse["intensity"]) == len(coarse["x"])
+    assert np.abs(coarse["intensity"]).max() <= 1 and np.ptp(coarse["intensity"]) > 1   # stripes still there
     zeros = _trace(spec, "zeros")
     assert len(zeros["hovertext"]) == tex.zero_faces.size and all("index" in t for t in zeros["hovertext"])
     assert len(_trace(spec, "branch points")["x"]) == tex.branch_faces.size

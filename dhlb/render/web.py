@@ -18,7 +18,8 @@ sizes of the PNG pictures:
 :func:`to_html` writes a page that opens offline (plotly's script inline, or one shared copy beside
 the page, :func:`write_plotlyjs`); :func:`notebook_view` is what ``result.show(backend="web")``
 displays in Jupyter (:class:`dhlb.render.registry.WebView`). Meshes above :data:`MAX_FACES` faces
-are decimated for the view only (vertex clustering), and the view says so in its title.
+are decimated for the view only (vertex clustering; a stripe texture is then drawn per vertex, its
+branch cuts blurred at the scale of the clusters), and the view says so in its title.
 
 Examples
 --------
@@ -226,20 +227,29 @@ def _xyz(X) -> dict:
 
 
 _LIGHTING = {"ambient": 0.45, "diffuse": 0.7, "specular": 0.05, "roughness": 0.9, "fresnel": 0.05}
+_STRIPES = {"cmin": -1.0, "cmax": 1.0, "colorscale": [[0.0, _rgb(STRIPE_DARK)], [1.0, _rgb(STRIPE_LIGHT)]],
+            "showscale": False, "lighting": _LIGHTING, "hoverinfo": "skip"}
 
 
 def _mesh_traces(m: SceneMesh, max_faces: int, max_glyphs: int, colorbar: bool, notes: list) -> list:
     P, T = m.points, m.faces
-    if m.texture is not None:
+    if m.texture is not None and len(T) <= max_faces:
         X, S, alpha, _, _ = stripe_surface(m.texture)
         return [{"type": "mesh3d", "name": m.name, **_xyz(X), "i": S[:, 0].astype(np.int32),
                  "j": S[:, 1].astype(np.int32), "k": S[:, 2].astype(np.int32),
-                 "intensity": np.nan_to_num(np.cos(alpha)).astype(np.float32), "cmin": -1.0, "cmax": 1.0,
-                 "colorscale": [[0.0, _rgb(STRIPE_DARK)], [1.0, _rgb(STRIPE_LIGHT)]], "showscale": False,
-                 "lighting": _LIGHTING, "hoverinfo": "skip"}]
+                 "intensity": np.nan_to_num(np.cos(alpha)).astype(np.float32), **_STRIPES}]
     Q, F, kept = decimate(P, T, max_faces)
     if len(F) < len(T):
         notes.append(f"{m.name}: {len(T):,} faces, decimated to {len(F):,} for this view")
+    if m.texture is not None:   # too many faces to refine: cos α per corner, averaged at the vertices kept
+        corner = np.cos(m.texture.corner_alpha).reshape(-1)
+        mean = np.bincount(T.reshape(-1), corner, len(P)) / np.maximum(np.bincount(T.reshape(-1), None, len(P)), 1)
+        v = np.zeros(len(Q))
+        v[F.reshape(-1)] = mean[T[kept].reshape(-1)]
+        notes.append("stripes drawn per vertex (branch cuts blurred)")
+        return [{"type": "mesh3d", "name": m.name, **_xyz(Q), "i": F[:, 0].astype(np.int32),
+                 "j": F[:, 1].astype(np.int32), "k": F[:, 2].astype(np.int32),
+                 "intensity": np.nan_to_num(v).astype(np.float32), **_STRIPES}]
     trace = {"type": "mesh3d", "name": m.name, **_xyz(Q), "i": F[:, 0].astype(np.int32),
              "j": F[:, 1].astype(np.int32), "k": F[:, 2].astype(np.int32), "color": _rgb(m.color),
              "opacity": float(m.transparency), "lighting": _LIGHTING, "flatshading": False, "hoverinfo": "skip"}
