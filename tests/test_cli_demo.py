@@ -45,6 +45,11 @@ def test_demo_runs_all_steps_and_passes_its_checks(demo, capsys):
         assert data[:8] == PNG_MAGIC, src
         assert len(data) > 5000, f"{src} is suspiciously small"
     assert (demo / "stripes.obj").exists() and (demo / "vortex-ring.obj").exists()
+    if summary["web"]["views"]:                                      # with dhlb[web]: one view per result
+        assert summary["web"]["views"] == len(summary["steps"]) == page.count('class="dhlb-rotate"')
+        views = sum(f.stat().st_size for f in demo.glob("*.html") if f.name != "index.html" and "-views" not in f.name)
+        assert summary["web"]["bytes"] == views + (demo / "plotly.min.js").stat().st_size
+        assert summary["web"]["bytes"] < summary["web"]["folder_bytes"]
 
 
 def test_demo_rejects_unknown_steps(tmp_path, capsys):

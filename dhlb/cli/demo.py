@@ -113,14 +113,18 @@ def run(args) -> int:
         "singularity for its face and index); the views need no network: plotly's script is in this folder."
         if web else 'Interactive 3-D views need the extra dhlb[web]: pip install "dhlb[web]".')
     page = write_gallery(os.path.join(out, "index.html"), "dhlb demo", pictures, table=table, intro=intro)
+    views = [r["web"] for r in records if r.get("web")]
+    script = os.path.join(out, "plotly.min.js")
+    web_bytes = sum(os.path.getsize(v) for v in views) + (os.path.getsize(script) if views else 0)
     summary = {"output": os.path.abspath(out), "index": os.path.abspath(page), "seconds": total,
+               "web": {"views": len(views), "bytes": web_bytes, "folder_bytes": _folder_bytes(out)},
                "steps": [{k: v for k, v in r.items() if k != "details"} | {"details": r.get("details", {})}
                          for r in records],
                "checks_passed": all(r["ok"] for r in records)}
     if args.json:
         sys.stdout.write(json.dumps(summary, indent=2, default=_json_default) + "\n")
     else:
-        sys.stdout.write(_format(table, total, page))
+        sys.stdout.write(_format(table, total, page, summary["web"]))
     return 0 if summary["checks_passed"] else 1
 
 
@@ -134,9 +138,15 @@ def _json_default(obj):
     raise TypeError(type(obj).__name__)
 
 
-def _format(table, total: float, page: str) -> str:
+def _folder_bytes(folder: str) -> int:
+    return sum(e.stat().st_size for e in os.scandir(folder) if e.is_file())
+
+
+def _format(table, total: float, page: str, web: dict) -> str:
     widths = [max(len(str(row[i])) for row in table) for i in range(len(table[0]))]
     lines = ["  ".join(str(c).ljust(w) for c, w in zip(row, widths)).rstrip() for row in table]
     lines.insert(1, "  ".join("-" * w for w in widths))
-    lines.append(f"\ntotal {total:.1f} s; open {page}")
+    views = (f"{web['views']} interactive views, {web['bytes'] / 1e6:.1f} MB with plotly's script" if web["views"]
+             else 'no interactive views: pip install "dhlb[web]"')
+    lines.append(f"\ntotal {total:.1f} s; {views}; folder {web['folder_bytes'] / 1e6:.1f} MB; open {page}")
     return "\n".join(lines) + "\n"
