@@ -244,6 +244,24 @@ def test_notebook_views_send_plotly_once(torus, monkeypatch):
     assert len(rw.notebook_view(res)) < 1_000_000
 
 
+def test_a_web_view_outside_a_notebook_saves_or_opens_a_page(torus, tmp_path, monkeypatch):
+    import webbrowser
+
+    from dhlb.errors import ViewerUnavailableError
+
+    view = direction_field(*torus, n=4).show(backend="web")
+    assert ".open()" in repr(view)
+    page = view.save(tmp_path / "v.html", plotlyjs="directory")
+    assert _decode(open(page).read())["data"][0]["name"] == "mesh"
+    opened = []
+    monkeypatch.setattr(webbrowser, "open", lambda url: opened.append(url) or True)
+    path = view.open()
+    assert opened == ["file://" + path] and os.path.getsize(path) > 4_000_000   # self-contained
+    monkeypatch.setattr(webbrowser, "open", lambda url: False)                  # no browser here
+    with pytest.raises(ViewerUnavailableError, match=r"\.save\(path\)"):
+        view.open()
+
+
 def test_notebook_display_setting(torus, monkeypatch):
     from dhlb._result import set_notebook_display
 

@@ -210,6 +210,45 @@ class WebView:
         self.html = web_view(result, **kwargs)
         self.interactive = self.html is not None
 
+    def save(self, path: str | os.PathLike[str], **kwargs) -> str:
+        """Write the view as a page that opens offline (:func:`dhlb.render.web.to_html`); return its path.
+
+        Parameters
+        ----------
+        path : str or path-like
+        **kwargs
+            Of :func:`dhlb.render.web.to_html`.
+
+        Returns
+        -------
+        str
+        """
+        return to_html(self.result, path, **kwargs)
+
+    def open(self) -> str:
+        """Outside a notebook: write the page into a temporary folder and open it in the web browser.
+
+        Returns
+        -------
+        str
+            The page's path (it stays until the system cleans its temporary folder).
+
+        Raises
+        ------
+        ViewerUnavailableError
+            No web browser can be started here (write the page with :meth:`save` and open it elsewhere).
+        """
+        import tempfile
+        import webbrowser
+
+        from dhlb.errors import ViewerUnavailableError
+
+        page = self.save(os.path.join(tempfile.mkdtemp(prefix="dhlb-view-"), "view.html"))
+        if not webbrowser.open("file://" + os.path.abspath(page)):
+            raise ViewerUnavailableError(f"no web browser could be started here; the page is {page}: copy it to a "
+                                         "machine with a browser, or write it where you like with .save(path)")
+        return page
+
     def _repr_mimebundle_(self, include=None, exclude=None):
         if self.interactive:
             return {"text/html": self.html}
@@ -228,4 +267,5 @@ class WebView:
 
     def __repr__(self) -> str:
         kind = "interactive view" if self.interactive else "picture (plotly is missing)"
-        return f"<WebView: {kind} of a {type(self.result).__name__}; Jupyter displays it>"
+        return (f"<WebView: {kind} of a {type(self.result).__name__}; Jupyter displays it, .open() shows it in "
+                "a web browser, .save(path) writes the page>")
