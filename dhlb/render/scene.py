@@ -228,8 +228,9 @@ class Scene:
         self.curves.append(SceneCurves(name, N, E, tuple(color), float(radius)))
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        """``(lower, upper)`` corners of the bounding box of everything in the scene."""
-        parts = [m.points for m in self.meshes] + [p.points for p in self.points] + [c.nodes for c in self.curves]
+        """``(lower, upper)`` corners of the bounding box of everything drawn (the vertices the faces use)."""
+        drawn = [m.points[np.unique(m.faces)] if len(m.faces) else m.points for m in self.meshes]
+        parts = drawn + [p.points for p in self.points] + [c.nodes for c in self.curves]
         X = np.concatenate([p for p in parts if len(p)] or [np.zeros((1, 3))])
         return X.min(axis=0), X.max(axis=0)
 
