@@ -252,7 +252,8 @@ def _mesh_traces(m: SceneMesh, max_faces: int, max_glyphs: int, colorbar: bool, 
                  "intensity": np.nan_to_num(v).astype(np.float32), **_STRIPES}]
     trace = {"type": "mesh3d", "name": m.name, **_xyz(Q), "i": F[:, 0].astype(np.int32),
              "j": F[:, 1].astype(np.int32), "k": F[:, 2].astype(np.int32), "color": _rgb(m.color),
-             "opacity": float(m.transparency), "lighting": _LIGHTING, "flatshading": False, "hoverinfo": "skip"}
+             "opacity": float(m.transparency), "lighting": _LIGHTING, "hoverinfo": "skip",
+             "flatshading": m.transparency < 1.0}   # a translucent domain: its faces, not blended normals
     if m.shown_scalar is not None:
         v = m.scalars[m.shown_scalar]
         per_face = len(v) == len(T) and len(v) != len(P)
