@@ -227,11 +227,15 @@ class Scene:
         E = np.concatenate(edges).astype(np.int64) if edges else np.zeros((0, 2), np.int64)
         self.curves.append(SceneCurves(name, N, E, tuple(color), float(radius)))
 
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        """``(lower, upper)`` corners of the bounding box of everything drawn (the vertices the faces use)."""
+    def drawn_points(self) -> np.ndarray:
+        """Every point drawn, ``(k, 3)``: the vertices the faces use, the points, the curves' nodes."""
         drawn = [m.points[np.unique(m.faces)] if len(m.faces) else m.points for m in self.meshes]
         parts = drawn + [p.points for p in self.points] + [c.nodes for c in self.curves]
-        X = np.concatenate([p for p in parts if len(p)] or [np.zeros((1, 3))])
+        return np.concatenate([p for p in parts if len(p)] or [np.zeros((1, 3))])
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(lower, upper)`` corners of the bounding box of everything drawn (:meth:`drawn_points`)."""
+        X = self.drawn_points()
         return X.min(axis=0), X.max(axis=0)
 
 

@@ -66,6 +66,8 @@ PLOTLYJS = "plotly.min.js"
 _DEFAULT_CAMERA = Camera()
 ZOOM = 1.8
 """plotly's orthographic zoom (the aspect ratio of a cube around the scene's bounding sphere) that frames it."""
+FILL = 0.8
+"""The share of the picture's height that the first view fills (the rest: margin, title)."""
 
 
 # ---------------------------------------------------------------------------- pieces of geometry
@@ -329,9 +331,15 @@ def _curves_trace(c: SceneCurves) -> dict:
 
 
 # ---------------------------------------------------------------------------- the figure
-def _camera(scene: Scene, camera: Camera | None) -> tuple[dict, dict]:
-    """The plotly scene camera and axis ranges for ``camera`` (fitted as in the PNG pictures when not given)."""
-    lo, hi = scene.bounds()
+def _camera(scene: Scene, camera: Camera | None) -> tuple[dict, dict, float]:
+    """The plotly scene camera, axis ranges and zoom for ``camera`` (fitted as in the PNG pictures when not given).
+
+    The axes span the bounding sphere (radius ``r``) whatever the turn; the zoom frames what the
+    first view shows, as the PNG does: :data:`ZOOM` (the sphere) times ``r`` over the larger
+    half-extent of the drawn points on the screen (at most 1.6 times closer), times :data:`FILL`.
+    """
+    X = scene.drawn_points()
+    lo, hi = X.min(axis=0), X.max(axis=0)
     c, r = 0.5 * (lo + hi), max(0.5 * float(np.linalg.norm(hi - lo)), 1e-12)
     cam = camera or _DEFAULT_CAMERA
     if cam.view is None and scene.view is not None:        # the direction the scene is arranged for
@@ -341,8 +349,11 @@ def _camera(scene: Scene, camera: Camera | None) -> tuple[dict, dict]:
     eye = 2.0 * w / np.linalg.norm(w)
     axes = {a: {"range": [float(c[i] - r), float(c[i] + r)], "visible": False} for i, a in enumerate("xyz")}
     up = up_vector(cam.up)
+    right, screen_up, _ = cam.frame()
+    half = max(float(np.abs((X - c) @ right).max()), float(np.abs((X - c) @ screen_up).max()), 1e-12)
+    zoom = ZOOM * min(r / half, 1.6) * FILL
     return ({"eye": dict(zip("xyz", eye.tolist())), "up": dict(zip("xyz", up.tolist())),
-             "center": {"x": 0.0, "y": 0.0, "z": 0.0}, "projection": {"type": "orthographic"}}, axes)
+             "center": {"x": 0.0, "y": 0.0, "z": 0.0}, "projection": {"type": "orthographic"}}, axes, zoom)
 
 
 def figure_spec(result: Any, *, camera: Camera | None = None, isolines: bool = True, title: str | None = None,
@@ -378,12 +389,13 @@ def figure_spec(result: Any, *, camera: Camera | None = None, isolines: bool = T
         data += _mesh_traces(m, int(max_faces), int(max_glyphs), bool(bars) and i == bars[-1], notes)
     data += [_curves_trace(c) for c in scene.curves if len(c.edges)]
     data += [_points_trace(p) for p in scene.points if len(p.points)]
-    cam, axes = _camera(scene, camera)
+    cam, axes, zoom = _camera(scene, camera)
     plain = scene.title if title is None else title
     text = html.escape(plain) + (f"<br><sub>{html.escape('; '.join(notes))}</sub>" if notes else "")
     layout = {"title": {"text": text, "x": 0.02, "y": 0.98, "font": {"size": 14}},
               "showlegend": False, "paper_bgcolor": "white", "margin": {"l": 0, "r": 0, "t": 36, "b": 0},
-              "scene": {"camera": cam, "aspectmode": "manual", "aspectratio": dict.fromkeys("xyz", ZOOM),
+              "modebar": {"orientation": "v"},
+              "scene": {"camera": cam, "aspectmode": "manual", "aspectratio": dict.fromkeys("xyz", zoom),
                         **{f"{a}axis": v for a, v in axes.items()}, "bgcolor": "white"},
               "hovermode": "closest", "meta": {"dhlb": {"title": plain, "notes": notes}}}
     return {"data": data, "layout": layout}
