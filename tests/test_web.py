@@ -167,6 +167,8 @@ def test_vortex_view_draws_every_filament_and_the_box():
         drawn = np.stack([t["x"], t["y"], t["z"]], axis=1)
         assert np.allclose(drawn[:len(f.points)], f.points, atol=1e-6)
         assert np.allclose(drawn[len(f.points)], f.points[0], atol=1e-6) == f.closed
+        assert t["hovertext"] == f"filament {k}: {'closed' if f.closed else 'open'}, {len(f.points)} points"
+    assert _trace(spec, "outline")["hoverinfo"] == "skip"
     assert len(_trace(spec, "domain")["i"]) == len(mesh.boundary_faces)
 
 

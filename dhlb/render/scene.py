@@ -39,6 +39,7 @@ from dhlb.render._figure import (
     BRANCH,
     FACE_COLOR,
     FILAMENT_COLORS,
+    GLYPH_COLOR,
     NEGATIVE,
     OUTLINE_COLOR,
     POSITIVE,
@@ -116,6 +117,7 @@ class SceneCurves:
     edges: np.ndarray
     color: tuple
     radius: float
+    label: str | None = None
 
 
 @dataclass
@@ -205,9 +207,12 @@ class Scene:
             raise ShapeError(f"points {name!r}: {len(X)} points but {len(labels)} labels")
         self.points.append(ScenePoints(name, X, C, float(radius), None if labels is None else list(labels)))
 
-    def add_curves(self, name: str, curves: Sequence[Any], *, color: Sequence[float] = (0.1, 0.1, 0.1),
-                   radius: float = 0.004) -> None:
-        """Add polylines: Filaments (``.points``, ``.closed``), ``(points, closed)`` pairs or (m, 3) arrays."""
+    def add_curves(self, name: str, curves: Sequence[Any], *, color: Sequence[float] = GLYPH_COLOR,
+                   radius: float = 0.004, label: str | None = None) -> None:
+        """Add polylines: Filaments (``.points``, ``.closed``), ``(points, closed)`` pairs or (m, 3) arrays.
+
+        ``label`` is what the web view shows when the pointer is over the curves (nothing by default).
+        """
         nodes, edges, base = [], [], 0
         for c in curves:
             if hasattr(c, "points") and hasattr(c, "closed"):
@@ -225,7 +230,7 @@ class Scene:
             base += m
         N = np.concatenate(nodes) if nodes else np.zeros((0, 3))
         E = np.concatenate(edges).astype(np.int64) if edges else np.zeros((0, 2), np.int64)
-        self.curves.append(SceneCurves(name, N, E, tuple(color), float(radius)))
+        self.curves.append(SceneCurves(name, N, E, tuple(color), float(radius), label))
 
     def drawn_points(self) -> np.ndarray:
         """Every point drawn, ``(k, 3)``: the vertices the faces use, the points, the curves' nodes."""
@@ -302,7 +307,9 @@ def _vortex_scene(res) -> Scene:
         if len(outline):
             s.add_curves("outline", [mesh.points[e] for e in outline], color=OUTLINE_COLOR, radius=0.002)
     for k, f in enumerate(res.filaments):
-        s.add_curves(f"filament {k}", [f], color=FILAMENT_COLORS[k % len(FILAMENT_COLORS)], radius=0.006)
+        kind = "closed" if f.closed else "open"
+        s.add_curves(f"filament {k}", [f], color=FILAMENT_COLORS[k % len(FILAMENT_COLORS)], radius=0.006,
+                     label=f"filament {k}: {kind}, {len(f.points)} points")
     return s
 
 

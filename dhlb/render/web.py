@@ -230,55 +230,53 @@ def _xyz(X) -> dict:
 
 _LIGHTING = {"ambient": 0.45, "diffuse": 0.7, "specular": 0.05, "roughness": 0.9, "fresnel": 0.05}
 _STRIPES = {"cmin": -1.0, "cmax": 1.0, "colorscale": [[0.0, _rgb(STRIPE_DARK)], [1.0, _rgb(STRIPE_LIGHT)]],
-            "showscale": False, "lighting": _LIGHTING, "hoverinfo": "skip"}
+            "showscale": False}
+
+
+def _mesh3d(name: str, X, S, **style) -> dict:
+    return {"type": "mesh3d", "name": name, **_xyz(X), "i": S[:, 0].astype(np.int32), "j": S[:, 1].astype(np.int32),
+            "k": S[:, 2].astype(np.int32), "lighting": _LIGHTING, "hoverinfo": "skip", **style}
 
 
 def _mesh_traces(m: SceneMesh, max_faces: int, max_glyphs: int, colorbar: bool, notes: list) -> list:
     P, T = m.points, m.faces
     if m.texture is not None and len(T) <= max_faces:
         X, S, alpha, _, _ = stripe_surface(m.texture)
-        return [{"type": "mesh3d", "name": m.name, **_xyz(X), "i": S[:, 0].astype(np.int32),
-                 "j": S[:, 1].astype(np.int32), "k": S[:, 2].astype(np.int32),
-                 "intensity": np.nan_to_num(np.cos(alpha)).astype(np.float32), **_STRIPES}]
+        return [_mesh3d(m.name, X, S, intensity=np.nan_to_num(np.cos(alpha)).astype(np.float32), **_STRIPES)]
     Q, F, kept = decimate(P, T, max_faces)
     if len(F) < len(T):
         notes.append(f"{m.name}: {len(T):,} faces, decimated to {len(F):,} for this view")
-    if m.texture is not None:   # too many faces to refine: cos α per corner, averaged at the vertices kept
-        corner = np.cos(m.texture.corner_alpha).reshape(-1)
-        mean = np.bincount(T.reshape(-1), corner, len(P)) / np.maximum(np.bincount(T.reshape(-1), None, len(P)), 1)
-        v = np.zeros(len(Q))
-        v[F.reshape(-1)] = mean[T[kept].reshape(-1)]
+
+    def at_kept_vertices(values):  # per-vertex values on the decimated mesh: those of a vertex of each cluster
+        out = np.zeros(len(Q))
+        out[F.reshape(-1)] = np.asarray(values)[T[kept].reshape(-1)]
+        return out
+
+    if m.texture is not None:   # too many faces to refine: cos α per corner, averaged at the vertices
+        corners = T.reshape(-1)
+        mean = (np.bincount(corners, np.cos(m.texture.corner_alpha).reshape(-1), len(P))
+                / np.maximum(np.bincount(corners, None, len(P)), 1))
         notes.append("stripes drawn per vertex (branch cuts blurred)")
-        return [{"type": "mesh3d", "name": m.name, **_xyz(Q), "i": F[:, 0].astype(np.int32),
-                 "j": F[:, 1].astype(np.int32), "k": F[:, 2].astype(np.int32),
-                 "intensity": np.nan_to_num(v).astype(np.float32), **_STRIPES}]
-    trace = {"type": "mesh3d", "name": m.name, **_xyz(Q), "i": F[:, 0].astype(np.int32),
-             "j": F[:, 1].astype(np.int32), "k": F[:, 2].astype(np.int32), "color": _rgb(m.color),
-             "opacity": float(m.transparency), "lighting": _LIGHTING, "hoverinfo": "skip",
-             "flatshading": m.transparency < 1.0}   # a translucent domain: its faces, not blended normals
-    if m.shown_scalar is not None:
-        v = m.scalars[m.shown_scalar]
+        return [_mesh3d(m.name, Q, F, intensity=np.nan_to_num(at_kept_vertices(mean)).astype(np.float32),
+                        **_STRIPES)]
+    # a translucent domain is flat-shaded: blended normals draw saw-teeth along a box's edges
+    trace = _mesh3d(m.name, Q, F, opacity=float(m.transparency), flatshading=m.transparency < 1.0)
+    if m.shown_scalar is None:
+        trace["color"] = _rgb(m.color)
+    else:
+        v = np.asarray(m.scalars[m.shown_scalar])
         per_face = len(v) == len(T) and len(v) != len(P)
-        if per_face:
-            v = v[kept]
-        elif len(F) < len(T):   # per-vertex values of a decimated mesh: the value of a vertex of each cluster
-            w = np.zeros(len(Q))
-            w[F.reshape(-1)] = np.asarray(v)[T[kept].reshape(-1)]
-            v = w
+        v = v[kept] if per_face else at_kept_vertices(v) if len(F) < len(T) else v
         lo, hi = m.scalar_range if m.scalar_range is not None else (float(np.nanmin(v)), float(np.nanmax(v)))
-        trace.update(intensity=np.asarray(v, dtype=np.float32), intensitymode="cell" if per_face else "vertex",
+        trace.update(intensity=v.astype(np.float32), intensitymode="cell" if per_face else "vertex",
                      colorscale=_colorscale(m.colormap), cmin=lo, cmax=hi, showscale=colorbar,
                      colorbar={"title": {"text": m.scalar_label or m.shown_scalar, "side": "top"},
                                "orientation": "h", "len": 0.5, "thickness": 12, "y": 0.02, "yanchor": "bottom"})
-        del trace["color"]
-    traces = [trace]
-    if m.vectors:
-        traces.append(_glyphs(m, max_glyphs))
-    return traces
+    return [trace, _glyphs(m, max_glyphs)] if m.vectors else [trace]
 
 
 def _glyphs(m: SceneMesh, max_glyphs: int) -> dict:
-    """Glyphs of the vector quantities of ``m``: arrows for one quantity, symmetric crosses for several."""
+    """Glyphs of the vector quantities of ``m``: arrows for one quantity, crosses (or stars) for several."""
     P, T = m.points, m.faces
     D = np.stack(list(m.vectors.values()), axis=1)                # (N, n, 3)
     n = D.shape[1]
@@ -286,12 +284,13 @@ def _glyphs(m: SceneMesh, max_glyphs: int) -> dict:
     if verts.size > max_glyphs:
         verts = verts[np.linspace(0, verts.size - 1, max_glyphs).astype(np.int64)]
     ell = 0.45 * _mean_edge(P, T)
-    base = P[verts] + 0.08 * ell * _vertex_normals(P, T)[verts]   # just above the surface
+    normal = _vertex_normals(P, T)[verts]
+    base = P[verts] + 0.08 * ell * normal                         # just above the surface
     gap = np.full((len(verts), 1, 3), np.nan)
     if n == 1:                                                    # an arrow: shaft, then a head at the tip
         d = D[verts, 0]
         tip = base + ell * d
-        side = np.cross(_vertex_normals(P, T)[verts], d)
+        side = np.cross(normal, d)
         h = 0.35 * ell
         parts = [base, tip, gap[:, 0], tip - h * d + 0.45 * h * side, tip, tip - h * d - 0.45 * h * side]
         X = np.concatenate([np.stack(parts, axis=1), gap], axis=1)
@@ -325,9 +324,11 @@ def _curves_trace(c: SceneCurves) -> dict:
         pieces = [c.nodes[np.r_[E[s:e, 0], E[e - 1, 1]]] for s, e in zip(starts.tolist(), ends.tolist())]
     else:
         pieces = []
-    return {"type": "scatter3d", "mode": "lines", "name": c.name, **_xyz(_gaps(pieces)),
-            "line": {"color": _rgb(c.color), "width": float(np.clip(c.radius * 1000, 2, 8))},
-            "hovertext": c.name, "hoverinfo": "text" if c.name.startswith("filament") else "skip"}
+    t = {"type": "scatter3d", "mode": "lines", "name": c.name, **_xyz(_gaps(pieces)),
+         "line": {"color": _rgb(c.color), "width": float(np.clip(c.radius * 1000, 2, 8))}, "hoverinfo": "skip"}
+    if c.label:
+        t.update(hovertext=c.label, hoverinfo="text")
+    return t
 
 
 # ---------------------------------------------------------------------------- the figure
