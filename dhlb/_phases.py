@@ -7,7 +7,7 @@ process peak so far (``getrusage``) is reported for every phase.
 Examples
 --------
 >>> meter = PhaseMeter()
->>> x = bytearray(50 * 2**20)
+>>> x = b"x" * (50 * 2**20)         # written, so resident (a zeroed bytearray may be mapped lazily)
 >>> meter.mark("allocate")
 >>> sorted(meter.seconds), meter.peak_mb["allocate"] >= 50, meter.peak_mb["allocate"] - meter.start_mb["allocate"] >= 50
 (['allocate'], True, True)
