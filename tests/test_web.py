@@ -20,6 +20,8 @@ from dhlb.fields import direction_field
 from dhlb.io import example_path, read_result, read_surface
 from dhlb.render import Camera
 from dhlb.render import web as rw
+from dhlb.render._figure import mean_edge_length
+from dhlb.render.registry import show
 from dhlb.render.scene import scene_of
 
 URL = re.compile(r"""https?://[^\s"'<>)]+""")
@@ -31,7 +33,7 @@ def _trace(spec, name):
     return found[0]
 
 
-def _decode(page, div="dhlb-view"):
+def _decode(page):
     """The figure inside a page written by to_html, with its typed arrays decoded."""
     text = re.search(r"var fig = (\{.*?\}); var gd", page, re.S).group(1).replace("<\\/", "</")
 
@@ -116,7 +118,7 @@ def test_cross_arms_are_the_directions_of_the_field(torus):
     X = np.stack([g["x"], g["y"], g["z"]], axis=1).astype(np.float64).reshape(-1, 8, 3)
     assert np.isnan(X[:, 3]).all() and np.isnan(X[:, 7]).all()
     assert np.array_equal(X[:, 1], X[:, 5])                                 # both lines pass through the vertex
-    ell = 0.45 * rw._mean_edge(res.mesh.points, res.mesh.faces)
+    ell = 0.45 * mean_edge_length(res.mesh.points, res.mesh.faces)
     for col, k in ((2, 0), (6, 1), (0, 2), (4, 3)):                          # the arm of direction k
         assert np.allclose((X[:, col] - X[:, 1]) / ell, res.directions[:, k], atol=1e-5)
     lifted = X[:, 1] - res.mesh.points                                      # just above the surface
@@ -290,6 +292,8 @@ def test_without_plotly_the_web_view_is_the_picture_and_pages_name_the_extra(tor
     with pytest.raises(ImportError, match=re.escape('pip install "dhlb[web]"')):
         res.to_html(tmp_path / "v.html")
     assert not (tmp_path / "v.html").exists()
+    with pytest.raises(ImportError, match=re.escape('pip install "dhlb[web]"')):   # a Scene has no picture
+        show(scene_of(res), backend="web")
 
 
 def test_dhlb_view_html(tmp_path, monkeypatch, capsys):

@@ -125,11 +125,8 @@ def _write_html(args, scene) -> int:
     from dhlb._files import refuse_overwrite
     from dhlb.errors import InvalidParameterError, OutputError, OverwriteError
     from dhlb.render import Camera
+    from dhlb.render.web import to_html
 
-    try:
-        from dhlb.render.web import to_html
-    except ImportError as exc:  # pragma: no cover - the module itself imports without plotly
-        raise UsageError(str(exc)) from None
     try:
         refuse_overwrite([args.html], [args.base])
         camera = Camera(view=None if args.view is None else tuple(args.view), up=args.up)

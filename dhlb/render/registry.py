@@ -191,7 +191,8 @@ def web_view(result, **kwargs) -> str | None:
 class WebView:
     """What ``result.show(backend="web")`` returns: Jupyter displays it inline as an interactive view.
 
-    Without plotly it displays the result's PNG picture and a note naming the extra ``dhlb[web]``.
+    Without plotly it displays the result's PNG picture (``Result._repr_png_``) and a note naming the
+    extra ``dhlb[web]``; a Scene, which has no picture, then raises the ``ImportError``.
 
     Parameters
     ----------
@@ -203,12 +204,21 @@ class WebView:
     ----------
     interactive : bool
         Whether plotly was there to draw the interactive view.
+
+    Raises
+    ------
+    ImportError
+        plotly is missing and ``result`` has no PNG picture to fall back to (a Scene).
     """
 
     def __init__(self, result, **kwargs):
         self.result = result
         self.html = web_view(result, **kwargs)
         self.interactive = self.html is not None
+        if not self.interactive and not hasattr(result, "_repr_png_"):
+            from dhlb.render.web import WEB_EXTRA
+
+            raise ImportError(WEB_EXTRA)
 
     def save(self, path: str | os.PathLike[str], **kwargs) -> str:
         """Write the view as a page that opens offline (:func:`dhlb.render.web.to_html`); return its path.
@@ -253,13 +263,8 @@ class WebView:
         if self.interactive:
             return {"text/html": self.html}
         import base64
-        import tempfile
 
-        from dhlb._result import PICTURE_SIZE
-
-        with tempfile.TemporaryDirectory() as d:
-            with open(picture(self.result, os.path.join(d, "view.png"), PICTURE_SIZE), "rb") as fh:
-                png = fh.read()
+        png = self.result._repr_png_()
         note = 'for an interactive view: pip install "dhlb[web]"'
         img = base64.b64encode(png).decode("ascii")
         return {"image/png": png, "text/html": f"<img src='data:image/png;base64,{img}'/><p><small>{note}</small></p>",

@@ -16,8 +16,9 @@ Examples
 >>> from dhlb.io import read_surface, example_path
 >>> from dhlb.fields import direction_field
 >>> scene = scene_of(direction_field(*read_surface(example_path("torus.obj")), n=4))
->>> [m.name for m in scene.meshes], sorted(scene.meshes[0].vectors), [p.name for p in scene.points]
-(['mesh'], ['direction 0', 'direction 1', 'direction 2', 'direction 3'], ['singularities'])
+>>> position, target, up = camera_for(scene)          # the PNG's fitted view, framed for polyscope
+>>> up.tolist(), bool(position[1] > target[1])        # +y up, from above
+([0.0, 1.0, 0.0], True)
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from dhlb.errors import InvalidParameterError, OutputError, ViewerUnavailableError
-from dhlb.render._figure import GLYPH_COLOR, STRIPE_DARK, STRIPE_LIGHT  # the one palette
+from dhlb.render._figure import GLYPH_COLOR, STRIPE_DARK, STRIPE_LIGHT, mean_edge_length  # the one palette
 from dhlb.render.scene import Scene, index_colors, scene_of  # the one scene builder (re-exported)
 
 if TYPE_CHECKING:
@@ -155,7 +156,7 @@ def _register(ps, scene: Scene) -> None:
         sm = ps.register_surface_mesh(m.name, m.points, m.faces, color=m.color, smooth_shade=True)
         if m.transparency < 1.0:
             sm.set_transparency(m.transparency)
-        e = np.linalg.norm(m.points[m.faces[:, [1, 2, 0]]] - m.points[m.faces], axis=2).mean() if len(m.faces) else 0
+        e = mean_edge_length(m.points, m.faces)
         for k, v in m.vectors.items():  # glyphs of 0.45 mean edge lengths, as in the PNG pictures
             sm.add_vector_quantity(k, 0.45 * e * v, defined_on="vertices", enabled=True, vectortype="ambient",
                                    radius=0.0012, color=GLYPH_COLOR)

@@ -44,7 +44,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from dhlb.errors import InvalidParameterError, OutputError
-from dhlb.render._figure import GLYPH_COLOR, STRIPE_DARK, STRIPE_LIGHT, Camera, up_vector
+from dhlb.render._figure import GLYPH_COLOR, STRIPE_DARK, STRIPE_LIGHT, Camera, mean_edge_length, up_vector
 from dhlb.render.scene import Scene, scene_of
 
 if TYPE_CHECKING:
@@ -198,10 +198,6 @@ def _vertex_normals(P, T):
     return vn / np.maximum(np.linalg.norm(vn, axis=1, keepdims=True), 1e-300)
 
 
-def _mean_edge(P, T) -> float:
-    return float(np.linalg.norm(P[T[:, [1, 2, 0]]] - P[T], axis=2).mean()) if len(T) else 1.0
-
-
 def _gaps(pieces) -> np.ndarray:
     """Polylines ``[(k_i, 3), ...]`` as one array with a NaN row after each (a line trace's gaps)."""
     if not pieces:
@@ -283,7 +279,7 @@ def _glyphs(m: SceneMesh, max_glyphs: int) -> dict:
     verts = np.nonzero(np.any(D != 0, axis=(1, 2)))[0]
     if verts.size > max_glyphs:
         verts = verts[np.linspace(0, verts.size - 1, max_glyphs).astype(np.int64)]
-    ell = 0.45 * _mean_edge(P, T)
+    ell = 0.45 * mean_edge_length(P, T)
     normal = _vertex_normals(P, T)[verts]
     base = P[verts] + 0.08 * ell * normal                         # just above the surface
     gap = np.full((len(verts), 1, 3), np.nan)
@@ -560,6 +556,7 @@ def to_html(result: Any, path: str | os.PathLike[str], *, plotlyjs: str = "inlin
     """
     from dhlb._files import atomic_write
 
+    _plotly()                                               # before any work: the page needs plotly's script
     out = os.fspath(path)
     folder = os.path.dirname(os.path.abspath(out))
     if not os.path.isdir(folder):
