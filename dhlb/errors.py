@@ -25,7 +25,7 @@ __all__ = [
     # topology: simplices, complexes, manifolds
     "InvalidSimplexError", "EmptyComplexError", "RaggedInputError", "SimplexNotFoundError", "NonManifoldError",
     "NonOrientableError", "InconsistentOrientationError", "DegenerateSimplexError", "UnreferencedVertexError",
-    "UnreferencedVertexWarning", "InvalidMatrixError",
+    "UnreferencedVertexWarning", "MeshRepairWarning", "InvalidMatrixError",
     # forms
     "InvalidCochainError", "NotClosedError", "NotExactError", "NotAPathError",
     # bundles
@@ -264,6 +264,31 @@ class UnreferencedVertexWarning(DhlbWarning):
         super().__init__(message)
         self.dropped = tuple(int(i) for i in dropped)
         self.cell = cell
+
+
+class MeshRepairWarning(DhlbWarning):
+    """A defect of the input mesh was repaired (:mod:`dhlb.mesh.repair`); one warning per kind of repair.
+
+    Parameters
+    ----------
+    message : str
+        What was done, with counts and the first input rows.
+    kind : str, optional
+        The repair (``"split"``, ``"duplicates"``, ``"doubled"``, ``"degenerate"``, ``"mollify"``,
+        ``"reorient"``, ``"merge-vertices"``, ``"drop-nonorientable"``), kept as the attribute ``kind``.
+    count : int, optional
+        How many elements were repaired (attribute ``count``).
+
+    Examples
+    --------
+    >>> w = MeshRepairWarning("split 1 non-manifold vertex", kind="split", count=1)
+    >>> isinstance(w, DhlbWarning), w.kind, w.count
+    (True, 'split', 1)
+    """
+
+    def __init__(self, message: str = "", *, kind: str = "", count: int = 0):
+        super().__init__(message)
+        self.kind, self.count = str(kind), int(count)
 
 
 class ShapeError(DhlbError, ValueError):

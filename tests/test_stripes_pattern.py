@@ -180,7 +180,9 @@ def test_a_field_on_the_same_arrays_lends_its_mesh_and_its_angles(n, monkeypatch
         warnings.simplefilter("ignore")
         fld = surface.direction_field(V, F, n=n)
     calls = []
-    monkeypatch.setattr(pattern, "validate_surface", lambda *a, **k: calls.append(1) or validate(*a, **k))
+    from dhlb.mesh import repair_surface   # what stripe_pattern calls with its default repair="safe"
+
+    monkeypatch.setattr(pattern, "repair_surface", lambda *a, **k: calls.append(1) or repair_surface(*a, **k))
     res = stripe_pattern(V, F, fld, spacing=5.0)
     assert not calls and res.form.mesh is fld.mesh               # validated once, by direction_field
     assert (res.form.tangent is fld.tangent) == (n == 1)
@@ -358,12 +360,13 @@ def test_bad_input_is_named():
         stripe_pattern(V, F, None, frequency=0.2)
     F2 = F.copy()
     F2[3] = [F2[3, 0], F2[3, 0], F2[3, 1]]
+    strict = StripeOptions(repair="none")   # the defects below are repaired by default (tests/test_mesh_repair.py)
     with pytest.raises(DegenerateSimplexError, match="face 3"):
-        stripe_pattern(V, F2, X, frequency=0.2)
+        stripe_pattern(V, F2, X, frequency=0.2, options=strict)
     Vn = np.vstack([V, [[0.5, 0.5, 1.0], [0.5, 0.5, -1.0]]])
     Fn = np.vstack([F, [[F[0, 1], F[0, 0], len(V)], [F[0, 1], F[0, 0], len(V) + 1]]])  # 3 faces on an edge
     with pytest.raises(NonManifoldError):
-        stripe_pattern(Vn, Fn, np.vstack([X, [[1.0, 0, 0]] * 2]), frequency=0.2)
+        stripe_pattern(Vn, Fn, np.vstack([X, [[1.0, 0, 0]] * 2]), frequency=0.2, options=strict)
 
 
 def test_too_high_frequency_warns_and_stays_correct():

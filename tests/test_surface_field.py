@@ -244,13 +244,18 @@ def test_flat_mesh_with_curvature_alignment_warns_and_gives_the_smoothest_field(
 SQUARE = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], float)
 
 
+# with repair="none" every defect is refused with the messages of dhlb 0.x (the default repairs them:
+# tests/test_mesh_repair.py)
+STRICT = FieldOptions(repair="none")
+
+
 def test_non_manifold_edge_and_vertex():
     V = np.vstack([SQUARE, [[0.5, 0.5, 1.0]]])
     with pytest.raises(NonManifoldError, match="non-manifold edge \\(1, 2\\)"):
-        direction_field(V, [[0, 1, 2], [1, 3, 2], [1, 2, 4]])
+        direction_field(V, [[0, 1, 2], [1, 3, 2], [1, 2, 4]], options=STRICT)
     bowtie = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [-1, 0, 0], [0, -1, 0]], float)
     with pytest.raises(NonManifoldError, match="non-manifold vertex 0"):
-        direction_field(bowtie, [[0, 1, 2], [0, 3, 4]])
+        direction_field(bowtie, [[0, 1, 2], [0, 3, 4]], options=STRICT)
 
 
 def test_moebius_strip_is_refused_as_non_orientable():
@@ -265,19 +270,19 @@ def test_inconsistent_orientation_offers_reorient():
     F = F.copy()
     F[3] = F[3, ::-1]
     with pytest.raises(InconsistentOrientationError, match="reorient=True"):
-        direction_field(V, F, n=1)
-    res = direction_field(V, F, n=1, options=FieldOptions(reorient=True))
+        direction_field(V, F, n=1, options=STRICT)
+    res = direction_field(V, F, n=1, options=FieldOptions(reorient=True, repair="none"))
     assert res.mesh.flipped.sum() == 1 and res.index_sum == 2 == res.poincare_hopf
 
 
 def test_degenerate_and_duplicate_faces_and_nan():
     V = np.vstack([SQUARE, [[2, 0, 0]]])
     with pytest.raises(DegenerateSimplexError, match="zero area"):
-        direction_field(V, [[0, 1, 2], [1, 3, 2], [0, 1, 4]])  # 0, 1, 4 are collinear
+        direction_field(V, [[0, 1, 2], [1, 3, 2], [0, 1, 4]], options=STRICT)  # 0, 1, 4 are collinear
     with pytest.raises(DegenerateSimplexError, match="repeats a vertex"):
-        direction_field(SQUARE, [[0, 1, 2], [1, 3, 3]])
+        direction_field(SQUARE, [[0, 1, 2], [1, 3, 3]], options=STRICT)
     with pytest.raises(InvalidSimplexError, match="faces 0 and 2 are the same triangle"):
-        direction_field(SQUARE, [[0, 1, 2], [1, 3, 2], [1, 2, 0]])
+        direction_field(SQUARE, [[0, 1, 2], [1, 3, 2], [1, 2, 0]], options=STRICT)
     bad = SQUARE.copy()
     bad[2, 0] = np.nan
     with pytest.raises(NonFiniteError, match="vertex 2"):
@@ -301,7 +306,7 @@ def test_no_numpy_warnings_on_good_and_bad_input():
         warnings.simplefilter("error")
         direction_field(*grid(3, 3), n=4, align="boundary")
         with pytest.raises(DegenerateSimplexError):
-            direction_field(SQUARE, [[0, 1, 2], [1, 3, 2], [0, 3, 3]])
+            direction_field(SQUARE, [[0, 1, 2], [1, 3, 2], [0, 3, 3]], options=STRICT)
 
 
 # ----------------------------------------------------------------------------- properties

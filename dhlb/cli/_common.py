@@ -18,11 +18,12 @@ import os
 import sys
 import warnings
 
-from dhlb.errors import DhlbError, MeshParseError, UnreferencedVertexWarning
+from dhlb.errors import DhlbError, MeshParseError, MeshRepairWarning, UnreferencedVertexWarning
 
 __all__ = ["UsageError", "add_command", "common_options", "run_command", "write_output", "resolve_input",
            "finite_float", "int_in_range", "number_tuple", "nonempty_text", "PIXEL_SIZE", "check_outputs",
-           "input_paths", "usage_from", "report_table", "did_you_mean", "cli_warning", "EXIT_CODES_HELP"]
+           "input_paths", "usage_from", "report_table", "did_you_mean", "cli_warning", "EXIT_CODES_HELP",
+           "repair_choice", "add_repair_argument"]
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
 
@@ -193,6 +194,38 @@ def _finite_floats(container):
 
             setattr(container, name, add_group)
     return container
+
+
+def repair_choice(text: str) -> str:
+    """An argparse ``type`` for ``--repair``: the value if :meth:`dhlb.mesh.RepairOptions.parse` knows it.
+
+    Examples
+    --------
+    >>> repair_choice("safe,merge-vertices")
+    'safe,merge-vertices'
+    >>> repair_choice("splitt")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: unknown repair 'splitt' (did you mean 'split'?); give safe, none, all or ...
+    """
+    from dhlb.errors import InvalidParameterError
+    from dhlb.mesh.repair import RepairOptions
+
+    try:
+        RepairOptions.parse(text)
+    except InvalidParameterError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    return text
+
+
+def add_repair_argument(parser) -> None:
+    """The ``--repair`` option of the commands that read a surface mesh (``field``, ``stripes``)."""
+    parser.add_argument("--repair", type=repair_choice, default="safe", metavar="WHAT",
+                        help="repair the input mesh where it is safe (default 'safe': split non-manifold vertices "
+                             "and edges, merge duplicate faces, remove doubled sheets, drop faces repeating a vertex, "
+                             "reorient, mollify zero-area faces; each repair is one warning line); 'none' refuses "
+                             "every defect; 'all'; or a comma-separated list, e.g. safe,merge-vertices "
+                             "(docs/input-meshes.md)")
 
 
 def common_options() -> argparse.ArgumentParser:
@@ -411,6 +444,8 @@ def cli_warning(message, args=None) -> str:
         verb = "vertex of {} is used by no {} and was dropped" if count == 1 else \
             "vertices of {} are used by no {} and were dropped"
         return f"{count} {verb.format(where, message.cell)} (first: row {first})"
+    if isinstance(message, MeshRepairWarning):   # rows of the file; --repair none refuses instead
+        return f"repaired the mesh: {_one_line(message)}"
     return _one_line(message)
 
 

@@ -21,6 +21,7 @@ import numpy as np
 from dhlb.cli._common import (
     UsageError,
     add_command,
+    add_repair_argument,
     did_you_mean,
     finite_float,
     int_in_range,
@@ -42,7 +43,10 @@ Compute the globally optimal n-direction field of an oriented triangle mesh (.ob
 the smoothest field for the energy E_s = E_D - s (E_A - E_H) (s = 0 Dirichlet, +1 holomorphic,
 -1 anti-holomorphic), or with --align a field aligned to principal curvature (even n), to the
 boundary, or to user vectors. Unreferenced vertices are dropped with a warning; each connected
-component gets its own field.
+component gets its own field. Defects other tools repair routinely (a non-manifold vertex or
+edge, duplicate faces, a doubled sheet, a zero-area face, faces oriented inconsistently) are
+repaired, one warning line each, and every output is given on the rows of the input file;
+--repair none refuses them instead.
 
 Outputs (-o, see below): OUT.ply (mesh + directions as vertex properties), OUT.npz (u,
 directions, frames, face_index, singularities), OUT.json (singularities, index sum, Euler
@@ -92,7 +96,9 @@ def register(subparsers) -> None:
     p.add_argument("--backend", default=None,
                    help="superlu, cholmod, cholespy, amg-lobpcg (default: by size, memory); petsc: distributed "
                         "over the ranks of mpirun (docs/mpi.md)")
-    p.add_argument("--reorient", action="store_true", help="flip inconsistently oriented faces")
+    add_repair_argument(p)
+    p.add_argument("--reorient", action="store_true",
+                   help="flip inconsistently oriented faces (with --repair none; the default repairs do it)")
     p.add_argument("--format", dest="fmt", metavar="FMT", help="file format if the extension does not say it")
     p.add_argument("--no-png", action="store_true", help="do not render OUT.png")
     p.set_defaults(func=run)
@@ -250,10 +256,12 @@ def run(args) -> int:
     V, F = read_surface(args.mesh, fmt)
     t1 = time.perf_counter()
     if args.singularity:
-        res = prescribed_field(V, F, args.n, sing, options=FieldOptions(reorient=args.reorient), solver=args.backend)
+        res = prescribed_field(V, F, args.n, sing, options=FieldOptions(reorient=args.reorient, repair=args.repair),
+                               solver=args.backend)
     else:
         res = direction_field(V, F, n=args.n, s=args.s, align=align, lam=args.lam, solver=args.backend,
-                              options=FieldOptions(reorient=args.reorient, progress=not (args.quiet or args.json)))
+                              options=FieldOptions(reorient=args.reorient, progress=not (args.quiet or args.json),
+                                                   repair=args.repair))
     t2 = time.perf_counter()
     return _report(args, res, V, F, plan, t0, t1, t2)
 

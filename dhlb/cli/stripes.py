@@ -7,7 +7,15 @@ import os
 
 import numpy as np
 
-from dhlb.cli._common import PIXEL_SIZE, UsageError, add_command, finite_float, int_in_range, resolve_input
+from dhlb.cli._common import (
+    PIXEL_SIZE,
+    UsageError,
+    add_command,
+    add_repair_argument,
+    finite_float,
+    int_in_range,
+    resolve_input,
+)
 from dhlb.cli._outputs import OutputSpec, output_plan
 
 __all__ = ["NAME", "OUTPUTS", "SUMMARY", "register", "run"]
@@ -28,6 +36,9 @@ iterates towards the unit-modulus section of least energy (the seed's energy of 
 part 2 section 2.1), so parts of different girth get their own number of stripes, joined by
 dislocations. --section eigenvector gives the relaxed eigenvector (the seed's pattern), --section
 power the seed's Algorithm 9 (--iterations inverse power steps from a random start, --seed).
+Defects of the mesh other tools repair routinely (non-manifold vertices and edges, duplicate
+faces, doubled sheets, zero-area faces, inconsistent orientation) are repaired, one warning line
+each (--repair, default safe; --repair none refuses them).
 Parameters that scale the work (--frequency/--spacing for the isolines, --size) are checked
 against a memory estimate before the work starts (exit 2 with the estimate and the allowed range).
 No output may be the input mesh or field file.
@@ -79,6 +90,7 @@ def register(subparsers) -> None:
     p.add_argument("--backend", default=None, metavar="B", help="factorization backend (default superlu)")
     p.add_argument("--orthogonal", action="store_true", help="also the pattern of the field turned by 90 degrees")
     p.add_argument("--format", dest="fmt", metavar="FMT", help="mesh format if the extension does not say it")
+    add_repair_argument(p)
     p.add_argument("--no-png", action="store_true", help="do not render the PNG")
     p.add_argument("--no-isolines", action="store_true", help="do not write the isolines")
     p.add_argument("--level", type=float, default=0.0, help="isoline level c of alpha = c (mod 2pi), default 0")
@@ -87,13 +99,14 @@ def register(subparsers) -> None:
 
 
 def _directions(args, V, F, n):
-    from dhlb.fields import direction_field
+    from dhlb.fields import FieldOptions, direction_field
 
     fld = args.field
     if fld in ("smoothest", "curvature"):
         if fld == "curvature" and n == 1:
             raise UsageError("--field curvature gives lines (principal directions have no orientation): use --n 2")
-        return direction_field(V, F, n=n, align=None if fld == "smoothest" else "curvature", solver=args.backend)
+        return direction_field(V, F, n=n, align=None if fld == "smoothest" else "curvature", solver=args.backend,
+                               options=FieldOptions(repair=args.repair))
     if not os.path.isfile(fld):
         raise UsageError(f"--field {fld}: not 'smoothest', 'curvature' or an existing file of per-vertex vectors")
     try:
@@ -242,7 +255,7 @@ def _run(args) -> int:
     directions = _directions(args, V, F, n)
     section = SectionOptions(kind=args.section, iterations=args.iterations, seed=args.seed)
     options = StripeOptions(energy=args.energy, orthogonal=args.orthogonal, progress=not (args.quiet or args.json),
-                            section=section)
+                            section=section, repair=args.repair)
     res = stripe_pattern(V, F, directions, args.frequency, spacing=args.spacing, n=n, options=options,
                          solver=args.backend)
     with plan.writing() as stage:  # all files or none

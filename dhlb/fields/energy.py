@@ -119,9 +119,9 @@ def boundary_form(tb: TangentBundle) -> sp.csr_matrix:
     return sp.csr_matrix((np.concatenate([c, c.conj()]), (rows, cols)), shape=(N, N))
 
 
-def _tangent(V, F, n, reorient, components) -> TangentBundle:
+def _tangent(V, F, n, reorient, components, repair="none") -> TangentBundle:
     """:func:`dhlb.mesh.as_tangent_bundle`, positional (kept for dhlb.fields.field and dhlb.fields.prescribed)."""
-    return as_tangent_bundle(V, F, n, reorient=reorient, components=components, caller="dhlb.fields")
+    return as_tangent_bundle(V, F, n, reorient=reorient, components=components, repair=repair, caller="dhlb.fields")
 
 
 def energy_matrices(

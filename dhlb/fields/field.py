@@ -138,8 +138,9 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
     lam : float
         λ_t of the aligned problem (must stay below the smallest eigenvalue).
     options : FieldOptions, optional
-        Lumped mass, mesh repair (``reorient``, ``components``) and progress reporting
-        (:class:`~dhlb.fields.FieldOptions`; default ``FieldOptions()``).
+        Lumped mass, mesh repair (``repair``: the safe repairs by default, see :mod:`dhlb.mesh.repair`;
+        ``reorient``, ``components``) and progress reporting (:class:`~dhlb.fields.FieldOptions`; default
+        ``FieldOptions()``).
     solver : dhlb.linalg.SolverOptions or str, optional
         Backend and tolerance of the eigen solve or the aligned solve
         (:class:`~dhlb.linalg.SolverOptions`, or a backend name); the default tolerance
@@ -198,7 +199,7 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
         n = V.n if isinstance(V, TangentBundle) else 1
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 1:
         raise InvalidParameterError(f"n must be an integer >= 1, got {n!r}")
-    tb = _tangent(V, F, int(n), reorient, components)
+    tb = _tangent(V, F, int(n), reorient, components, options.repair)
     guide = None
     if align is not None:
         guide = guidance_for(tb, align)

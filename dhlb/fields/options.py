@@ -4,7 +4,7 @@ Examples
 --------
 >>> from dhlb.fields import FieldOptions
 >>> FieldOptions(lumped=True).replace(reorient=True)
-FieldOptions(lumped=True, reorient=True, components='all', progress=False)
+FieldOptions(lumped=True, reorient=True, components='all', progress=False, repair='safe')
 """
 
 from __future__ import annotations
@@ -36,6 +36,19 @@ class FieldOptions:
         Report the phases (setup, eigen solve, indices) on stderr with tqdm when the run is expected
         to take more than about two seconds (``pip install 'dhlb[progress]'``); the CLI passes
         ``not --quiet``. Not used by :func:`~dhlb.fields.prescribed_field`.
+    repair : str or RepairOptions
+        Which defects of the input mesh are repaired (:mod:`dhlb.mesh.repair`): ``"safe"`` (default:
+        split non-manifold vertices and edges, merge duplicate faces, remove doubled sheets, drop faces
+        repeating a vertex, reorient, mollify zero-area faces; each repair made is one
+        :class:`~dhlb.errors.MeshRepairWarning`), ``"none"`` (every defect is an error), ``"all"``, or a
+        comma-separated list (``"safe,merge-vertices"``). A mesh without defects is never changed.
+        :func:`~dhlb.fields.distributed_direction_field` does not repair (repair the mesh first with
+        :func:`dhlb.mesh.repair_surface`).
+
+    Raises
+    ------
+    InvalidParameterError
+        An unknown ``repair``.
 
     Examples
     --------
@@ -51,6 +64,12 @@ class FieldOptions:
     reorient: bool = False
     components: str = "all"
     progress: bool = False
+    repair: Any = "safe"
+
+    def __post_init__(self) -> None:
+        from dhlb.mesh.repair import RepairOptions
+
+        RepairOptions.parse(self.repair)   # an unknown repair is an error here, not at the first mesh
 
     def replace(self, **changes: Any) -> FieldOptions:
         """A copy with some fields changed (:func:`dataclasses.replace`).

@@ -269,7 +269,7 @@ def prescribed_field(V, F=None, n: int | None = None, singularities=None, *, hol
         again (at most 20 times): δ is then minimal for ``res.edge_weights``. ``"auto"``: cotan, and
         uniform if cotan cannot realise the indices; ``res.weights`` says which was used.
     options : FieldOptions, optional
-        Mesh repair (``reorient``, ``components``; :class:`~dhlb.fields.FieldOptions`).
+        Mesh repair (``repair``, ``reorient``, ``components``; :class:`~dhlb.fields.FieldOptions`).
     solver : dhlb.linalg.SolverOptions or str, optional
         The backend of :func:`dhlb.fem.solve` (:class:`~dhlb.linalg.SolverOptions`, or a backend name).
     **deprecated
@@ -315,7 +315,7 @@ def prescribed_field(V, F=None, n: int | None = None, singularities=None, *, hol
         raise InvalidParameterError(f"n must be an integer >= 1, got {n!r}")
     if weights not in ("auto", "cotan", "uniform"):
         raise InvalidParameterError(f"weights must be 'auto', 'cotan' or 'uniform', got {weights!r}")
-    tb = _tangent(V, F, int(n), reorient, components)
+    tb = _tangent(V, F, int(n), reorient, components, options.repair)
     mesh, X = tb.mesh, tb.mesh.complex
     n_input_faces = len(np.asarray(F)) if F is not None else int(mesh.face_rows.max(initial=-1)) + 1
     nf, n1 = mesh.n_faces, X.n_simplices(1)

@@ -119,10 +119,12 @@ class DirectionField(Result):
         return self.mesh.to_input(self.directions)
 
     def input_face_index(self) -> np.ndarray:
-        """Index per row of the input F (0 for faces dropped by ``components="largest"``)."""
-        out = np.zeros(int(self.mesh.face_rows.max(initial=-1)) + 1, np.int64)
-        out[self.mesh.face_rows] = self.face_index
-        return out
+        """Index per row of the input F.
+
+        0 for faces dropped by ``components="largest"`` or removed by a repair; a merged duplicate face
+        gets the index of the copy kept (:meth:`dhlb.mesh.SurfaceMesh.to_input_faces`).
+        """
+        return self.mesh.to_input_faces(self.face_index).astype(np.int64)
 
     def to_json(self) -> dict:
         """A JSON-ready summary (face numbers are rows of the input F)."""
@@ -136,6 +138,7 @@ class DirectionField(Result):
                               for f, i, p in zip(sing.input_faces, sing.index, sing.points)],
             "eigenvalue": self.eigenvalue, "energy": self.energy, "t": self.t,
             "alignment": None if self.guidance is None else self.guidance.kind,
+            "repairs": [] if self.mesh.repair is None else self.mesh.repair.to_json(),
             "solver": self.solver, "timings": self.timings,
         }
 

@@ -53,7 +53,11 @@ FIELD_NPZ_NOTE = ("u, directions, frames, vertex_used: one row per row of the in
                   "vertex_rows: the input rows of the mesh's vertices. singular_*: faces (input rows), indices "
                   "(of the n-th power field) and points of the singularities. mesh_points, mesh_faces: the "
                   "validated mesh (its own numbering: vertex_rows and face_rows map its rows to the input's). "
-                  "n, s, lam: the symmetry, the energy parameter and lambda.")
+                  "n, s, lam: the symmetry, the energy parameter and lambda. repairs: the repairs made to the "
+                  "input mesh (JSON, '[]' if none); for a repaired mesh also vertex_of_input, face_of_input (the "
+                  "mesh vertex and face that give each input row its value, -1 for none), mesh_u and mesh_frames "
+                  "(per mesh vertex: copies of a split vertex each have their own) and, for a mollified mesh, "
+                  "mesh_edge_lengths (its intrinsic metric, per edge of the mesh).")
 
 
 def write_json(result, path: str | os.PathLike[str]) -> str:
@@ -158,14 +162,19 @@ def write_field_npz(path: str | os.PathLike[str], res: DirectionField) -> str:
     """
     mesh, sing = res.mesh, res.singularities
     out = os.fspath(path)
+    extra = {"repairs": np.array("[]")}
+    if mesh.repair is not None:
+        extra = dict(mesh.repair.to_arrays(), mesh_u=res.u, mesh_frames=res.frames, mesh_flipped=mesh.flipped)
+        if mesh.edge_lengths is not None:
+            extra["mesh_edge_lengths"] = mesh.edge_lengths
     with atomic_write(out, "wb") as fh:
         np.savez_compressed(
             fh, u=mesh.to_input(res.u, fill=np.nan + 0j), directions=res.input_directions(),
             frames=mesh.to_input(res.frames), face_index=res.input_face_index(), singular_faces=sing.input_faces,
-            singular_index=sing.index, singular_points=sing.points, vertex_rows=mesh.vertex_labels,
+            singular_index=sing.index, singular_points=sing.points, vertex_rows=mesh.vertex_rows,
             vertex_used=mesh.input_vertex_used, mesh_points=mesh.points, mesh_faces=mesh.faces,
             face_rows=mesh.face_rows, n=np.int64(res.n), s=np.float64(res.s), lam=np.float64(res.lam),
-            note=np.array(FIELD_NPZ_NOTE))
+            note=np.array(FIELD_NPZ_NOTE), **extra)
     return out
 
 
@@ -341,7 +350,6 @@ def read_field(path: str | os.PathLike[str]) -> DirectionField:
     import warnings
 
     from dhlb.errors import MeshParseError, UnreferencedVertexWarning
-    from dhlb.fields import direction_vectors, field_indices
     from dhlb.io._text import output_stem, read_json
     from dhlb.mesh import tangent_bundle, validate_surface
 
@@ -359,6 +367,8 @@ def read_field(path: str | os.PathLike[str]) -> DirectionField:
     if missing:
         raise MeshParseError(f"not a field file of dhlb: no {', '.join(missing)}", npz)
     summary = read_json(side) if os.path.isfile(side) else {}
+    if "mesh_u" in data:   # a repaired mesh: rebuilt from its parts, the section per mesh vertex
+        return _read_repaired_field(data, summary, npz)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UnreferencedVertexWarning)  # the input PLY keeps unused rows
         if "mesh_points" in data:
@@ -376,7 +386,13 @@ def read_field(path: str | os.PathLike[str]) -> DirectionField:
     tb = tangent_bundle(mesh, n=n)
     X = np.asarray(data["frames"], np.float64)[rows, 0]  # the written frame X_i, at angle θ_i in the new frame
     theta = np.arctan2(np.einsum("ij,ij->i", X, tb.frames[:, 1]), np.einsum("ij,ij->i", X, tb.frames[:, 0]))
-    u = np.asarray(data["u"], np.complex128)[rows] * np.exp(1j * n * theta)
+    return _field_from(tb, np.asarray(data["u"], np.complex128)[rows] * np.exp(1j * n * theta), data, summary)
+
+
+def _field_from(tb, u, data, summary) -> DirectionField:
+    from dhlb.fields import direction_vectors, field_indices
+
+    n = tb.n
     s = float(data["s"]) if "s" in data else float(summary.get("s", np.nan))
     lam = float(data["lam"]) if "lam" in data else float(summary.get("lambda", np.nan))
     energy = summary.get("energy")
@@ -384,6 +400,33 @@ def read_field(path: str | os.PathLike[str]) -> DirectionField:
                           indices=field_indices(tb, u), energy=float("nan") if energy is None else float(energy),
                           eigenvalue=summary.get("eigenvalue"), t=summary.get("t"), guidance=None,
                           solver=dict(summary.get("solver") or {}), timings=dict(summary.get("timings") or {}))
+
+
+def _read_repaired_field(data: dict, summary: dict, npz: str) -> DirectionField:
+    """The field of a ``.npz`` whose mesh was repaired: the mesh from its parts, ``u`` per mesh vertex."""
+    from dhlb.errors import DhlbError, MeshParseError
+    from dhlb.mesh import tangent_bundle
+    from dhlb.mesh.repair import MeshRepair, repaired_mesh
+
+    needed = ("mesh_points", "mesh_faces", "face_rows", "mesh_frames", "vertex_of_input", "face_of_input",
+              "repair_options")
+    missing = [k for k in needed if k not in data]
+    if missing:
+        raise MeshParseError(f"a repaired field without {', '.join(missing)}", npz)
+    try:
+        info = MeshRepair.from_arrays(data, np.asarray(data["vertex_rows"], np.int64))
+        mesh = repaired_mesh(data["mesh_points"], data["mesh_faces"], data["face_rows"], info,
+                             data.get("mesh_edge_lengths"), data.get("mesh_flipped"))
+    except (DhlbError, ValueError) as exc:
+        raise MeshParseError(f"the repaired mesh cannot be rebuilt ({exc})", npz) from None
+    u_mesh = np.asarray(data["mesh_u"], np.complex128)
+    X = np.asarray(data["mesh_frames"], np.float64)
+    if u_mesh.shape != (mesh.n_vertices,) or X.shape[:2] != (mesh.n_vertices, 3):
+        raise MeshParseError(f"mesh_u / mesh_frames do not fit the mesh ({mesh.n_vertices} vertices)", npz)
+    n = int(data["n"]) if "n" in data else int(data["directions"].shape[1])
+    tb = tangent_bundle(mesh, n=n)
+    theta = np.arctan2(np.einsum("ij,ij->i", X[:, 0], tb.frames[:, 1]), np.einsum("ij,ij->i", X[:, 0], tb.frames[:, 0]))
+    return _field_from(tb, u_mesh * np.exp(1j * n * theta), data, summary)
 
 
 def _kind(path: str) -> str:

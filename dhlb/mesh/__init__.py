@@ -4,7 +4,9 @@ Everything an application needs of its mesh comes from here, with the argument o
 surfaces and ``(V, T)`` for tetrahedral meshes (libigl, gpytoolbox):
 
 * surfaces: :func:`validate_surface` → :class:`SurfaceMesh` (half-edge tables, vertex fans, boundary),
-  its discrete tangent bundle :func:`tangent_bundle` → :class:`TangentBundle`;
+  its discrete tangent bundle :func:`tangent_bundle` → :class:`TangentBundle`; the meshes people have
+  (non-manifold, doubled, degenerate) repaired and mapped back to the input by :func:`repair_surface`
+  (:mod:`dhlb.mesh.repair`);
 * tetrahedral meshes: :func:`check_tet_mesh` → :class:`TetMesh` (validated, positively oriented),
   generators :func:`box_tet_mesh`, :func:`ball_tet_mesh`, and :mod:`dhlb.mesh.tetgen` (any closed
   surface through fTetWild, optional);
@@ -34,6 +36,7 @@ _ATTRS = {
     "arrays": ["MeshComplex", "mesh_arrays", "mesh_complex"],
     "coerce": ["as_surface", "as_tangent_bundle", "as_tet_mesh"],
     "compact": ["compact_mesh"],
+    "repair": ["MeshRepair", "RepairOptions", "repair_surface"],
     "partition": ["MeshPart", "VertexLayout", "box_tet_part", "owned_rows", "partition_vertices", "surface_part",
                   "tet_part", "vertex_layout"],
     "surface": ["SurfaceMesh", "validate_surface"],
@@ -47,6 +50,7 @@ __all__ = [
     "TetMesh", "check_tet_mesh", "box_tet_mesh", "ball_tet_mesh", "signed_volumes",
     "MeshComplex", "mesh_complex", "mesh_arrays", "compact_mesh",
     "as_surface", "as_tangent_bundle", "as_tet_mesh",
+    "repair_surface", "RepairOptions", "MeshRepair",
     "partition_vertices", "vertex_layout", "VertexLayout", "surface_part", "tet_part", "MeshPart", "owned_rows",
     "box_tet_part",
 ]

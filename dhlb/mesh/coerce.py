@@ -24,6 +24,8 @@ from dhlb.mesh.tangent import TangentBundle, tangent_bundle
 from dhlb.mesh.tet import TetMesh, check_tet_mesh
 
 if TYPE_CHECKING:
+    from typing import Any
+
     from numpy.typing import ArrayLike
 
 __all__ = ["as_surface", "as_tangent_bundle", "as_tet_mesh"]
@@ -35,7 +37,7 @@ def _both(what: str, cells: str, caller: str) -> InvalidParameterError:
 
 
 def as_surface(V: ArrayLike | SurfaceMesh | TangentBundle, F: ArrayLike | None = None, *, reorient: bool = False,
-               components: str = "all", caller: str = "dhlb") -> SurfaceMesh:
+               components: str = "all", repair: Any = "none", caller: str = "dhlb") -> SurfaceMesh:
     """The validated surface mesh of ``(V, F)``, or ``V`` itself when it is a mesh (or a tangent bundle's mesh).
 
     Parameters
@@ -44,7 +46,7 @@ def as_surface(V: ArrayLike | SurfaceMesh | TangentBundle, F: ArrayLike | None =
         Vertex positions, or a mesh made before.
     F : (m, 3) int array, optional
         Triangles (rows of ``V``); None when ``V`` is a mesh.
-    reorient, components
+    reorient, components, repair
         As for :func:`validate_surface` (arrays only).
     caller : str
         The public function on whose behalf this runs (named in error messages).
@@ -69,11 +71,16 @@ def as_surface(V: ArrayLike | SurfaceMesh | TangentBundle, F: ArrayLike | None =
         return V
     if F is None:
         raise InvalidParameterError(f"{caller} needs the face array F (or a SurfaceMesh as V)")
-    return validate_surface(V, F, reorient=reorient, components=components)
+    if repair is None or repair == "none":
+        return validate_surface(V, F, reorient=reorient, components=components)
+    from dhlb.mesh.repair import repair_surface
+
+    return repair_surface(V, F, repair, reorient=reorient, components=components)
 
 
 def as_tangent_bundle(V: ArrayLike | SurfaceMesh | TangentBundle, F: ArrayLike | None = None, n: int | None = None,
-                      *, reorient: bool = False, components: str = "all", caller: str = "dhlb") -> TangentBundle:
+                      *, reorient: bool = False, components: str = "all", repair: Any = "none",
+                      caller: str = "dhlb") -> TangentBundle:
     """The n-th power of the tangent bundle of ``(V, F)``, of a :class:`SurfaceMesh`, or a given bundle.
 
     Parameters
@@ -85,7 +92,7 @@ def as_tangent_bundle(V: ArrayLike | SurfaceMesh | TangentBundle, F: ArrayLike |
     n : int, optional
         The power (symmetry of the field); default 1, or that of a given bundle. A bundle of another
         power is rebuilt on the same mesh.
-    reorient, components
+    reorient, components, repair
         As for :func:`validate_surface` (arrays only).
     caller : str
         The public function on whose behalf this runs (named in error messages).
@@ -105,7 +112,7 @@ def as_tangent_bundle(V: ArrayLike | SurfaceMesh | TangentBundle, F: ArrayLike |
         if F is not None:
             raise _both("TangentBundle", "F", caller)
         return V if n is None or (check_int(n, "n (the number of directions)", 1) == V.n) else TangentBundle(V.mesh, n)
-    mesh = as_surface(V, F, reorient=reorient, components=components, caller=caller)
+    mesh = as_surface(V, F, reorient=reorient, components=components, repair=repair, caller=caller)
     return tangent_bundle(mesh, None, 1 if n is None else n)
 
 

@@ -81,6 +81,13 @@ class SurfaceMesh:
         Faces whose orientation was reversed by ``reorient=True``.
     n_input_vertices : int, optional
         Number of rows of the input V (per-vertex input arrays may have this length); default ``N``.
+    repair : MeshRepair, optional
+        What :func:`dhlb.mesh.repair.repair_surface` did to the input, with the maps back to it
+        (``vertex_rows``, ``vertex_of_input``, ``face_of_input``); None for a mesh that needed no repair.
+    edge_lengths : (n_1,) float array, optional
+        An intrinsic metric, one length per edge of ``complex`` (a mollified mesh, see
+        :mod:`dhlb.mesh.repair`): corner angles, areas and the finite elements then come from these
+        lengths, not from ``points``; ``points`` still place the mesh in space (frames, pictures).
 
     Examples
     --------
@@ -102,6 +109,9 @@ class SurfaceMesh:
         face_rows: np.ndarray,
         flipped: np.ndarray,
         n_input_vertices: int | None = None,
+        *,
+        repair: Any = None,
+        edge_lengths: np.ndarray | None = None,
     ):
         self.n_input_vertices = int(points.shape[0] if n_input_vertices is None else n_input_vertices)
         self.points = points
@@ -109,7 +119,9 @@ class SurfaceMesh:
         self.complex = complex
         self.face_rows = face_rows
         self.flipped = flipped
-        for a in (points, faces, face_rows, flipped):
+        self.repair = repair
+        self.edge_lengths = edge_lengths
+        for a in (points, faces, face_rows, flipped) + (() if edge_lengths is None else (edge_lengths,)):
             a.setflags(write=False)
 
     @property
@@ -124,8 +136,22 @@ class SurfaceMesh:
 
     @property
     def vertex_labels(self) -> np.ndarray:
-        """Input row in V of each compact vertex."""
+        """The label of each compact vertex in ``complex`` (its input row in V, unless the mesh was repaired).
+
+        A repaired mesh (:attr:`repair`) numbers the extra copies of split vertices after the rows of
+        V; :attr:`vertex_rows` gives the input row of every vertex.
+        """
         return self.complex.vertex_labels
+
+    @property
+    def vertex_rows(self) -> np.ndarray:
+        """Input row in V of each compact vertex (copies of a split vertex share their row)."""
+        return self.complex.vertex_labels if self.repair is None else self.repair.vertex_rows
+
+    @property
+    def is_intrinsic(self) -> bool:
+        """True when the metric is the mesh's own :attr:`edge_lengths` (a mollified mesh), not ``points``."""
+        return self.edge_lengths is not None
 
     def is_validation_of(self, V, F, components: str = "all") -> bool:
         """Whether ``validate_surface(V, F, components=components)`` gives this mesh again.
@@ -134,6 +160,8 @@ class SurfaceMesh:
         flipped and, with ``components="largest"``, there was only one component.  An application
         given a mesh and the arrays again (e.g. a direction field and its ``V, F``) can then use the
         mesh as it is, with its cached fans, angles and frames, instead of validating once more.
+        A repaired mesh is the validation of the arrays it was repaired from, with the same repairs
+        (:meth:`~dhlb.mesh.repair.MeshRepair.is_repair_of`).
 
         Parameters
         ----------
@@ -159,6 +187,8 @@ class SurfaceMesh:
         """
         if not (isinstance(V, np.ndarray) and isinstance(F, np.ndarray)):
             return False
+        if self.repair is not None:   # a repaired mesh: the same input arrays and options
+            return self.repair.is_repair_of(V, F, components, self.repair.options)
         if V.dtype.kind not in "fiu" or F.dtype.kind not in "iu" or V.shape != (self.n_input_vertices, 3):
             return False
         if F.shape != self.faces.shape or np.any(self.flipped) or (components == "largest" and self.components[0] > 1):
@@ -195,7 +225,12 @@ class SurfaceMesh:
 
     @cached_property
     def corner_angles(self) -> np.ndarray:
-        """``(m, 3)`` Euclidean angle at each corner of each (oriented) face."""
+        """``(m, 3)`` Euclidean angle at each corner of each (oriented) face (of :attr:`edge_lengths` if set)."""
+        if self.edge_lengths is not None:  # the intrinsic triangles: the geometry's interior angles
+            alpha = self.geometry._top.dihedral_angles[self.triangle_of_face]   # (m, 3, 3), sorted vertices
+            rank = np.argsort(np.argsort(self.faces, axis=1), axis=1)   # corner p is vertex rank[p] of the triangle
+            f = np.arange(self.n_faces)[:, None]
+            return alpha[f, (rank + 1) % 3, (rank + 2) % 3]
         Ut, F = self.unit_points.T, self.faces  # angles are scale free; unit points avoid under/overflow
         Q = [np.take(Ut, F[:, p], axis=1) for p in range(3)]
         E = [Q[1] - Q[0], Q[2] - Q[1], Q[0] - Q[2]]  # E[p]: the edge from corner p to corner p + 1
@@ -207,7 +242,9 @@ class SurfaceMesh:
 
     @cached_property
     def geometry(self) -> EuclideanComplex:
-        """The Euclidean complex of the mesh (points in compact vertex order), for the finite elements."""
+        """The Euclidean complex of the mesh (points in compact vertex order, or the intrinsic :attr:`edge_lengths`)."""
+        if self.edge_lengths is not None:
+            return EuclideanComplex(self.complex, edge_lengths=self.edge_lengths)
         return EuclideanComplex(self.complex, points=self.points)
 
     @cached_property
@@ -296,7 +333,7 @@ class SurfaceMesh:
         """Per-vertex input data in compact order: ``values`` has one row per compact vertex or per row of V."""
         arr = np.asarray(values)
         if arr.ndim >= 1 and arr.shape[0] == self.n_input_vertices:
-            return arr[self.vertex_labels]
+            return arr[self.vertex_rows]
         if arr.ndim >= 1 and arr.shape[0] == self.n_vertices:
             return arr
         raise ShapeError(f"{what} must have one row per row of the input V ({self.n_input_vertices}) or per "
@@ -320,24 +357,64 @@ class SurfaceMesh:
         >>> mesh.input_vertex_used.tolist(), mesh.to_input([1.0, 2.0, 3.0]).tolist()
         ([True, False, True, True], [1.0, nan, 2.0, 3.0])
         """
-        used = np.zeros(self.n_input_vertices, dtype=bool)
-        used[self.vertex_labels] = True
+        if self.repair is not None:
+            used = self.repair.vertex_of_input >= 0
+        else:
+            used = np.zeros(self.n_input_vertices, dtype=bool)
+            used[self.vertex_labels] = True
         used.setflags(write=False)
         return used
 
     def to_input(self, values: ArrayLike, fill: Any = np.nan) -> np.ndarray:
         """Scatter per-vertex values (compact order) back to one row per row of the input V.
 
-        Rows of V that no face uses (see :attr:`input_vertex_used`) get ``fill`` (NaN by default).
+        Rows of V that no face uses (see :attr:`input_vertex_used`) get ``fill`` (NaN by default). On a
+        repaired mesh a row split into several vertices gets the value of the copy whose fan has the
+        largest area, and rows merged into one vertex all get its value (``repair.vertex_of_input``).
         """
         arr = np.asarray(values)
         out = np.full((self.n_input_vertices,) + arr.shape[1:], fill, dtype=np.result_type(arr, np.asarray(fill)))
-        out[self.vertex_labels] = arr
+        if self.repair is not None:
+            rows = np.flatnonzero(self.repair.vertex_of_input >= 0)
+            out[rows] = arr[self.repair.vertex_of_input[rows]]
+        else:
+            out[self.vertex_labels] = arr
+        return out
+
+    def to_input_faces(self, values: ArrayLike, fill: Any = 0) -> np.ndarray:
+        """Scatter per-face values back to one row per row of the input F.
+
+        Faces no longer in the mesh (``components="largest"``, or removed by a repair: a face repeating a
+        vertex, a doubled sheet) get ``fill``; a duplicate face merged by a repair gets the value of the
+        copy that was kept (``repair.face_of_input``).
+
+        Examples
+        --------
+        >>> import warnings
+        >>> from dhlb.mesh import repair_surface
+        >>> with warnings.catch_warnings():
+        ...     warnings.simplefilter("ignore")
+        ...     mesh = repair_surface([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2], [0, 1, 2]])
+        >>> mesh.n_faces, mesh.to_input_faces([7]).tolist()
+        (1, [7, 7])
+        """
+        arr = np.asarray(values)
+        if self.repair is not None:
+            src = self.repair.face_of_input
+            out = np.full((src.size,) + arr.shape[1:], fill, dtype=np.result_type(arr, np.asarray(fill)))
+            rows = np.flatnonzero(src >= 0)
+            out[rows] = arr[src[rows]]
+            return out
+        out = np.full((int(self.face_rows.max(initial=-1)) + 1,) + arr.shape[1:], fill,
+                      dtype=np.result_type(arr, np.asarray(fill)))
+        out[self.face_rows] = arr
         return out
 
     def __repr__(self) -> str:
         return (f"SurfaceMesh(n_vertices={self.n_vertices}, n_faces={self.n_faces}, "
-                f"chi={self.euler_characteristic}, boundary_edges={len(self.boundary_halfedges)})")
+                f"chi={self.euler_characteristic}, boundary_edges={len(self.boundary_halfedges)}"
+                + ("" if self.repair is None else f", repaired: {', '.join(r.kind for r in self.repair.repairs)}")
+                + ")")
 
 
 def _distinct_halfedges(F: np.ndarray, n_vertices: int):
@@ -398,6 +475,10 @@ def _checked_geometry(X: SimplicialComplex, P: np.ndarray, kept: np.ndarray, T: 
 def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, components: str = "all") -> SurfaceMesh:
     """Check a triangle mesh and return it as an oriented :class:`SurfaceMesh`.
 
+    Every defect is an error here; :func:`dhlb.mesh.repair_surface` repairs what other tools repair
+    routinely (non-manifold vertices and edges, duplicate faces, doubled sheets, zero-area faces) and
+    returns a mesh that maps back to the input.
+
     Parameters
     ----------
     V : (n, 3) float array
@@ -413,7 +494,7 @@ def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, comp
     Returns
     -------
     SurfaceMesh
-        The compacted, consistently oriented mesh; ``mesh.face_rows`` and ``mesh.vertex_labels``
+        The compacted, consistently oriented mesh; ``mesh.face_rows`` and ``mesh.vertex_rows``
         map its faces and vertices back to the rows of ``F`` and ``V``.
 
     Raises
@@ -454,6 +535,11 @@ def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, comp
     """
     if components not in ("all", "largest"):
         raise InvalidParameterError(f"components must be 'all' or 'largest', got {components!r}")
+    return _validate(V, F, reorient, components)
+
+
+def _validate(V, F, reorient: bool, components: str) -> SurfaceMesh:
+    """:func:`validate_surface` without repairs: every defect is an error."""
     P, T = checks.parse(V, F)
     checks.check_faces(P, T)
     rows = np.arange(len(T), dtype=np.int64)
@@ -466,7 +552,7 @@ def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, comp
             fc = comp[np.searchsorted(X.vertex_labels, T[:, 0])]
             keep = fc == np.argmax(np.bincount(fc))
             warnings.warn(f"kept the largest of {ncomp} components ({int(keep.sum())} faces); "
-                          f"{int((~keep).sum())} faces dropped", DhlbWarning, stacklevel=2)
+                          f"{int((~keep).sum())} faces dropped", DhlbWarning, stacklevel=3)
             T, rows = T[keep], rows[keep]
             X = None
     kept, compact = _renumber(len(P), T)
@@ -483,7 +569,7 @@ def validate_surface(V: ArrayLike, F: ArrayLike, *, reorient: bool = False, comp
         warnings.warn(UnreferencedVertexWarning(
             f"{unused.size} vertices of V are used by no face and were dropped (first: "
             f"{', '.join(str(int(v)) for v in unused[:5])}); mesh.vertex_labels maps compact vertices to rows of V",
-            dropped=unused, cell="face"), stacklevel=2)
+            dropped=unused, cell="face"), stacklevel=3)
     if pairs is not None:
         flip = np.zeros(len(T), bool)
     else:

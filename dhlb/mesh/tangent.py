@@ -55,6 +55,8 @@ from dhlb.mesh.halfedge import TWO_PI, AngleMap
 from dhlb.mesh.surface import SurfaceMesh, validate_surface
 
 if TYPE_CHECKING:
+    from typing import Any
+
     from numpy.typing import ArrayLike
 
 __all__ = ["TangentBundle", "tangent_bundle"]
@@ -384,6 +386,7 @@ def tangent_bundle(
     *,
     reorient: bool = False,
     components: str = "all",
+    repair: Any = "none",
 ) -> TangentBundle:
     """The discrete n-th tangent power bundle of a triangle mesh (validated first).
 
@@ -399,6 +402,9 @@ def tangent_bundle(
         Passed to :func:`dhlb.mesh.validate_surface` (ignored for a :class:`SurfaceMesh`).
     components : {"all", "largest"}, optional
         Passed to :func:`dhlb.mesh.validate_surface` (ignored for a :class:`SurfaceMesh`).
+    repair : str or RepairOptions, optional
+        The repairs allowed (:func:`dhlb.mesh.repair_surface`; ignored for a :class:`SurfaceMesh`); default
+        ``"none"``: :func:`dhlb.mesh.validate_surface`, every defect an error.
 
     Returns
     -------
@@ -428,4 +434,8 @@ def tangent_bundle(
         return TangentBundle(V, n)
     if F is None:
         raise InvalidParameterError("tangent_bundle needs the face array F (or a SurfaceMesh as V)")
-    return TangentBundle(validate_surface(V, F, reorient=reorient, components=components), n)
+    if repair is None or repair == "none":
+        return TangentBundle(validate_surface(V, F, reorient=reorient, components=components), n)
+    from dhlb.mesh.repair import repair_surface
+
+    return TangentBundle(repair_surface(V, F, repair, reorient=reorient, components=components), n)

@@ -142,11 +142,15 @@ class StripeOptions:
         run is expected to take more than about two seconds; the CLI passes ``not --quiet``.
     section : SectionOptions
         Which section ψ gives the pattern (:class:`SectionOptions`).
+    repair : str or RepairOptions
+        Which defects of the input mesh are repaired (:mod:`dhlb.mesh.repair`; as
+        :class:`dhlb.fields.FieldOptions`): ``"safe"`` (default), ``"none"``, ``"all"`` or a list.
 
     Raises
     ------
     InvalidParameterError
-        ``energy`` not one of ``"cotan"``, ``"fem"``; ``section`` not a :class:`SectionOptions`.
+        ``energy`` not one of ``"cotan"``, ``"fem"``; ``section`` not a :class:`SectionOptions`; an unknown
+        ``repair``.
 
     Examples
     --------
@@ -169,8 +173,12 @@ class StripeOptions:
     warn_aliasing: bool = True
     progress: bool = False
     section: SectionOptions = field(default_factory=SectionOptions)
+    repair: Any = "safe"
 
     def __post_init__(self) -> None:
+        from dhlb.mesh.repair import RepairOptions
+
+        RepairOptions.parse(self.repair)
         if self.energy not in ENERGIES:
             raise InvalidParameterError(f"energy must be one of {ENERGIES}, got {self.energy!r}")
         if not isinstance(self.section, SectionOptions):

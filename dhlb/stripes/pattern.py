@@ -46,6 +46,7 @@ from dhlb.errors import DhlbWarning, InvalidParameterError, NotSemidefiniteError
 from dhlb.fem import SolverOptions, select_backend, smallest_eigenpairs
 from dhlb.linalg import solver_options
 from dhlb.linalg.backends import get_backend
+from dhlb.mesh.repair import repair_surface
 from dhlb.mesh.surface import SurfaceMesh, validate_surface
 from dhlb.mesh.tangent import TangentBundle
 from dhlb.stripes.energy import stripe_matrices
@@ -77,7 +78,7 @@ def _is_field(obj) -> bool:
     return all(hasattr(obj, a) for a in ("mesh", "n", "directions")) and isinstance(obj.mesh, SurfaceMesh)
 
 
-def _surface(V, F, reorient, components, fld=None):
+def _surface(V, F, reorient, components, fld=None, repair="none"):
     if isinstance(V, TangentBundle):
         V = V.mesh
     if isinstance(V, SurfaceMesh):
@@ -88,7 +89,9 @@ def _surface(V, F, reorient, components, fld=None):
         raise InvalidParameterError("stripe_pattern needs the face array F (or a SurfaceMesh / direction field as V)")
     if fld is not None and fld.mesh.is_validation_of(V, F, components):
         return fld.mesh
-    return validate_surface(V, F, reorient=reorient, components=components)
+    if repair is None or repair == "none":
+        return validate_surface(V, F, reorient=reorient, components=components)
+    return repair_surface(V, F, repair, reorient=reorient, components=components)
 
 
 def _field_n(fld, n):
@@ -300,7 +303,7 @@ def stripe_pattern(
         raise InvalidParameterError(f"n must be 1 (vector field) or 2 (line field), got {n!r}")
     if fld is not None and F is None and not isinstance(V, (SurfaceMesh, TangentBundle)):
         V = fld.mesh
-    mesh = _surface(V, F, opts.reorient, opts.components, fld)
+    mesh = _surface(V, F, opts.reorient, opts.components, fld, opts.repair)
     if fld is not None:
         X, n = _field_n(fld, n)
     else:

@@ -137,6 +137,7 @@ class StripePattern(Result):
                                               self.texture.zero_points.tolist())],
             "branch_faces": [int(r) for r in mesh.face_rows[self.branch_faces]],
             "index_sum": int(self.zero_index.sum()),
+            "repairs": [] if mesh.repair is None else mesh.repair.to_json(),
             "solver": dict(self.solver),
             "timings": {k: float(v) for k, v in self.timings.items()},
         }

@@ -13,12 +13,10 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.csgraph import breadth_first_order
 
 from dhlb.errors import InvalidSimplexError, NonManifoldError, NonOrientableError
 from dhlb.topology._dual_graph import interior_pairs
-from dhlb.topology._dual_graph import strong_components as _strong_components
+from dhlb.topology._dual_graph import propagate_signs as _propagate_signs
 from dhlb.topology._names import kind_name as _name
 from dhlb.topology._names import raise_at as _raise
 from dhlb.topology._names import simplex_labels
@@ -79,24 +77,8 @@ def orientation(X: ComplexLike) -> np.ndarray:
         return np.ones(m, np.int64)
     pairs, pos, faces = _require_orientable_shape(X)
     flip = (pos[:, 0] + pos[:, 1] + 1) % 2  # o_b = o_a * (-1)^flip cancels the shared face
-    _, lab = _strong_components(X, pairs)
-    _, roots = np.unique(lab, return_index=True)
-    # BFS from a super-root m joined to the first simplex of every component; the symmetric
-    # adjacency stores flip + 1 so that tree edges can be looked up.
-    u = np.concatenate([pairs[:, 0], pairs[:, 1], np.full(roots.size, m), roots])
-    v = np.concatenate([pairs[:, 1], pairs[:, 0], roots, np.full(roots.size, m)])
-    w = np.concatenate([flip, flip, np.zeros(2 * roots.size, np.int64)]).astype(np.int8) + 1
-    g = sp.csr_matrix((w, (u, v)), shape=(m + 1, m + 1))
-    _, pred = breadth_first_order(g, m, directed=True, return_predecessors=True)
-    parent = pred.astype(np.int64)
-    parent[m] = m
-    parity = np.zeros(m + 1, np.int64)
-    parity[:m] = np.asarray(g[np.arange(m), parent[:m]]).ravel() - 1
-    while np.any(parent != m):  # pointer jumping: parity relative to the super-root
-        parity = (parity + parity[parent]) % 2
-        parent = parent[parent]
-    o = np.where(parity[:m] == 0, 1, -1).astype(np.int64)
-    clash = np.nonzero(o[pairs[:, 1]] != o[pairs[:, 0]] * (1 - 2 * flip))[0]
+    o, _, clash = _propagate_signs(m, pairs, flip)
+    clash = np.nonzero(clash)[0]
     if clash.size:
         f = int(faces[clash].min())
         err = NonOrientableError(
