@@ -350,7 +350,7 @@ def soups(draw):
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(soup=soups(), n=st.sampled_from([1, 2, 4]))
 def test_random_soups_give_a_result_or_one_typed_error(soup, n):
-    V, F, kinds = soup
+    V, F, _ = soup
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")

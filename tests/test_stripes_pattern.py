@@ -24,7 +24,6 @@ from dhlb.fields import direction_vectors, field_indices
 from dhlb.geometry import EuclideanComplex
 from dhlb.linalg import SolverOptions
 from dhlb.mesh import tangent_bundle
-from dhlb.mesh import validate_surface as validate
 from dhlb.stripes import StripeOptions, stripe_form, stripe_matrices, stripe_pattern, texture_coordinates
 from dhlb.topology.complex import SimplicialComplex
 from tests.surface_meshes import grid, icosphere, torus
@@ -180,7 +179,7 @@ def test_a_field_on_the_same_arrays_lends_its_mesh_and_its_angles(n, monkeypatch
         warnings.simplefilter("ignore")
         fld = surface.direction_field(V, F, n=n)
     calls = []
-    from dhlb.mesh import repair_surface   # what stripe_pattern calls with its default repair="safe"
+    from dhlb.mesh import repair_surface  # what stripe_pattern calls with its default repair="safe"
 
     monkeypatch.setattr(pattern, "repair_surface", lambda *a, **k: calls.append(1) or repair_surface(*a, **k))
     res = stripe_pattern(V, F, fld, spacing=5.0)
