@@ -106,7 +106,9 @@ def check_faces(P, T) -> None:
         sk = np.sort(key)
         if not np.any(sk[1:] == sk[:-1]):
             return
-    _, first, inv = np.unique(srt, axis=0, return_index=True, return_inverse=True)
+        _, first, inv = np.unique(key, return_index=True, return_inverse=True)
+    else:
+        _, first, inv = np.unique(srt, axis=0, return_index=True, return_inverse=True)
     dup = np.nonzero(first[inv.ravel()] != np.arange(len(T)))[0]
     if dup.size:
         r2 = int(dup[0])

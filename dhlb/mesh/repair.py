@@ -99,6 +99,7 @@ from dhlb.mesh import _surface_checks as checks
 from dhlb.mesh.compact import _renumber
 from dhlb.mesh.halfedge import halfedge_pairs
 from dhlb.topology._dual_graph import propagate_signs
+from dhlb.topology._keys import argsort_keys
 from dhlb.topology.complex import SimplicialComplex
 
 if TYPE_CHECKING:
@@ -448,9 +449,12 @@ def _face_components(T: np.ndarray, n: int) -> np.ndarray:
     m = len(T)
     a, b = T.ravel(), np.roll(T, -1, axis=1).ravel()
     key = np.minimum(a, b) * n + np.maximum(a, b)
-    _, edge = np.unique(key, return_inverse=True)
+    order = argsort_keys(key, n * n)
+    sk = key[order]
+    edge = np.empty(key.size, np.int64)
+    edge[order] = np.cumsum(np.r_[True, sk[1:] != sk[:-1]]) - 1
     face = np.repeat(np.arange(m), 3)
-    g = sp.csr_matrix((np.ones(face.size, np.int8), (face, edge.ravel())), shape=(m, int(edge.max()) + 1))
+    g = sp.csr_matrix((np.ones(face.size, np.int8), (face, edge)), shape=(m, int(edge.max()) + 1))
     _, lab = connected_components(sp.bmat([[None, g], [g.T, None]]), directed=False)
     return lab[:m]
 
@@ -460,6 +464,9 @@ def _duplicates(s: _Soup) -> None:
     srt = np.sort(T, axis=1)
     if n < 2_000_000:
         key = (srt[:, 0] * n + srt[:, 1]) * n + srt[:, 2]
+        sk = np.sort(key)
+        if not np.any(sk[1:] == sk[:-1]):   # the common case: one value sort, no duplicate
+            return
         _, first, inv, cnt = np.unique(key, return_index=True, return_inverse=True, return_counts=True)
     else:
         _, first, inv, cnt = np.unique(srt, axis=0, return_index=True, return_inverse=True, return_counts=True)
@@ -545,7 +552,7 @@ def _edge_pairs(s: _Soup) -> tuple[np.ndarray, np.ndarray]:
     T, n = s.T, max(len(s.P), 1)
     a, b = T.ravel(), np.roll(T, -1, axis=1).ravel()
     key = np.minimum(a, b) * n + np.maximum(a, b)
-    order = np.argsort(key, kind="stable")
+    order = argsort_keys(key, n * n)
     sk = key[order]
     starts = np.flatnonzero(np.r_[True, sk[1:] != sk[:-1]])
     counts = np.diff(np.r_[starts, sk.size])
@@ -583,6 +590,8 @@ def _orient(s: _Soup, pairs: np.ndarray) -> np.ndarray:
     m = len(T)
     f0, f1 = pairs[:, 0] // 3, pairs[:, 1] // 3
     same = T.ravel()[pairs[:, 0]] == T.ravel()[pairs[:, 1]]  # both traverse the edge the same way
+    if not np.any(same):   # consistently oriented already (all signs +1 satisfy every pair)
+        return pairs
     o, lab, clash = propagate_signs(m, np.stack([f0, f1], axis=1), same.astype(np.int64))
     if np.any(clash):
         bad = np.unique(lab[f0[clash]])
@@ -656,6 +665,8 @@ def _split(s: _Soup, pairs: np.ndarray, detached: np.ndarray) -> np.ndarray:
         new_id = fan_vertex.copy()
         new_id[extra] = len(s.P) + np.arange(extra.size)
         T2 = new_id[fan].reshape(-1, 3)
+        if not getattr(s, "_nm_edges", 0):   # every edge had at most two faces: splitting cannot overfill one
+            break
         n2 = len(s.P) + extra.size
         a, b = T2.ravel(), np.roll(T2, -1, axis=1).ravel()
         key = np.minimum(a, b) * n2 + np.maximum(a, b)
@@ -698,13 +709,22 @@ def _split(s: _Soup, pairs: np.ndarray, detached: np.ndarray) -> np.ndarray:
 
 
 def _mollify(s: _Soup, X: SimplicialComplex, Pc: np.ndarray, Fc: np.ndarray, edge_of_half: np.ndarray):
-    """``(edge_lengths or None, δ)``: the intrinsic mollification when some face has zero area."""
+    """``(geometry, edge_lengths or None, δ)``: the geometry of the points, or the intrinsic mollification.
+
+    Mollified when some face has zero area (the criterion of :class:`~dhlb.geometry.SimplexStack`, in mesh
+    units).
+    """
+    try:
+        with np.errstate(all="ignore"):
+            return EuclideanComplex(X, points=Pc), None, 0.0
+    except DhlbError:
+        pass
     scale = checks.length_scale(Pc)
     U = Pc / scale
     st = SimplexStack.from_points(U[Fc])
     deg = np.flatnonzero(~st.positive_definite)
-    if deg.size == 0:
-        return None, 0.0
+    if deg.size == 0:   # refused only in the units of V (1e-150 or 1e+150): as validate_surface, no geometry yet
+        return None, None, 0.0
     if not s.opts.mollify:
         checks.check_geometry(Pc, Fc, s.rows)  # raises the strict message
     a, b = Fc.ravel(), np.roll(Fc, -1, axis=1).ravel()
@@ -722,7 +742,8 @@ def _mollify(s: _Soup, X: SimplicialComplex, Pc: np.ndarray, Fc: np.ndarray, edg
              f"mollified {_plural(int(deg.size), 'zero-area face')} intrinsically: every edge lengthened by "
              f"δ = {delta * scale:.3g} ({delta / float(L.mean() - delta):.2g} of the mean edge length) so that every "
              f"triangle is strictly valid; no vertex moved: {_rows(r)}", faces=r, value=delta * scale)
-    return L * scale, delta * scale
+    L = L * scale
+    return EuclideanComplex(X, edge_lengths=L), L, delta * scale
 
 
 # ---------------------------------------------------------------------------- the function
@@ -846,11 +867,11 @@ def repair_surface(V: ArrayLike, F: ArrayLike, repair: Any = "safe", *, reorient
         checks.check_geometry(P, T[rows], rows)  # names the vertex
     pairs_c = halfedge_pairs(Fc, kept.size)
     X, tri = _surface_complex(Fc, kept, pairs_c)
-    lengths, delta = _mollify(s, X, Pc, Fc, pairs_c[1])
-    geometry = _geometry(X, Pc, lengths)
+    geometry, lengths, delta = _mollify(s, X, Pc, Fc, pairs_c[1])
     # the vertex that speaks for each input row: of its copies, the one with the largest fan area
     vrows = s.vertex_row[kept]
-    area = np.bincount(Fc.ravel(), weights=np.repeat(geometry.volumes(2)[tri], 3), minlength=kept.size)
+    area = np.bincount(Fc.ravel(), weights=np.repeat(_face_areas(Pc, Fc) if geometry is None
+                                                     else geometry.volumes(2)[tri], 3), minlength=kept.size)
     order = np.lexsort((np.arange(kept.size), -area, vrows))
     best = order[np.r_[True, vrows[order][1:] != vrows[order][:-1]]]
     vertex_of_input = np.full(len(P), -1, np.int64)
@@ -863,12 +884,19 @@ def repair_surface(V: ArrayLike, F: ArrayLike, repair: Any = "safe", *, reorient
     info = MeshRepair(tuple(s.repairs), opts, vrows, vertex_of_input, face_of_input, float(delta),
                       _fingerprint(P, T, components))
     mesh = SurfaceMesh(Pc, Fc, X, rows, flipped, len(P), repair=info, edge_lengths=lengths)
-    mesh.__dict__.update(_pairs=pairs_c, triangle_of_face=tri, geometry=geometry)
+    mesh.__dict__.update(_pairs=pairs_c, triangle_of_face=tri)
+    if geometry is not None:
+        mesh.__dict__["geometry"] = geometry
     _ = mesh.fans  # one fan per vertex, by construction
     if warn:
         for r in s.repairs:
             warnings.warn(MeshRepairWarning(r.message, kind=r.kind, count=r.count), stacklevel=2)
     return mesh
+
+
+def _face_areas(P: np.ndarray, F: np.ndarray) -> np.ndarray:
+    """Areas of the faces (only to rank the copies of a split vertex when the geometry is not built)."""
+    return 0.5 * np.linalg.norm(np.cross(P[F[:, 1]] - P[F[:, 0]], P[F[:, 2]] - P[F[:, 0]]), axis=1)
 
 
 def _geometry(X: SimplicialComplex, P: np.ndarray, lengths: np.ndarray | None) -> EuclideanComplex:
