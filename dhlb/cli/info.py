@@ -122,7 +122,10 @@ def describe(mesh, homology: bool = True) -> dict:
         ``file``, ``format``, ``kind``, ``dim``, ``counts`` (simplices per dimension),
         ``euler_characteristic``, ``pure``, ``connected_components``, ``manifold``,
         ``orientable`` (``None`` if undefined), ``boundary`` (``{"faces", "components"}``),
-        ``homology`` (list over k of ``{"rank", "torsion"}``), ``unreferenced_vertices``.
+        ``homology`` (list over k of ``{"rank", "torsion"}``), ``unreferenced_vertices``, and for a
+        triangle surface ``repairs``: what ``dhlb field`` and ``dhlb stripes`` repair by default
+        (:mod:`dhlb.mesh.repair`; a list of ``{"kind", "count", "message"}``, empty when none is needed,
+        or ``{"refused": message}`` when the surface cannot be repaired), else None.
 
     Examples
     --------
@@ -146,6 +149,7 @@ def describe(mesh, homology: bool = True) -> dict:
         "boundary": _boundary(X),
         "homology": None,
         "unreferenced_vertices": int(mesh.unreferenced_vertices().size),
+        "repairs": _repairs(mesh) if mesh.kind == "surface" and X.dim == 2 else None,
     }
     if homology:
         from dhlb.topology.homology import homology as compute_homology
@@ -154,6 +158,23 @@ def describe(mesh, homology: bool = True) -> dict:
             {"rank": int(h.rank), "torsion": [int(t) for t in h.torsion]} for h in compute_homology(X)
         ]
     return info
+
+
+def _repairs(mesh):
+    """What the default repairs of ``dhlb field`` / ``dhlb stripes`` would do to the surface."""
+    import warnings
+
+    from dhlb.mesh.repair import repair_surface
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            surface = repair_surface(mesh.points, mesh.top_cells, warn=False)
+    except DhlbError as exc:
+        return {"refused": str(exc)}
+    if surface.repair is None:
+        return []
+    return [{"kind": r.kind, "count": r.count, "message": r.message} for r in surface.repair.repairs]
 
 
 def _group(h: dict) -> str:
@@ -208,6 +229,13 @@ def format_report(info: dict) -> str:
         rows.append(("boundary", f"{_count(b['faces'], info['dim'] - 1)} in {comps}"))
     if info["homology"] is not None:
         rows.append(("homology", ", ".join(f"H{k} = {_group(h)}" for k, h in enumerate(info["homology"]))))
+    reps = info.get("repairs")
+    if isinstance(reps, dict):
+        rows.append(("repairs", f"refused: {reps['refused']}"))
+    elif reps:
+        rows += [("repairs" if i == 0 else "", r["message"]) for i, r in enumerate(reps)]
+    elif reps is not None:
+        rows.append(("repairs", "none needed"))
     if info["unreferenced_vertices"]:
         rows.append(("unreferenced", f"{info['unreferenced_vertices']} vertices of the file are in no cell (ignored)"))
     return report_table(rows, width=21)
