@@ -6,6 +6,8 @@ process peak so far (``getrusage``) is reported for every phase.
 
 Examples
 --------
+>>> import gc
+>>> _ = gc.collect(); trim_heap()  # pending frees would lower the resident size inside the phase
 >>> meter = PhaseMeter()
 >>> x = b"x" * (50 * 2**20)         # written, so resident (a zeroed bytearray may be mapped lazily)
 >>> meter.mark("allocate")

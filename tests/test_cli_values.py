@@ -12,7 +12,7 @@ import argparse
 import pytest
 
 from dhlb.cli import build_parser, main
-from dhlb.cli._common import nonempty_text
+from dhlb.cli._common import nonempty_text, repair_choice
 from dhlb.cli.field import parse_singularity
 from dhlb.io import example_path
 
@@ -73,6 +73,8 @@ def _bad_and_good(action) -> tuple[list[str], str] | None:
         return ["", "  "], "ring"
     if t is parse_singularity:
         return ["nan,0,0:1", "0,0,inf:1", "-3:1", "0:1.5", "0:x", "1,2:1", "0"], "0:1"
+    if t is repair_choice:
+        return ["splt", "safe,none", "none,split", "3", "safe,bogus"], "safe,merge-vertices"
     return None
 
 

@@ -236,6 +236,17 @@ def test_moebius_band_is_refused_or_dropped_when_asked():
     assert res.index_sum == 4
 
 
+def test_a_fin_and_a_moebius_band_dropped_together_report_input_rows():
+    V, F = read_surface(os.path.join(DATA, "moebius-160-10.ply"))
+    W = np.vstack([OCTA_V, [[1.0, 1.0, 1.0]]]) + [5.0, 0, 0]
+    G = np.vstack([OCTA_F, [[0, 2, 6]]]) + len(V)           # an octahedron with a fin on the edge (0, 2)
+    V2, F2 = np.vstack([V, W]), np.vstack([F, G])
+    mesh, w = repaired(V2, F2, "safe,drop-nonorientable")
+    assert {"split", "drop-nonorientable"} <= set(w) and mesh.n_faces == 9
+    assert str(len(F) + 8) in w["split"]                    # the fin's input row, after the band was dropped
+    check_maps(mesh, V2, F2)
+
+
 def test_duplicate_vertices_are_merged_only_when_asked():
     V, F = icosphere(1)
     V2 = np.vstack([V, V[:1]])                    # row 42 = row 0

@@ -404,6 +404,9 @@ class _Soup:
         self.carrier = np.arange(len(T), dtype=np.int64)  # input row whose kept face carries each input row
         self.repairs: list[Repair] = []
         self.merged = np.arange(len(P), dtype=np.int64)  # input row -> row it was merged into
+        self.flipped = None   # per face: flipped by the reorientation
+        self.nm_edges = 0     # edges with three or more faces (see _edge_pairs)
+        self.nm_rows = self.detached_rows = np.zeros(0, np.int64)
 
     def keep(self, mask: np.ndarray) -> None:
         self.T, self.rows = self.T[mask], self.rows[mask]
@@ -547,8 +550,12 @@ def _angle_pairs(s: _Soup, hs: np.ndarray, outward: bool) -> list[tuple[int, int
     return best
 
 
-def _edge_pairs(s: _Soup) -> tuple[np.ndarray, np.ndarray]:
-    """Half-edge pairs ``(h, h')`` (one per interior edge) and the non-manifold edges' detached half-edges."""
+def _edge_pairs(s: _Soup) -> np.ndarray:
+    """Half-edge pairs ``(h, h')``, one per interior edge (the non-manifold edges' pairs chosen by angle).
+
+    Sets ``s.nm_edges`` (the number of edges with three or more faces), ``s.nm_rows`` (the input rows of
+    their faces) and ``s.detached_rows`` (those of the faces left without a partner there).
+    """
     T, n = s.T, max(len(s.P), 1)
     a, b = T.ravel(), np.roll(T, -1, axis=1).ravel()
     key = np.minimum(a, b) * n + np.maximum(a, b)
@@ -564,24 +571,35 @@ def _edge_pairs(s: _Soup) -> tuple[np.ndarray, np.ndarray]:
         if not s.opts.split:
             X = SimplicialComplex(T)
             checks.check_manifold(X, T, s.rows)  # raises the strict message
-        outward = _signed_volume(s.P, T) >= 0
+        outward = _outward(s.P, T, n)
         extra = []
         for e in many:
             hs = order[starts[e]:starts[e] + counts[e]]
-            got = _angle_pairs(s, hs, outward)
+            got = _angle_pairs(s, hs, bool(outward[hs[0] // 3]))
             extra.extend(got)
             paired = {h for p in got for h in p}
             detached.extend(int(h) for h in hs if h not in paired)
         pairs.append(np.array(extra, np.int64).reshape(-1, 2))
-        s._nm_edges = many.size
-        s._nm_faces = np.unique(np.concatenate([order[starts[e]:starts[e] + counts[e]] // 3 for e in many]))
-    return np.concatenate(pairs), np.array(detached, np.int64)
+        s.nm_edges = int(many.size)
+        s.nm_rows = s.rows[np.unique(np.concatenate([order[starts[e]:starts[e] + counts[e]] // 3 for e in many]))]
+        s.detached_rows = np.unique(s.rows[np.array(detached, np.int64) // 3])
+    return np.concatenate(pairs)
 
 
-def _signed_volume(P: np.ndarray, T: np.ndarray) -> float:
-    c = P[T].mean(axis=(0, 1))
-    A, B, C = P[T[:, 0]] - c, P[T[:, 1]] - c, P[T[:, 2]] - c
-    return float(np.einsum("ij,ij->i", A, np.cross(B, C)).sum())
+def _outward(P: np.ndarray, T: np.ndarray, n: int) -> np.ndarray:
+    """Per face: whether its component (faces joined by edges) encloses a positive signed volume.
+
+    The signed volume is taken about the component's centroid (translation invariant when closed), so a
+    solid touching another one is judged by its own orientation, not by the whole soup's.
+    """
+    comp = _face_components(T, n)
+    nc = int(comp.max()) + 1
+    cent = P[T].mean(axis=1)
+    w = np.bincount(comp, minlength=nc).astype(float)
+    c = np.stack([np.bincount(comp, weights=cent[:, k], minlength=nc) for k in range(3)], axis=1) / w[:, None]
+    A, B, C = (P[T[:, k]] - c[comp] for k in range(3))
+    vol = np.bincount(comp, weights=np.einsum("ij,ij->i", A, np.cross(B, C)), minlength=nc)
+    return (vol >= 0)[comp]
 
 
 def _orient(s: _Soup, pairs: np.ndarray) -> np.ndarray:
@@ -642,7 +660,7 @@ def _orient(s: _Soup, pairs: np.ndarray) -> np.ndarray:
     return h
 
 
-def _split(s: _Soup, pairs: np.ndarray, detached: np.ndarray) -> np.ndarray:
+def _split(s: _Soup, pairs: np.ndarray) -> np.ndarray:
     """One vertex per fan: ``(new T, vertex row of each new vertex)``; copies numbered after the input rows."""
     T = s.T
     nc = 3 * len(T)
@@ -665,7 +683,7 @@ def _split(s: _Soup, pairs: np.ndarray, detached: np.ndarray) -> np.ndarray:
         new_id = fan_vertex.copy()
         new_id[extra] = len(s.P) + np.arange(extra.size)
         T2 = new_id[fan].reshape(-1, 3)
-        if not getattr(s, "_nm_edges", 0):   # every edge had at most two faces: splitting cannot overfill one
+        if not s.nm_edges:   # every edge had at most two faces: splitting cannot overfill one
             break
         n2 = len(s.P) + extra.size
         a, b = T2.ravel(), np.roll(T2, -1, axis=1).ravel()
@@ -688,11 +706,11 @@ def _split(s: _Soup, pairs: np.ndarray, detached: np.ndarray) -> np.ndarray:
                                "repair it with another tool (e.g. PyMeshFix) first")
     split_rows = np.unique(fan_vertex[extra])
     s.vertex_row = np.concatenate([np.arange(len(s.P)), fan_vertex[extra]])
-    if getattr(s, "_nm_edges", 0):
-        r = s.rows[np.unique(detached // 3)] if detached.size else s.rows[s._nm_faces]
-        s.report("split", int(s._nm_edges),
-                 f"cut {_plural(int(s._nm_edges), 'non-manifold edge')} (three or more faces) by pairing the faces "
-                 f"around each edge ({_plural(int(np.unique(detached // 3).size), 'face')} detached"
+    if s.nm_edges:
+        r = s.detached_rows if s.detached_rows.size else s.nm_rows
+        s.report("split", s.nm_edges,
+                 f"cut {_plural(s.nm_edges, 'non-manifold edge')} (three or more faces) by pairing the faces "
+                 f"around each edge ({_plural(int(s.detached_rows.size), 'face')} detached"
                  + (f", {_plural(isolated, 'face')} cut off from all neighbours" if isolated else "")
                  + f"): {_rows(r)}",
                  faces=r)
@@ -828,7 +846,6 @@ def repair_surface(V: ArrayLike, F: ArrayLike, repair: Any = "safe", *, reorient
             return mesh
     P, T = checks.parse(V, F)
     s = _Soup(P, T, opts)
-    s.flipped = None
     used0 = np.zeros(len(P), bool)
     used0[T.ravel()] = True
     if opts.merge_vertices:
@@ -837,11 +854,11 @@ def repair_surface(V: ArrayLike, F: ArrayLike, repair: Any = "safe", *, reorient
     if len(s.T) == 0:
         raise EmptyComplexError("no faces are left: every face repeats a vertex")
     _duplicates(s)
-    pairs, detached = _edge_pairs(s)
+    pairs = _edge_pairs(s)
     pairs = _orient(s, pairs)
     flipped = s.flipped if s.flipped is not None else np.zeros(len(s.T), bool)
     s.flipped = flipped
-    T2 = _split(s, pairs, detached)
+    T2 = _split(s, pairs)
     rows = s.rows
     if components == "largest":
         comp = _face_components(T2, int(T2.max()) + 1)

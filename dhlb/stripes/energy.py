@@ -96,8 +96,22 @@ def _fem(form, lumped: bool, complex_form: bool):
     r = dc.bundle.connection[Xt.index(1, Xr.vertex_labels[Xr.simplices(1)])]
     Om = dc.bundle.curvature[Xt.index(2, Xr.vertex_labels[Xr.simplices(2)])]
     L = HermitianLineBundle(Xr, r, Om)
-    A, M = bundle_matrices(L, EuclideanComplex(Xr, points=dc.points), lumped=lumped)
+    A, M = bundle_matrices(L, _cover_geometry(Xr, dc, form.mesh), lumped=lumped)
     return 0.5 * dc.restrict(A), 0.5 * dc.restrict(M)
+
+
+def _cover_geometry(Xr: SimplicialComplex, dc, mesh) -> EuclideanComplex:
+    """The metric of the double cover: that of the points, or the base mesh's intrinsic lengths (mollified).
+
+    A cover vertex ``v`` or ``v + N`` lies over the base vertex ``v``; a cover edge has the length of the
+    base edge under it.
+    """
+    if mesh.edge_lengths is None:
+        return EuclideanComplex(Xr, points=dc.points)
+    N = dc.n_base_vertices
+    E = np.sort(Xr.vertex_labels[Xr.simplices(1)] % N, axis=1)
+    base = mesh.complex.index(1, mesh.complex.vertex_labels[E])
+    return EuclideanComplex(Xr, edge_lengths=mesh.edge_lengths[base])
 
 
 def stripe_matrices(

@@ -133,7 +133,9 @@ class StripeForm:
 
     @cached_property
     def edge_lengths(self) -> np.ndarray:
-        """Euclidean length of every edge (rows of ``mesh.complex.simplices(1)``)."""
+        """Length of every edge (rows of ``mesh.complex.simplices(1)``): the intrinsic one of a mollified mesh."""
+        if self.mesh.edge_lengths is not None:
+            return self.mesh.edge_lengths
         E = self.mesh.complex.simplices(1)
         return np.linalg.norm(self.mesh.points[E[:, 1]] - self.mesh.points[E[:, 0]], axis=1)
 
