@@ -401,3 +401,23 @@ def test_to_json_uses_input_face_rows():
         assert sorted(F[z["face"]]) == sorted(mesh.vertex_labels[mesh.faces[f]])
         assert z["index"] == res.zero_index[f] != 0
     assert sum(z["index"] for z in out["zero_faces"]) == 0  # e^{iω̂}: a trivial bundle on a closed surface
+
+
+def test_an_indefinite_cotan_energy_is_solved_at_a_shift_just_below_its_smallest_eigenvalue():
+    # a patch of the ogre where obtuse triangles make the cotan stripe energy indefinite: the Gershgorin
+    # bound is far below the smallest eigenvalue; the shift is the first low·10⁻ᵏ where A − σM is definite
+    import os
+
+    import scipy.linalg as la
+
+    from dhlb.io import read_surface
+
+    V, F = read_surface(os.path.join(os.path.dirname(__file__), "data", "ogre-obtuse.obj"))
+    fld = surface.direction_field(V, F, n=1)
+    with pytest.warns(DhlbWarning, match="indefinite.*shift-invert at"):
+        res = stripe_pattern(V, F, fld, spacing=6.0)
+    A, M, _ = stripe_matrices(res.form, "cotan")
+    exact = la.eigh(A.toarray(), M.toarray(), eigvals_only=True)[0]
+    assert exact < 0 and res.solver["indefinite"] and res.solver["converged"]
+    assert res.eigenvalue == pytest.approx(exact, rel=1e-8)
+    assert 10 * exact <= res.solver["shift"] < exact             # within 10x, not at the Gershgorin bound
