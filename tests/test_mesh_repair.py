@@ -421,6 +421,13 @@ def test_cli_field_and_stripes_run_on_the_models_and_name_the_repairs(name, tmp_
     out = _cli("stripes", path, "--spacing", "6", "-o", str(tmp_path / "s"), "--no-png")
     assert out.returncode == 0, out.stderr
     assert "repaired the mesh" in out.stderr
+    side = json.loads((tmp_path / "s.json").read_text())
+    assert {r["kind"] for r in side["repairs"]} == MODELS[name][0]
+    from dhlb.io import read_result
+
+    back = [read_result(str(tmp_path / b)) for b in ("f", "s")]   # both read back on the repaired mesh
+    assert back[0].index_sum == summary["index_sum"] and back[1].texture.mesh.n_faces == summary["n_faces"]
+    assert back[1].texture.mesh.is_intrinsic == ("mollify" in MODELS[name][0])
     strict = _cli("field", path, "--n", "4", "-o", str(tmp_path / "g"), "--repair", "none")
     assert strict.returncode == 1 and MODELS[name][1] in strict.stderr and not (tmp_path / "g.json").exists()
 

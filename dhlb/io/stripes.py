@@ -83,8 +83,10 @@ def stripes_sidecar(
     dict
         ``format``, ``version``, ``obj``, ``n``, ``n_vertices``, ``n_faces``, ``vertex_labels``,
         ``face_rows``, ``frequency`` (min, max, mean), ``interpolation`` (how to draw the pattern),
-        ``zeros`` (faces, index, points) and ``branch`` (faces, ``u_m``, ``u_l``, points); lists and
-        numbers only.
+        ``zeros`` (faces, index, points), ``branch`` (faces, ``u_m``, ``u_l``, points) and ``repairs``
+        (what :mod:`dhlb.mesh.repair` did to the input mesh, ``[]`` if nothing); for a repaired mesh also
+        ``vertex_rows`` (the input row of each OBJ vertex) and, when it was mollified, ``edge_lengths``
+        (its intrinsic metric, per edge of the mesh); lists and numbers only.
 
     Examples
     --------
@@ -119,6 +121,11 @@ def stripes_sidecar(
         "branch": {"faces": bf.tolist(), "u_m": (texture.branch_alpha[:, 0] / TWO_PI).tolist(),
                    "u_l": (texture.branch_alpha[:, 1] / TWO_PI).tolist(), "points": texture.branch_points.tolist()},
     }
+    out["repairs"] = [] if mesh.repair is None else mesh.repair.to_json()
+    if mesh.repair is not None:
+        out["vertex_rows"] = mesh.vertex_rows.tolist()
+    if mesh.edge_lengths is not None:
+        out["edge_lengths"] = mesh.edge_lengths.tolist()
     if obj_face_of is not None:
         out["obj_face_of"] = np.asarray(obj_face_of).tolist()
     return out
@@ -358,7 +365,16 @@ def read_stripes(path: str | os.PathLike[str]) -> LoadedStripes:
         raise MeshParseError(f"the OBJ holds the subdivision (expand={meta['expanded']}), not the mesh: write the "
                              "pattern with expand=0 to read it back", side)
     V, F, U = read_uv_obj(obj)
-    mesh = validate_surface(V, F)
+    if meta.get("edge_lengths") is not None:   # a mollified mesh: its own metric (zero-area faces in space)
+        from dhlb.errors import DhlbError
+        from dhlb.mesh.repair import repaired_mesh
+
+        try:
+            mesh = repaired_mesh(V, F, np.arange(len(F)), None, np.asarray(meta["edge_lengths"], float))
+        except (DhlbError, TypeError, ValueError) as exc:
+            raise MeshParseError(f"the mesh and the sidecar's edge_lengths do not fit ({exc})", side) from None
+    else:
+        mesh = validate_surface(V, F)
     try:
         n = check_int(meta["n"], "n", 1)
         zeros, branch = meta["zeros"], meta["branch"]

@@ -923,7 +923,7 @@ def _geometry(X: SimplicialComplex, P: np.ndarray, lengths: np.ndarray | None) -
         return EuclideanComplex(X, points=P)
 
 
-def repaired_mesh(points: ArrayLike, faces: ArrayLike, face_rows: ArrayLike, repair: MeshRepair,
+def repaired_mesh(points: ArrayLike, faces: ArrayLike, face_rows: ArrayLike, repair: MeshRepair | None,
                   edge_lengths: ArrayLike | None = None, flipped: ArrayLike | None = None) -> SurfaceMesh:
     """A repaired :class:`~dhlb.mesh.SurfaceMesh` again from its parts (reading a result back).
 
@@ -935,8 +935,9 @@ def repaired_mesh(points: ArrayLike, faces: ArrayLike, face_rows: ArrayLike, rep
         Its faces in its own numbering (``mesh.faces``: manifold and consistently oriented).
     face_rows : (m,) int array
         The input row of each face.
-    repair : MeshRepair
-        The repair record (:meth:`MeshRepair.from_arrays`).
+    repair : MeshRepair or None
+        The repair record (:meth:`MeshRepair.from_arrays`); None: the mesh is its own input (a mesh file
+        written from a repaired mesh, with its metric).
     edge_lengths : (n_1,) float array, optional
         The intrinsic lengths of a mollified mesh (``mesh.edge_lengths``), else None.
     flipped : (m,) bool array, optional
@@ -965,8 +966,8 @@ def repaired_mesh(points: ArrayLike, faces: ArrayLike, face_rows: ArrayLike, rep
         raise InvalidParameterError(f"edge_lengths has shape {lengths.shape}, the mesh has {X.n_simplices(1)} edges")
     geometry = _geometry(X, P, lengths)
     flip = np.zeros(len(Fc), bool) if flipped is None else np.asarray(flipped, bool)
-    mesh = SurfaceMesh(np.ascontiguousarray(P), Fc, X, rows, flip, int(repair.vertex_of_input.size), repair=repair,
-                       edge_lengths=lengths)
+    n_input = N if repair is None else int(repair.vertex_of_input.size)
+    mesh = SurfaceMesh(np.ascontiguousarray(P), Fc, X, rows, flip, n_input, repair=repair, edge_lengths=lengths)
     mesh.__dict__.update(_pairs=pairs, triangle_of_face=tri, geometry=geometry)
     _ = mesh.fans
     return mesh
