@@ -277,8 +277,21 @@ def _run_distributed(args, fmt, plan, t0) -> int:
     VF = root_first(lambda: read_surface(args.mesh, fmt), comm, what=f"reading {args.mesh}")
     V, F = VF if comm.rank == 0 else (None, None)
     t1 = time.perf_counter()
-    res = distributed_direction_field(V, F, n=args.n, s=args.s, options=FieldOptions(reorient=args.reorient),
-                                      comm=comm)
+    from dhlb.errors import (
+        DegenerateSimplexError,
+        InconsistentOrientationError,
+        InvalidSimplexError,
+        NonManifoldError,
+    )
+
+    try:
+        res = distributed_direction_field(V, F, n=args.n, s=args.s, options=FieldOptions(reorient=args.reorient),
+                                          comm=comm)
+    except (NonManifoldError, DegenerateSimplexError, InvalidSimplexError, InconsistentOrientationError) as exc:
+        if args.repair == "none":
+            raise
+        raise type(exc)(f"{exc}. The distributed field (--backend petsc) does not repair meshes: run dhlb field "
+                        "without --backend petsc, which repairs it (--repair), or repair the mesh first") from None
     t2 = time.perf_counter()
     if res is None:  # ranks other than 0: rank 0 writes and prints
         return 0
