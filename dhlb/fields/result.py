@@ -107,7 +107,7 @@ class DirectionField(Result):
     @property
     def poincare_hopf(self) -> float:
         """``(Σ_t Ω_t + boundary rotation)/2π`` (rounded to 12 digits); equals ``index_sum``."""
-        return round(float(self.indices.poincare_hopf), 12)
+        return round(float(self.indices.poincare_hopf), 12) + 0.0   # + 0.0: no "-0" in reports
 
     @property
     def euler_characteristic(self) -> int:

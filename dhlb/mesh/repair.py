@@ -602,6 +602,12 @@ def _outward(P: np.ndarray, T: np.ndarray, n: int) -> np.ndarray:
     return (vol >= 0)[comp]
 
 
+def _edge_of(T: np.ndarray, h: int) -> tuple[int, int]:
+    """The vertices ``(a, b)`` of half-edge ``h = 3f + k`` (``T[f, k] → T[f, k + 1]``)."""
+    f, k = divmod(int(h), 3)
+    return int(T[f, k]), int(T[f, (k + 1) % 3])
+
+
 def _orient(s: _Soup, pairs: np.ndarray) -> np.ndarray:
     """Flip faces into a consistent orientation (majority kept per component); returns the pairs after."""
     T = s.T
@@ -615,8 +621,7 @@ def _orient(s: _Soup, pairs: np.ndarray) -> np.ndarray:
         bad = np.unique(lab[f0[clash]])
         if not s.opts.drop_nonorientable:
             e = int(np.argmax(clash))
-            h = pairs[e, 0]
-            edge = (int(T.ravel()[h]), int(np.roll(T, -1, axis=1).ravel()[h]))
+            edge = _edge_of(T, pairs[e, 0])
             raise NonOrientableError(
                 f"the surface is not orientable: it contains a Möbius band (carrying an orientation of the faces "
                 f"around it comes back reversed, e.g. at edge {edge}, faces {int(s.rows[f0[e]])} and "
@@ -642,8 +647,7 @@ def _orient(s: _Soup, pairs: np.ndarray) -> np.ndarray:
         return pairs
     if not s.opts.reorient:
         e = int(np.argmax(same))
-        h = pairs[e, 0]
-        edge = (int(T.ravel()[h]), int(np.roll(T, -1, axis=1).ravel()[h]))
+        edge = _edge_of(T, pairs[e, 0])
         raise InconsistentOrientationError(
             f"faces {int(s.rows[f0[e]])} and {int(s.rows[f1[e]])} traverse their common edge {edge} in the same "
             "direction: the faces are not consistently oriented. Allow the repair 'reorient' to flip faces into a "

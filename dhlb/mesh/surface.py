@@ -372,14 +372,11 @@ class SurfaceMesh:
         repaired mesh a row split into several vertices gets the value of the copy whose fan has the
         largest area, and rows merged into one vertex all get its value (``repair.vertex_of_input``).
         """
-        arr = np.asarray(values)
-        out = np.full((self.n_input_vertices,) + arr.shape[1:], fill, dtype=np.result_type(arr, np.asarray(fill)))
         if self.repair is not None:
-            rows = np.flatnonzero(self.repair.vertex_of_input >= 0)
-            out[rows] = arr[self.repair.vertex_of_input[rows]]
-        else:
-            out[self.vertex_labels] = arr
-        return out
+            return _scatter(values, self.repair.vertex_of_input, fill)
+        source = np.full(self.n_input_vertices, -1, np.int64)
+        source[self.vertex_labels] = np.arange(self.n_vertices)
+        return _scatter(values, source, fill)
 
     def to_input_faces(self, values: ArrayLike, fill: Any = 0) -> np.ndarray:
         """Scatter per-face values back to one row per row of the input F.
@@ -398,23 +395,26 @@ class SurfaceMesh:
         >>> mesh.n_faces, mesh.to_input_faces([7]).tolist()
         (1, [7, 7])
         """
-        arr = np.asarray(values)
         if self.repair is not None:
-            src = self.repair.face_of_input
-            out = np.full((src.size,) + arr.shape[1:], fill, dtype=np.result_type(arr, np.asarray(fill)))
-            rows = np.flatnonzero(src >= 0)
-            out[rows] = arr[src[rows]]
-            return out
-        out = np.full((int(self.face_rows.max(initial=-1)) + 1,) + arr.shape[1:], fill,
-                      dtype=np.result_type(arr, np.asarray(fill)))
-        out[self.face_rows] = arr
-        return out
+            return _scatter(values, self.repair.face_of_input, fill)
+        source = np.full(int(self.face_rows.max(initial=-1)) + 1, -1, np.int64)
+        source[self.face_rows] = np.arange(self.n_faces)
+        return _scatter(values, source, fill)
 
     def __repr__(self) -> str:
         return (f"SurfaceMesh(n_vertices={self.n_vertices}, n_faces={self.n_faces}, "
                 f"chi={self.euler_characteristic}, boundary_edges={len(self.boundary_halfedges)}"
                 + ("" if self.repair is None else f", repaired: {', '.join(r.kind for r in self.repair.repairs)}")
                 + ")")
+
+
+def _scatter(values, source: np.ndarray, fill) -> np.ndarray:
+    """``out[r] = values[source[r]]`` where ``source[r] >= 0``, else ``fill`` (one row per input row)."""
+    arr = np.asarray(values)
+    out = np.full((source.size,) + arr.shape[1:], fill, dtype=np.result_type(arr, np.asarray(fill)))
+    rows = np.flatnonzero(source >= 0)
+    out[rows] = arr[source[rows]]
+    return out
 
 
 def _distinct_halfedges(F: np.ndarray, n_vertices: int):
