@@ -278,6 +278,19 @@ def test_repair_options_are_checked():
         RepairOptions(split="yes")
 
 
+def test_curvature_alignment_on_a_repaired_mesh_with_flat_pieces():
+    # the beetle's repair cuts off single flat triangles: no principal directions, and λ_t = 0 is their
+    # smallest eigenvalue; they get their smoothest field (one warning), the rest is aligned
+    V, F = read_surface(os.path.join(DATA, "beetle.obj"))
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        res = direction_field(V, F, n=4, align="curvature")
+    lines = [str(w.message) for w in seen if "no alignment on" in str(w.message)]
+    assert len(lines) == 1 and "of 19 components" in lines[0]
+    check_poincare_hopf(res)
+    assert res.guidance is not None and 0 < res.t < 1
+
+
 def test_stripes_on_a_repaired_mesh_share_the_fields_mesh():
     V, F = read_surface(os.path.join(DATA, "cow.obj"))
     fld = quiet(direction_field, V, F, n=2)

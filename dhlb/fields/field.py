@@ -166,7 +166,10 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
     Warns
     -----
     DhlbWarning
-        Alignment requested but the guidance vanishes (flat mesh, no boundary): smoothest field.
+        Alignment requested but the guidance vanishes (flat mesh, no boundary): smoothest field. On a
+        mesh of several components, the components where the guidance vanishes or where λ_t is not below
+        the smallest eigenvalue (a flat triangle a repair cut off) get their smoothest field, with one
+        warning for all of them.
 
     Examples
     --------
@@ -216,9 +219,12 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
     area = np.asarray(tb.geometry.volumes(2)).sum()
     comps = _components(tb)
     eigs, ts, stats = [], [], []
-    for idx in comps:
+    unaligned: list[tuple] = []   # components that get their smoothest field (one warning for all)
+    for ci, idx in enumerate(comps):
         Ac, Mc = (A, M) if len(comps) == 1 else (_sub(A, idx), _sub(M, idx))
-        if guide is None:
+        uc = None if guide is None else _aligned(Ac, Mc, guide.values[idx], lam, backend, stats, ts,
+                                                 None if len(comps) == 1 else (ci, tb, idx, unaligned))
+        if uc is None:
             res = smallest_eigenpairs(Ac, Mc, 1, solver=solver)
             uc = res.eigenvectors[:, 0]
             eigs.append(float(res.eigenvalues[0]))
@@ -226,21 +232,14 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
                           "residual": float(res.residuals[0]), "converged": bool(res.converged),
                           "factorizations": int(res.factorizations), "solves": int(res.solves),
                           "shift": float(res.shift), "note": res.note})
-        else:
-            q = guide.values[idx]
-            qn = float(np.sqrt(max((q.conj() @ (Mc @ q)).real, 0.0)))
-            if qn == 0.0:
-                raise InvalidParameterError("the guidance vanishes on a connected component; give guidance there")
-            # Appendix A assumes ‖φ‖_M = 1; λ_t must lie below the smallest eigenvalue: A − λ_t M is PD
-            ut = solve(Ac, Mc, lam, Mc @ (q / qn), backend=backend, positive_definite=True)
-            norm = float(np.sqrt(max((ut.conj() @ (Mc @ ut)).real, 0.0)))
-            uc = ut / norm
-            ts.append(1.0 / (1.0 + norm))
-            used = get_backend(backend, n=Ac.shape[0], nnz=Ac.nnz, eigen=False).name   # what solve() used
-            stats.append({"backend": used, "iterations": 0, "residual": None, "converged": True,
-                          "factorizations": 1, "solves": 1, "shift": float(lam), "note": ""})
         share = np.asarray(tb.geometry.volumes(2))[_faces_of(tb, idx)].sum() / area if len(comps) > 1 else 1.0
         u[idx] = uc * np.sqrt(share)
+    if unaligned:
+        faces = sum(k for _, k, _, _ in unaligned)
+        ci, _, row, why = unaligned[0]
+        warnings.warn(f"no alignment on {len(unaligned)} of {len(comps)} components ({faces} faces; first: "
+                      f"component {ci}, with face {row} of F: {why}); they get their smoothest field", DhlbWarning,
+                      stacklevel=2)
     t2 = time.perf_counter()
     bar.update(1)
     energy = float((u.conj() @ (A @ u)).real)
@@ -254,6 +253,39 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
         eigenvalue=max(eigs) if eigs else None, t=(ts[0] if len(ts) == 1 else (max(ts) if ts else None)),
         guidance=guide, component_eigenvalues=tuple(eigs), solver=_merge(stats),
         timings={"setup": t1 - t0, "solve": t2 - t1, "indices": t3 - t2, "total": t3 - t0})
+
+
+def _aligned(Ac, Mc, q, lam, backend, stats, ts, component):
+    """The aligned field ``u`` on one component (Eq. 6.6), or None where it has none.
+
+    ``component`` is None for a mesh of one component (a vanishing guidance or a λ_t that is not below
+    the smallest eigenvalue is then an error), else ``(number, tangent bundle, vertices, unaligned)``:
+    such a component (a flat triangle cut off by a repair, a flat part with no principal directions) is
+    appended to ``unaligned`` (the caller warns once) and gets its smoothest field.
+    """
+    from dhlb.errors import InvalidOperatorError
+
+    qn = float(np.sqrt(max((q.conj() @ (Mc @ q)).real, 0.0)))
+    try:
+        if qn == 0.0:
+            raise InvalidParameterError("the guidance vanishes on a connected component; give guidance there")
+        # Appendix A assumes ‖φ‖_M = 1; λ_t must lie below the smallest eigenvalue: A − λ_t M is PD
+        ut = solve(Ac, Mc, lam, Mc @ (q / qn), backend=backend, positive_definite=True)
+    except (InvalidParameterError, InvalidOperatorError):
+        if component is None:
+            raise
+        ci, tb, idx, unaligned = component
+        faces = np.flatnonzero(_faces_of(tb, idx))
+        row = int(tb.mesh.face_rows[tb.mesh.face_of_triangle[faces[0]]])
+        why = "the guidance vanishes there" if qn == 0.0 else f"λ_t = {lam:g} is not below its smallest eigenvalue"
+        unaligned.append((ci, faces.size, row, why))
+        return None
+    norm = float(np.sqrt(max((ut.conj() @ (Mc @ ut)).real, 0.0)))
+    ts.append(1.0 / (1.0 + norm))
+    used = get_backend(backend, n=Ac.shape[0], nnz=Ac.nnz, eigen=False).name   # what solve() used
+    stats.append({"backend": used, "iterations": 0, "residual": None, "converged": True,
+                  "factorizations": 1, "solves": 1, "shift": float(lam), "note": ""})
+    return ut / norm
 
 
 def _faces_of(tb: TangentBundle, vertices: np.ndarray) -> np.ndarray:
