@@ -158,7 +158,7 @@ def section_values(tb: TangentBundle, u: ArrayLike) -> np.ndarray:
     z = tb.mesh.per_vertex(arr, "the section").astype(np.complex128)
     if not np.all(np.isfinite(z)):
         v = int(np.argmax(~np.isfinite(z)))
-        raise NonFiniteError(f"the section is not finite at vertex {int(tb.mesh.vertex_labels[v])}")
+        raise NonFiniteError(f"the section is not finite at vertex {int(tb.mesh.vertex_rows[v])}")
     return z
 
 

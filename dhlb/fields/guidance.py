@@ -322,7 +322,7 @@ def user_guidance(tb: TangentBundle, values: ArrayLike) -> Guidance:
         vals = tb.mesh.per_vertex(arr, "guidance values").astype(np.complex128)
         if not np.all(np.isfinite(vals)):
             v = int(np.argmax(~np.isfinite(vals)))
-            raise NonFiniteError(f"the guidance value at vertex {int(tb.mesh.vertex_labels[v])} is not finite")
+            raise NonFiniteError(f"the guidance value at vertex {int(tb.mesh.vertex_rows[v])} is not finite")
         return _guidance(vals, "user", "all guidance values are zero")
     if arr.ndim != 2 or arr.shape[1] != 3:
         raise ShapeError(f"guidance vectors must be real (k, 3) or complex (k,), got shape {arr.shape}")

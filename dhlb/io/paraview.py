@@ -82,7 +82,7 @@ def field_to_vtu(result: Any, path: str | os.PathLike[str], *, binary: bool = Tr
                   "field_to_vtu")
     mesh = result.mesh
     pd = {f"d{k}": result.directions[:, k, :] for k in range(result.n)}
-    pd.update(u=result.u, u_abs=np.abs(result.u), input_vertex=mesh.vertex_labels)
+    pd.update(u=result.u, u_abs=np.abs(result.u), input_vertex=mesh.vertex_rows)
     cd = {"index": result.face_index, "input_face": mesh.face_rows}
     fd = {"n": np.array([result.n]), "s": np.array([float(result.s)]),
           "index_sum": np.array([result.index_sum]), "euler_characteristic": np.array([result.euler_characteristic])}
@@ -128,7 +128,7 @@ def stripes_to_vtu(result: Any, path: str | os.PathLike[str], *, binary: bool = 
     _check_result(result, ("mesh", "texture", "psi"), "dhlb.stripes.stripe_pattern", "stripes_to_vtu")
     mesh = result.mesh
     tex = result.texture
-    pd = {"psi": result.psi, "input_vertex": mesh.vertex_labels}
+    pd = {"psi": result.psi, "input_vertex": mesh.vertex_rows}
     cd = {"corner_alpha": tex.corner_alpha, "zero_index": tex.zero_index, "branch": tex.is_branch,
           "input_face": mesh.face_rows}
     return write_vtu_surface(path, mesh.points, mesh.faces, point_data=pd, cell_data=cd,

@@ -368,7 +368,7 @@ class TangentBundle:
             raise ShapeError(f"vectors must have shape (n, 3), got {W.shape}")
         if not np.all(np.isfinite(W)):
             v = int(np.argmax(~np.isfinite(W).all(axis=1)))
-            raise NonFiniteError(f"the vector at vertex {int(self.mesh.vertex_labels[v])} is not finite")
+            raise NonFiniteError(f"the vector at vertex {int(self.mesh.vertex_rows[v])} is not finite")
         T = self.frames
         x, y = np.sum(W * T[:, 0], 1), np.sum(W * T[:, 1], 1)
         psi = np.arctan2(y, x)

@@ -23,12 +23,12 @@ __all__ = ["vertex_name", "edge_name", "per_vertex_positive", "checked_direction
 
 def vertex_name(mesh: SurfaceMesh, v: int) -> str:
     """``"vertex <label>"``: compact vertex ``v`` in the input labels, for error messages."""
-    return f"vertex {int(mesh.vertex_labels[v])}"
+    return f"vertex {int(mesh.vertex_rows[v])}"
 
 
 def edge_name(mesh: SurfaceMesh, e: int) -> str:
     """``"edge (a, b)"``: canonical edge row ``e`` in the input labels, for error messages."""
-    return "edge ({}, {})".format(*(int(x) for x in mesh.vertex_labels[mesh.complex.simplices(1)[e]]))
+    return "edge ({}, {})".format(*(int(x) for x in mesh.vertex_rows[mesh.complex.simplices(1)[e]]))
 
 
 def per_vertex_positive(mesh: SurfaceMesh, value, what: str) -> np.ndarray:

@@ -54,7 +54,7 @@ def _isolated(form) -> np.ndarray:
 
 
 def _vertex(form, v) -> str:
-    return f"vertex {int(form.mesh.vertex_labels[v])}"
+    return f"vertex {int(form.mesh.vertex_rows[v])}"
 
 
 def _cotan(form, lumped: bool, branch_weight: float, complex_form: bool):
@@ -190,7 +190,7 @@ def stripe_matrices(
         E = form.mesh.complex.simplices(1)[e]
         raise InvalidParameterError(
             "complex_form=True needs a consistently oriented field, but the representatives are opposite along "
-            f"edge ({int(form.mesh.vertex_labels[E[0]])}, {int(form.mesh.vertex_labels[E[1]])}); use the real form")
+            f"edge ({int(form.mesh.vertex_rows[E[0]])}, {int(form.mesh.vertex_rows[E[1]])}); use the real form")
     lumped = (energy == "cotan") if lumped is None else bool(lumped)
     if energy == "cotan":
         A, M = _cotan(form, lumped, bw, bool(complex_form))

@@ -11,7 +11,7 @@ iterations) and computes the texture coordinates (:func:`~dhlb.stripes.texture_c
 ``spacing`` is the period in mean edge lengths (scale independent).
 
 **Numbering.** Inside the result everything is in the compact numbering of ``result.mesh``
-(vertex v = input row ``mesh.vertex_labels[v]`` of V, face f = input row ``mesh.face_rows[f]`` of
+(vertex v = input row ``mesh.vertex_rows[v]`` of V, face f = input row ``mesh.face_rows[f]`` of
 F); :meth:`StripePattern.to_json` reports faces as input rows of F.
 
 Examples

@@ -377,10 +377,10 @@ def texture_coordinates(form: StripeForm, psi: ArrayLike) -> StripeTexture:
     z = mesh.per_vertex(arr, "psi").astype(np.complex128)
     bad = ~np.isfinite(z)
     if np.any(bad):
-        raise NonFiniteError(f"psi is not finite at vertex {int(mesh.vertex_labels[np.argmax(bad)])}")
+        raise NonFiniteError(f"psi is not finite at vertex {int(mesh.vertex_rows[np.argmax(bad)])}")
     zero = z == 0
     if np.any(zero):
-        raise SectionZeroError(f"psi vanishes at vertex {int(mesh.vertex_labels[np.argmax(zero)])} "
+        raise SectionZeroError(f"psi vanishes at vertex {int(mesh.vertex_rows[np.argmax(zero)])} "
                                f"({int(zero.sum())} such vertices): the stripe phase arg ψ is undefined there; "
                                "perturb ψ (an eigenvector generically has no zero at a vertex)")
     z.setflags(write=False)
