@@ -117,8 +117,35 @@ def plugin(name: str):
     return _CACHE[name]
 
 
+def mark_read_from(result, paths) -> None:
+    """Remember the files ``result`` was read from: ``save`` and ``to_html`` never write over them.
+
+    Parameters
+    ----------
+    result : Result
+        A result made by a reader (:func:`dhlb.io.read_result`); frozen dataclasses included.
+    paths : iterable of str or path-like
+        The files read (missing ones are ignored when compared).
+
+    Examples
+    --------
+    >>> class R(Result):
+    ...     pass
+    >>> r = R(); mark_read_from(r, ["a.npz", "a.json"]); r._read_from
+    ('a.npz', 'a.json')
+    """
+    object.__setattr__(result, "_read_from", tuple(os.fspath(p) for p in paths if p))
+
+
 class Result:
     """Base of the applications' results: ``to_json``, ``summary_rows``, ``save``, ``show`` and notebook display."""
+
+    _read_from: tuple = ()   # the files a reader made this result from (never written over)
+
+    def _refuse_inputs(self, path) -> None:
+        from dhlb._files import refuse_overwrite
+
+        refuse_overwrite([path], self._read_from, role="a file this result was read from")
 
     def to_json(self) -> dict:  # pragma: no cover - each result has its own
         """A JSON-ready summary of the result.
@@ -160,7 +187,10 @@ class Result:
             An extension this kind of result cannot be written as (the message lists those it can).
         OutputError
             The file cannot be written.
+        OverwriteError
+            ``path`` is a file this result was read from.
         """
+        self._refuse_inputs(path)
         return plugin("write")(self, path)
 
     def show(self, *, backend: str = "polyscope", screenshot=None, **kwargs):
@@ -209,7 +239,10 @@ class Result:
         ------
         ImportError
             plotly is not installed (the message names the extra).
+        OverwriteError
+            ``path`` is a file this result was read from.
         """
+        self._refuse_inputs(path)
         return plugin("html")(self, path, **kwargs)
 
     def _repr_png_(self) -> bytes:

@@ -12,17 +12,17 @@ import argparse
 import pytest
 
 from dhlb.cli import build_parser, main
-from dhlb.cli._common import nonempty_text, repair_choice
+from dhlb.cli._common import backend_choice, nonempty_text, repair_choice
 from dhlb.cli.field import parse_singularity
 from dhlb.io import example_path
 
 TEXT_OPTIONS = {  # (command, option) whose values are text (paths, names, specs), not numbers
-    ("conformal", "mesh"), ("conformal", "--format"), ("conformal", "--u"), ("conformal", "--backend"),
-    ("field", "mesh"), ("field", "--align"), ("field", "--backend"), ("field", "--format"),
-    ("stripes", "file"), ("stripes", "--field"), ("stripes", "--backend"), ("stripes", "--format"),
+    ("conformal", "mesh"), ("conformal", "--format"), ("conformal", "--u"),
+    ("field", "mesh"), ("field", "--align"), ("field", "--format"),
+    ("stripes", "file"), ("stripes", "--field"), ("stripes", "--format"),
     ("view", "base"), ("view", "--screenshot"), ("view", "--html"),
-    ("vortex", "mesh"), ("vortex", "--format"), ("vortex", "--backend"),
-    ("info", "file"), ("info", "--format"), ("demo", "--backend"), ("demo", "--only"),
+    ("vortex", "mesh"), ("vortex", "--format"),
+    ("info", "file"), ("info", "--format"), ("demo", "--only"),
 }
 COMMON = {"-o", "--output"}
 
@@ -73,6 +73,8 @@ def _bad_and_good(action) -> tuple[list[str], str] | None:
         return ["", "  "], "ring"
     if t is parse_singularity:
         return ["nan,0,0:1", "0,0,inf:1", "-3:1", "0:1.5", "0:x", "1,2:1", "0"], "0:1"
+    if t is backend_choice:
+        return ["bogus", "", "SUPERLU", "super lu", "auto,superlu"], "superlu"
     if t is repair_choice:
         return ["splt", "safe,none", "none,split", "3", "safe,bogus"], "safe,merge-vertices"
     return None

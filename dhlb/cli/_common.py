@@ -23,7 +23,7 @@ from dhlb.errors import DhlbError, MeshParseError, MeshRepairWarning, Unreferenc
 __all__ = ["UsageError", "add_command", "common_options", "run_command", "write_output", "resolve_input",
            "finite_float", "int_in_range", "number_tuple", "nonempty_text", "PIXEL_SIZE", "check_outputs",
            "input_paths", "usage_from", "report_table", "did_you_mean", "cli_warning", "EXIT_CODES_HELP",
-           "repair_choice", "add_repair_argument"]
+           "repair_choice", "add_repair_argument", "backend_choice", "check_output_file"]
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
 
@@ -218,6 +218,35 @@ def repair_choice(text: str) -> str:
     return text
 
 
+def backend_choice(text: str) -> str:
+    """An argparse ``type`` for ``--backend``: ``auto`` or an installed backend (``available_backends``).
+
+    An unknown name, or one whose library is not installed, is a usage error (exit 2) naming the
+    backends there are (and how to install the missing one), before any work.
+
+    Examples
+    --------
+    >>> backend_choice("superlu"), backend_choice("auto")
+    ('superlu', 'auto')
+    >>> backend_choice("bogus")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: unknown backend 'bogus'; available: [...] (or 'auto')
+    """
+    from dhlb.linalg.backends import _INSTALL, _REGISTRY, available_backends
+
+    if text == "auto":
+        return text
+    avail = available_backends()
+    if text in avail:
+        return text
+    if text in _REGISTRY:
+        hint = "; ".join(_INSTALL.get(r, f"pip install {r}") for r in _REGISTRY[text][1])
+        raise argparse.ArgumentTypeError(f"backend {text!r} is not installed ({hint}); available: {avail}")
+    raise argparse.ArgumentTypeError(f"unknown backend {text!r}; available: {avail} (or 'auto')"
+                                     f"{did_you_mean(text, [*avail, 'auto'])}")
+
+
 def add_repair_argument(parser) -> None:
     """The ``--repair`` option of the commands that read a surface mesh (``field``, ``stripes``)."""
     parser.add_argument("--repair", type=repair_choice, default="safe", metavar="WHAT",
@@ -398,6 +427,30 @@ def report_table(rows, *, timings: dict | None = None, written=None, width: int 
     return "\n".join(f"{key:<{width}} {value}" for key, value in rows)
 
 
+def check_output_file(args) -> None:
+    """Refuse (usage error, exit 2) an ``-o FILE`` that cannot be written, before the work starts.
+
+    Its folder must exist, it must not be a folder, and it must not be an input file.
+
+    Examples
+    --------
+    >>> import argparse
+    >>> check_output_file(argparse.Namespace(output="no/such/folder/x.txt"))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    dhlb.cli._common.UsageError: cannot write no/such/folder/x.txt: the folder .../no/such/folder does not exist
+    """
+    out = getattr(args, "output", None)
+    if not out or out == "-":
+        return
+    folder = os.path.dirname(os.path.abspath(out))
+    if not os.path.isdir(folder):
+        raise UsageError(f"cannot write {out}: the folder {folder} does not exist")
+    if os.path.isdir(out):
+        raise UsageError(f"cannot write {out}: it is a folder")
+    check_outputs([out], args)
+
+
 def write_output(args, text: str) -> None:
     """Write ``text`` to ``args.output`` (or stdout), ending with a newline.
 
@@ -409,7 +462,7 @@ def write_output(args, text: str) -> None:
     if not text.endswith("\n"):
         text += "\n"
     if args.output and args.output != "-":
-        check_outputs([args.output], args)
+        check_output_file(args)
         with atomic_write(args.output, "w", encoding="utf-8") as fh:
             fh.write(text)
     else:

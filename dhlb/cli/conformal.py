@@ -10,7 +10,15 @@ import os
 
 import numpy as np
 
-from dhlb.cli._common import UsageError, add_command, int_in_range, number_tuple, report_table, resolve_input
+from dhlb.cli._common import (
+    UsageError,
+    add_command,
+    backend_choice,
+    int_in_range,
+    number_tuple,
+    report_table,
+    resolve_input,
+)
 from dhlb.cli._outputs import OutputSpec, output_plan
 from dhlb.render.conformal_png import boundary_distortion, render_conformal_png
 
@@ -39,7 +47,7 @@ distortion of each tetrahedron (sigma_max / sigma_min of the deformation gradien
 _EXAMPLES = """\
   dhlb conformal solid.mesh --charge 0,0,2,1 --charge 1.5,0,0,-0.5 -o deformed   # .mesh .vtk .json .png
   dhlb conformal solid.vtk --u u.npy -o out.vtk --json                          # out.vtk only
-  dhlb conformal --ball 6 -o ball.mesh           # a tetrahedralised ball, default charge"""
+  dhlb conformal --ball 6 -o ball                # a tetrahedralised ball, default charge: dhlb view ball"""
 
 OUTPUTS = OutputSpec("conformal", (".mesh", ".vtk", ".json", ".png"), {
     ".mesh": "the deformed tets (Medit)",
@@ -64,7 +72,7 @@ def register(subparsers) -> None:
                    help="a point charge at (X, Y, Z) with charge Q (repeatable; default: one charge scaled to "
                         "the mesh, dhlb.conformal.default_charge)")
     p.add_argument("--u", dest="u_file", metavar="FILE.npy", help="one value of u per mesh vertex")
-    p.add_argument("--backend", metavar="B", help="linear-algebra backend (default: dhlb's)")
+    p.add_argument("--backend", type=backend_choice, metavar="B", help="linear-algebra backend (default: dhlb's)")
     p.add_argument("--no-png", action="store_true", help="with -o: do not render the PNG picture")
     p.set_defaults(func=run)
 

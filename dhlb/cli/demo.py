@@ -14,7 +14,7 @@ import sys
 import threading
 import time
 
-from dhlb.cli._common import UsageError, add_command
+from dhlb.cli._common import UsageError, add_command, backend_choice
 
 __all__ = ["NAME", "SUMMARY", "register", "run"]
 
@@ -39,7 +39,8 @@ def register(subparsers) -> None:
     """Add the ``demo`` parser to ``subparsers``."""
     p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
     p.set_defaults(output="dhlb-demo")
-    p.add_argument("--backend", default=None, metavar="NAME", help="linear-algebra backend (default: automatic)")
+    p.add_argument("--backend", type=backend_choice,
+                   default=None, metavar="NAME", help="linear-algebra backend (default: automatic)")
     p.add_argument("--only", default=None, metavar="LIST",
                    help="comma-separated subset of: fields, aligned, boundary, stripes, vortex, conformal")
     p.set_defaults(func=run)

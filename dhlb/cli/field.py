@@ -22,6 +22,7 @@ from dhlb.cli._common import (
     UsageError,
     add_command,
     add_repair_argument,
+    backend_choice,
     did_you_mean,
     finite_float,
     int_in_range,
@@ -93,7 +94,7 @@ def register(subparsers) -> None:
                    help="prescribe index K/n at a face (row of the file) or at the face nearest to a point; "
                         "repeatable; the result has exactly these singularities (write --singularity=-1,0,0:1 "
                         "when x is negative)")
-    p.add_argument("--backend", default=None,
+    p.add_argument("--backend", type=backend_choice, default=None,
                    help="superlu, cholmod, cholespy, amg-lobpcg (default: by size, memory); petsc: distributed "
                         "over the ranks of mpirun (docs/mpi.md)")
     add_repair_argument(p)
@@ -255,6 +256,10 @@ def run(args) -> int:
         return _run_distributed(args, fmt, plan, t0)
     V, F = read_surface(args.mesh, fmt)
     t1 = time.perf_counter()
+    for where, k in sing:   # a face number is checked against the file before any work (a usage error)
+        if isinstance(where, int) and where >= len(F):
+            raise UsageError(f"argument --singularity: {where}:{k}: face {where} is out of range; {args.mesh} has "
+                             f"{len(F)} faces (rows 0 .. {len(F) - 1})")
     if args.singularity:
         res = prescribed_field(V, F, args.n, sing, options=FieldOptions(reorient=args.reorient, repair=args.repair),
                                solver=args.backend)

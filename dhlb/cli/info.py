@@ -6,7 +6,7 @@ import json
 
 import numpy as np
 
-from dhlb.cli._common import UsageError, add_command, report_table, resolve_input, write_output
+from dhlb.cli._common import UsageError, add_command, check_output_file, report_table, resolve_input, write_output
 from dhlb.errors import DhlbError, EmptyComplexError
 
 __all__ = ["NAME", "SUMMARY", "register", "run", "describe", "format_report"]
@@ -67,6 +67,7 @@ def run(args) -> int:
         raise UsageError("give either FILE or --example, not both")
     path = args.file if args.file is not None else example_path(args.example or "torus.obj")
     fmt = resolve_input(path, args.fmt)
+    check_output_file(args)   # before the work: a missing folder is a usage error (exit 2)
     info = describe(load(path, fmt), homology=not args.no_homology)
     write_output(args, json.dumps(info, indent=2) if args.json else format_report(info))
     return 0

@@ -12,6 +12,7 @@ from dhlb.cli._common import (
     UsageError,
     add_command,
     add_repair_argument,
+    backend_choice,
     finite_float,
     int_in_range,
     resolve_input,
@@ -87,7 +88,8 @@ def register(subparsers) -> None:
     p.add_argument("--iterations", type=int_in_range(0, MAX_ITERATIONS), default=None, metavar="K",
                    help="unit: maximum number of steps (default 30); power: number of steps (default 20)")
     p.add_argument("--seed", type=int_in_range(0, 2**63 - 1), default=None, help="random start of --section power")
-    p.add_argument("--backend", default=None, metavar="B", help="factorization backend (default superlu)")
+    p.add_argument("--backend", type=backend_choice,
+                   default=None, metavar="B", help="factorization backend (default superlu)")
     p.add_argument("--orthogonal", action="store_true", help="also the pattern of the field turned by 90 degrees")
     p.add_argument("--format", dest="fmt", metavar="FMT", help="mesh format if the extension does not say it")
     add_repair_argument(p)

@@ -44,7 +44,7 @@ _EXAMPLES = """\
   dhlb view spot --screenshot spot-view.png --back
   dhlb stripes spot.obj --spacing 6 -o spot-stripes && dhlb view spot-stripes --screenshot s.png
   dhlb vortex --box 16 --velocity linked-rings -o rings.ply && dhlb view rings --screenshot r.png
-  dhlb conformal --ball 6 -o ball.mesh && dhlb view ball --screenshot b.png
+  dhlb conformal --ball 6 -o ball && dhlb view ball --screenshot b.png
   dhlb view spot --html spot.html          # open spot.html in any browser
   dhlb demo && dhlb view dhlb-demo/field-n4-s+0"""
 

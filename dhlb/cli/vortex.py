@@ -14,6 +14,7 @@ import numpy as np
 from dhlb.cli._common import (
     UsageError,
     add_command,
+    backend_choice,
     did_you_mean,
     finite_float,
     int_in_range,
@@ -88,7 +89,8 @@ def register(subparsers) -> None:
                    help="core radius of the demo fields (default 0.08 rho)")
     p.add_argument("--order", type=int_in_range(1, 64), default=4, metavar="Q",
                    help="Gauss-Legendre nodes per edge (default 4)")
-    p.add_argument("--backend", metavar="B", help="linear-algebra backend of the eigen solver (default: dhlb's)")
+    p.add_argument("--backend", type=backend_choice,
+                   metavar="B", help="linear-algebra backend of the eigen solver (default: dhlb's)")
     p.add_argument("--tol", type=finite_float(0, 1, low_open=True, high_open=True), default=1e-9, metavar="TOL",
                    help="eigen solver tolerance (default 1e-9)")
     p.add_argument("--no-png", action="store_true", help="with -o: do not render the PNG picture")

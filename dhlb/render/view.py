@@ -67,6 +67,19 @@ def _has_display() -> bool:
         os.uname().sysname == "Darwin"
 
 
+_NO_INI = ""   # kept alive here: ImGui keeps the pointer (the empty string: nothing is saved)
+
+
+def _no_imgui_ini() -> None:
+    """Keep ImGui from writing ``imgui.ini`` into the working folder (window layout we never read back)."""
+    try:
+        import polyscope.imgui as psim
+
+        psim.GetIO().IniFilename = _NO_INI
+    except Exception:  # an older polyscope without these bindings: the file is harmless
+        pass
+
+
 def _init(ps, headless: bool) -> None:
     """Initialize polyscope once per process (headless EGL when asked or when there is no display)."""
     if _STATE.get("backend"):
@@ -92,6 +105,7 @@ def _init(ps, headless: bool) -> None:
         raise ViewerUnavailableError(f"polyscope could not start {what}: {exc}. Headless rendering needs the EGL "
                                      "and Mesa libraries (Debian/Ubuntu: apt-get install libegl1 libegl-mesa0 "
                                      "libgl1-mesa-dri); a window needs a display") from None
+    _no_imgui_ini()
     ps.set_program_name("dhlb")
     ps.set_ground_plane_mode("none")
 
