@@ -140,12 +140,7 @@ def mark_read_from(result, paths) -> None:
 class Result:
     """Base of the applications' results: ``to_json``, ``summary_rows``, ``save``, ``show`` and notebook display."""
 
-    _read_from: tuple = ()   # the files a reader made this result from (never written over)
-
-    def _refuse_inputs(self, path) -> None:
-        from dhlb._files import refuse_overwrite
-
-        refuse_overwrite([path], self._read_from, role="a file this result was read from")
+    _read_from: tuple = ()   # the files a reader made this result from: the writers never replace them
 
     def to_json(self) -> dict:  # pragma: no cover - each result has its own
         """A JSON-ready summary of the result.
@@ -190,7 +185,6 @@ class Result:
         OverwriteError
             ``path`` is a file this result was read from.
         """
-        self._refuse_inputs(path)
         return plugin("write")(self, path)
 
     def show(self, *, backend: str = "polyscope", screenshot=None, **kwargs):
@@ -242,7 +236,6 @@ class Result:
         OverwriteError
             ``path`` is a file this result was read from.
         """
-        self._refuse_inputs(path)
         return plugin("html")(self, path, **kwargs)
 
     def _repr_png_(self) -> bytes:

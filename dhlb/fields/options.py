@@ -13,7 +13,12 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Any
 
+from dhlb._deprecation import check_choice, check_flag
+
 __all__ = ["FieldOptions"]
+
+COMPONENTS = ("all", "largest")
+"""The values of ``components`` (:func:`dhlb.mesh.validate_surface`)."""
 
 
 @dataclass(frozen=True)
@@ -27,11 +32,12 @@ class FieldOptions:
         seed's choice). For strongly aligned fields (λ_t ≪ 0) the consistent mass makes
         ``(A − λ_t M)⁻¹ M`` oscillate (M is not an M-matrix): spurious ±1 pairs appear near
         the guidance; the lumped mass avoids them. Not used by :func:`~dhlb.fields.prescribed_field`.
+        Every flag of this class is ``True`` or ``False`` (a numpy bool counts; a truthy string such as
+        ``"no"`` does not).
     reorient : bool
         Passed to :func:`dhlb.mesh.validate_surface`: fix inconsistently oriented faces.
     components : {"all", "largest"}
-        Passed to :func:`dhlb.mesh.validate_surface` (which checks it): keep every connected
-        component, or only the largest.
+        Passed to :func:`dhlb.mesh.validate_surface`: keep every connected component, or only the largest.
     progress : bool
         Report the phases (setup, eigen solve, indices) on stderr with tqdm when the run is expected
         to take more than about two seconds (``pip install 'dhlb[progress]'``); the CLI passes
@@ -48,7 +54,9 @@ class FieldOptions:
     Raises
     ------
     InvalidParameterError
-        An unknown ``repair``.
+        ``lumped``, ``reorient`` or ``progress`` not a bool (``True``/``False``, numpy bools included);
+        ``components`` not ``"all"`` or ``"largest"``; an unknown ``repair``. Checked at construction,
+        and again by :meth:`replace`.
 
     Examples
     --------
@@ -66,13 +74,18 @@ class FieldOptions:
     progress: bool = False
     repair: Any = "safe"
 
+    _EXAMPLE = "lumped=True"   # the example of a right call (dhlb._deprecation.check_option_group)
+
     def __post_init__(self) -> None:
         from dhlb.mesh.repair import RepairOptions
 
+        for name in ("lumped", "reorient", "progress"):
+            check_flag(getattr(self, name), f"FieldOptions.{name}")
+        check_choice(self.components, "FieldOptions.components", COMPONENTS)
         RepairOptions.parse(self.repair)   # an unknown repair is an error here, not at the first mesh
 
     def replace(self, **changes: Any) -> FieldOptions:
-        """A copy with some fields changed (:func:`dataclasses.replace`).
+        """A copy with some fields changed (:func:`dataclasses.replace`; validated again).
 
         Parameters
         ----------

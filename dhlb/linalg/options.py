@@ -18,11 +18,33 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Any
 
-import numpy as np
-
-from dhlb.errors import InvalidParameterError
+from dhlb._deprecation import check_choice, check_integer, check_number, did_you_mean
+from dhlb.errors import InvalidParameterError, InvalidTypeError
 
 __all__ = ["SolverOptions", "solver_options"]
+
+FACTOR_SHIFTS = ("auto", "floor")
+"""The values of :attr:`SolverOptions.factor_shift`."""
+
+
+def _check_backend(backend: Any) -> None:
+    """Refuse a backend that is neither None, a registered name (or ``"auto"``) nor a backend object."""
+    if backend is None or (hasattr(backend, "factorize") and hasattr(backend, "name")):
+        return
+    from dhlb.linalg.backends import _REGISTRY, available_backends
+
+    names = [*_REGISTRY, "auto"]
+    if not isinstance(backend, str):
+        raise InvalidTypeError(
+            f"SolverOptions.backend must be a backend name ({', '.join(map(repr, names))}), None, or a backend "
+            f"object with a `name` and a `factorize(K, positive_definite=False)` method returning an object with "
+            f"`solve(B)`; got {backend!r} ({type(backend).__name__})")
+    if backend not in names:
+        avail = available_backends()
+        missing = [n for n in _REGISTRY if n not in avail]
+        also = f"; registered but not installed: {', '.join(map(repr, missing))}" if missing else ""
+        raise InvalidParameterError(f"SolverOptions.backend: unknown backend {backend!r}; available: {avail} "
+                                    f"(or 'auto'){also}{did_you_mean(backend, names)}")
 
 
 @dataclass(frozen=True)
@@ -34,14 +56,18 @@ class SolverOptions:
     backend : str or backend object, optional
         ``"superlu"``, ``"cholmod"``, ``"cholespy"``, ``"amg-lobpcg"`` (if installed), a backend
         object, or ``None``/``"auto"``: chosen by size, sparsity and availability
-        (:func:`dhlb.linalg.select_backend`).  ``amg-lobpcg`` needs ``sigma=None``.
-    tol : float, optional
+        (:func:`dhlb.linalg.select_backend`).  ``amg-lobpcg`` needs ``sigma=None``.  A name must be
+        registered (:func:`dhlb.linalg.register_backend`; checked here); whether it is installed is
+        checked when the solve resolves it (:func:`dhlb.linalg.get_backend`).  A backend object has a
+        ``name`` and a ``factorize(K, positive_definite=False)`` method.
+    tol : float in (0, 1), optional
         Bound on the normwise backward error of each eigenpair; default (``None``)
-        :func:`dhlb.linalg.default_tol` ``(n)``, or the application's own default.
-    maxiter : int
+        :func:`dhlb.linalg.default_tol` ``(n)``, or the application's own default.  Finite, > 0, and
+        < 1: the backward error of any vector is at most about 1, so ``tol >= 1`` would accept anything.
+    maxiter : int >= 1
         Maximal number of applications of the shifted inverse (direct backends) or of LOBPCG
         iterations (``amg-lobpcg``).
-    block_size : int, optional
+    block_size : int >= 1, optional
         Largest Lanczos basis before a thick restart (default ``max(2k + 1, k + 24)``),
         or the LOBPCG block for ``amg-lobpcg``; raise it above the size of a cluster of nearly
         equal eigenvalues.  Must be at least the number ``k`` of wanted pairs (checked by the solve).
@@ -49,14 +75,20 @@ class SolverOptions:
         Where the factorization is placed when ``sigma`` is not given: ``"auto"`` lets the solver
         choose; ``"floor"`` factorizes ``A + εM`` (``σ = −ε``), so that ``EigenResult.factor``
         approximates ``A⁻¹`` — for callers that go on iterating with ``A⁻¹``.
-    seed : int
+    seed : int >= 0
         Seed of the random start vectors (when ``v0`` does not give them all); with one BLAS thread
-        every backend is then bitwise reproducible run to run.
+        every backend is then bitwise reproducible run to run.  Passed to
+        :func:`numpy.random.default_rng`, which refuses negative seeds.
 
     Raises
     ------
     InvalidParameterError
-        ``tol``, ``maxiter``, ``block_size``, ``factor_shift`` or ``seed`` out of range.
+        ``tol``, ``maxiter``, ``block_size``, ``factor_shift`` or ``seed`` of the wrong type or out of
+        range (integers are Python or numpy integers, not bools); a ``backend`` name that is not
+        registered.  Checked at construction, and again by :meth:`replace`.
+    InvalidTypeError
+        A ``backend`` that is neither None, a string nor a backend object (also a :class:`TypeError`,
+        as the solve raised before).
 
     Examples
     --------
@@ -68,7 +100,7 @@ class SolverOptions:
     >>> SolverOptions(maxiter=0)
     Traceback (most recent call last):
     ...
-    dhlb.errors.InvalidParameterError: maxiter must be a positive integer, got 0
+    dhlb.errors.InvalidParameterError: SolverOptions.maxiter must be an integer >= 1, got 0
     """
 
     backend: Any = None
@@ -78,21 +110,19 @@ class SolverOptions:
     factor_shift: str = "auto"
     seed: int = 0
 
+    _SHORTHAND = ((str,), "a backend name such as 'superlu'")   # solver="superlu" (solver_options)
+    _EXAMPLE = "tol=1e-10"   # the example of a right call (dhlb._deprecation.check_option_group)
+
     def __post_init__(self) -> None:
-        tol = self.tol
-        if tol is not None and not (isinstance(tol, (int, float, np.floating)) and not isinstance(tol, bool)
-                                    and np.isfinite(tol) and tol > 0):
-            raise InvalidParameterError(f"tol must be a positive number, got {tol!r}")
-        if not (isinstance(self.maxiter, (int, np.integer)) and not isinstance(self.maxiter, bool)
-                and self.maxiter >= 1):
-            raise InvalidParameterError(f"maxiter must be a positive integer, got {self.maxiter!r}")
-        if not (isinstance(self.seed, (int, np.integer)) and not isinstance(self.seed, bool) and self.seed >= 0):
-            raise InvalidParameterError(f"seed must be a non-negative integer, got {self.seed!r}")
-        if self.factor_shift not in ("auto", "floor"):
-            raise InvalidParameterError(f"factor_shift must be 'auto' or 'floor', got {self.factor_shift!r}")
-        bs = self.block_size
-        if bs is not None and not (isinstance(bs, (int, np.integer)) and not isinstance(bs, bool) and bs >= 1):
-            raise InvalidParameterError(f"block_size must be a positive integer, got {bs!r}")
+        _check_backend(self.backend)
+        if self.tol is not None:
+            check_number(self.tol, "SolverOptions.tol", "a positive number below 1 (a relative backward error), "
+                         "or None", lambda x: 0 < x < 1)
+        check_integer(self.maxiter, "SolverOptions.maxiter", 1)
+        if self.block_size is not None:
+            check_integer(self.block_size, "SolverOptions.block_size", 1)
+        check_choice(self.factor_shift, "SolverOptions.factor_shift", FACTOR_SHIFTS)
+        check_integer(self.seed, "SolverOptions.seed", 0, why="numpy refuses negative seeds")
 
     def replace(self, **changes: Any) -> SolverOptions:
         """A copy with some fields changed (:func:`dataclasses.replace`; validated again).
@@ -131,7 +161,7 @@ def solver_options(solver: SolverOptions | str | None, default: SolverOptions | 
     Raises
     ------
     InvalidParameterError
-        ``solver`` is neither None, a string nor a :class:`SolverOptions`.
+        ``solver`` is neither None, a string nor a :class:`SolverOptions`, or names an unknown backend.
 
     Examples
     --------
@@ -144,5 +174,6 @@ def solver_options(solver: SolverOptions | str | None, default: SolverOptions | 
     if isinstance(solver, str):
         return default.replace(backend=solver)
     if not isinstance(solver, SolverOptions):
-        raise InvalidParameterError(f"solver must be a SolverOptions, a backend name or None, got {solver!r}")
+        hint = f": write solver=SolverOptions(**{solver!r})" if isinstance(solver, dict) else ""
+        raise InvalidParameterError(f"solver must be a SolverOptions, a backend name or None, got {solver!r}{hint}")
     return solver

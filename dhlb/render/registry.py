@@ -161,9 +161,16 @@ def to_html(result, path: str | os.PathLike[str], **kwargs) -> str:
     -------
     str
         The path written.
+
+    Raises
+    ------
+    OverwriteError
+        ``path`` is a file the result was read from (:func:`dhlb._result.mark_read_from`).
     """
+    from dhlb._files import refuse_overwrite
     from dhlb.render.web import to_html as _to_html
 
+    refuse_overwrite([path], getattr(result, "_read_from", ()), role="a file this result was read from")
     return _to_html(result, path, **kwargs)
 
 

@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from dhlb._deprecation import check_choice, check_flag, check_integer, check_number
 from dhlb.errors import InvalidParameterError
 from dhlb.stripes.energy import ENERGIES
 
@@ -24,6 +25,12 @@ __all__ = ["SECTIONS", "UNIT_RTOL", "SectionOptions", "StripeOptions"]
 
 SECTIONS = ("unit", "eigenvector", "power")
 """The kinds of section ψ a stripe pattern can use (:class:`SectionOptions`)."""
+METHODS = ("intrinsic", "extrinsic")
+"""How ω̂ is computed (:func:`dhlb.stripes.stripe_form`)."""
+COMPONENTS = ("all", "largest")
+"""The values of ``components`` (:func:`dhlb.mesh.validate_surface`)."""
+MAX_ITERATIONS = 100_000
+"""The most steps of ``section="unit"`` or ``"power"`` (one back-solve each)."""
 UNIT_RTOL = 1e-3
 """Default step tolerance of ``section="unit"``: stop when the iterate moved by less than this (relative,
 norm of diag(M): the RMS phase change in radians) in a step, and less than in the step before."""
@@ -47,26 +54,29 @@ class SectionOptions:
           uniformly random start (``seed``), for reproducing published figures.
     iterations : int, optional
         ``"unit"``: the maximum number of steps (default 30; 0 = the normalized eigenvector);
-        ``"power"``: the number of steps (default 20). At most 100000 (one back-solve each).
-    seed : int or numpy Generator, optional
+        ``"power"``: the number of steps (default 20; at least 1). At most 100000 (one back-solve each).
+        An integer (not a bool).
+    seed : int >= 0 or numpy Generator, optional
         Random start of ``"power"``; for ``"unit"`` the seed of the small phase perturbation of the
-        start (default 0, deterministic).
-    unit_tol : float
+        start (default 0, deterministic). An integer seed is passed to :func:`numpy.random.default_rng`,
+        which refuses negative ones.
+    unit_tol : float > 0
         ``"unit"`` stops when the iterate moved by less than this in one step (relative, in the norm of
-        ``diag(M)``: the RMS phase change in radians) and less than in the step before.
+        ``diag(M)``: the RMS phase change in radians) and less than in the step before. Finite.
 
     Raises
     ------
     InvalidParameterError
         ``kind`` not one of :data:`SECTIONS`, ``iterations`` not an integer in range, ``unit_tol`` not a
-        positive number, ``seed`` neither an integer nor a Generator.
+        finite positive number, ``seed`` neither an integer >= 0 nor a Generator. Checked at construction,
+        and again by :meth:`replace`.
 
     Examples
     --------
-    >>> SectionOptions(kind="power", iterations=0)
+    >>> SectionOptions(kind="power", iterations=0)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    dhlb.errors.InvalidParameterError: iterations must be between 1 and 100000 (one back-solve each), got 0
+    dhlb.errors.InvalidParameterError: SectionOptions.iterations must be between 1 and 100000 (...) ..., got 0
     """
 
     kind: str = "unit"
@@ -74,25 +84,26 @@ class SectionOptions:
     seed: Any = None
     unit_tol: float = UNIT_RTOL
 
+    _EXAMPLE = "kind='eigenvector'"   # the example of a right call (dhlb._deprecation.check_option_group)
+
     def __post_init__(self) -> None:
-        if self.kind not in SECTIONS:
-            raise InvalidParameterError(f"section must be one of {SECTIONS}, got {self.kind!r}")
+        check_choice(self.kind, "SectionOptions.kind: the section", SECTIONS)
         iterations = self.iterations
         if iterations is not None:
-            if isinstance(iterations, (bool, np.bool_)) or not isinstance(iterations, numbers.Integral):
-                raise InvalidParameterError(f"iterations must be an integer, got {iterations!r}")
+            check_integer(iterations, "SectionOptions.iterations", 0)
             low = 1 if self.kind == "power" else 0
-            if not low <= int(iterations) <= 100_000:
-                raise InvalidParameterError(f"iterations must be between {low} and 100000 (one back-solve each), "
-                                            f"got {iterations!r}")
-        try:
-            ok = bool(np.isfinite(self.unit_tol) and self.unit_tol > 0)
-        except TypeError:
-            ok = False
-        if not ok:
-            raise InvalidParameterError(f"unit_tol must be a positive number, got {self.unit_tol!r}")
-        if self.seed is not None and not isinstance(self.seed, (numbers.Integral, np.random.Generator)):
-            raise InvalidParameterError(f"seed must be an integer or a numpy Generator, got {self.seed!r}")
+            if not low <= int(iterations) <= MAX_ITERATIONS:
+                raise InvalidParameterError(f"SectionOptions.iterations must be between {low} and {MAX_ITERATIONS} "
+                                            f"(one back-solve each) for kind={self.kind!r}, got {iterations!r}")
+        check_number(self.unit_tol, "SectionOptions.unit_tol", "a positive number (finite)", lambda x: x > 0)
+        seed = self.seed
+        if seed is not None and not isinstance(seed, np.random.Generator):
+            if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, numbers.Integral):
+                raise InvalidParameterError(f"SectionOptions.seed must be an integer or a numpy Generator, "
+                                            f"got {seed!r}")
+            if seed < 0:
+                raise InvalidParameterError(f"SectionOptions.seed must be >= 0 (numpy refuses negative seeds), "
+                                            f"got {seed!r}")
 
     def replace(self, **changes: Any) -> SectionOptions:
         """A copy with some fields changed (:func:`dataclasses.replace`; validated again).
@@ -125,16 +136,19 @@ class StripeOptions:
         :mod:`dhlb.stripes.energy`).
     orthogonal : bool
         Also compute the pattern of the directions turned by 90° (``N × X``), as ``result.orthogonal``.
+        Every flag of this class is ``True`` or ``False`` (a numpy bool counts, a truthy string does not).
     method : {"intrinsic", "extrinsic"}
-        How ω̂ is computed (:func:`dhlb.stripes.stripe_form`, which checks it).
+        How ω̂ is computed (:func:`dhlb.stripes.stripe_form`).
     lumped : bool, optional
-        See :func:`dhlb.stripes.energy.stripe_matrices`.
-    branch_weight : float
-        See :func:`dhlb.stripes.energy.stripe_matrices`.
+        Lumped (diagonal) mass; ``None`` (default): lumped for ``"cotan"``, consistent for ``"fem"``
+        (:func:`dhlb.stripes.energy.stripe_matrices`).
+    branch_weight : float >= 0
+        Factor of the branch triangles' contribution to the cotan weights (0: removed, as in the seed;
+        :func:`dhlb.stripes.energy.stripe_matrices`). Finite.
     reorient : bool
         Passed to :func:`dhlb.mesh.validate_surface`.
     components : {"all", "largest"}
-        Passed to :func:`dhlb.mesh.validate_surface` (which checks it).
+        Passed to :func:`dhlb.mesh.validate_surface`.
     warn_aliasing : bool
         Warn when stripes are narrower than two edges (the result stays correct, §4.3).
     progress : bool
@@ -149,8 +163,10 @@ class StripeOptions:
     Raises
     ------
     InvalidParameterError
-        ``energy`` not one of ``"cotan"``, ``"fem"``; ``section`` not a :class:`SectionOptions`; an unknown
-        ``repair``.
+        ``energy`` not one of ``"cotan"``, ``"fem"``; ``method`` not one of ``"intrinsic"``, ``"extrinsic"``;
+        ``components`` not ``"all"`` or ``"largest"``; a flag not a bool (``lumped``: or None);
+        ``branch_weight`` not a finite number >= 0; ``section`` not a :class:`SectionOptions`; an unknown
+        ``repair``. Checked at construction, and again by :meth:`replace`.
 
     Examples
     --------
@@ -175,14 +191,22 @@ class StripeOptions:
     section: SectionOptions = field(default_factory=SectionOptions)
     repair: Any = "safe"
 
+    _EXAMPLE = "energy='fem'"   # the example of a right call (dhlb._deprecation.check_option_group)
+
     def __post_init__(self) -> None:
         from dhlb.mesh.repair import RepairOptions
 
-        RepairOptions.parse(self.repair)
-        if self.energy not in ENERGIES:
-            raise InvalidParameterError(f"energy must be one of {ENERGIES}, got {self.energy!r}")
+        check_choice(self.energy, "StripeOptions.energy", ENERGIES)
+        check_choice(self.method, "StripeOptions.method", METHODS)
+        check_choice(self.components, "StripeOptions.components", COMPONENTS)
+        for name in ("orthogonal", "reorient", "warn_aliasing", "progress"):
+            check_flag(getattr(self, name), f"StripeOptions.{name}")
+        check_flag(self.lumped, "StripeOptions.lumped", optional=True)
+        check_number(self.branch_weight, "StripeOptions.branch_weight", "a finite number >= 0", lambda x: x >= 0)
         if not isinstance(self.section, SectionOptions):
-            raise InvalidParameterError(f"section must be a SectionOptions, got {self.section!r}")
+            raise InvalidParameterError(f"StripeOptions.section must be a SectionOptions, e.g. "
+                                        f"section=SectionOptions(kind='power'), got {self.section!r}")
+        RepairOptions.parse(self.repair)
 
     def replace(self, **changes: Any) -> StripeOptions:
         """A copy with some fields changed (:func:`dataclasses.replace`; validated again).

@@ -13,10 +13,15 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Any
 
-from dhlb.errors import InvalidParameterError
-from dhlb.vortex.velocity import DEFAULT_ORDER, gauss_legendre
+from dhlb._deprecation import check_choice, check_integer
+from dhlb.vortex.velocity import DEFAULT_ORDER, MAX_ORDER
 
 __all__ = ["VortexOptions"]
+
+PLACEMENTS = ("balanced", "vertex")
+"""The values of :attr:`VortexOptions.placement` (:func:`~dhlb.vortex.face_zeros`)."""
+ORIENTATIONS = ("fix", "require")
+"""The values of :attr:`VortexOptions.orientation` (:func:`~dhlb.mesh.check_tet_mesh`)."""
 
 
 @dataclass(frozen=True)
@@ -25,9 +30,10 @@ class VortexOptions:
 
     Parameters
     ----------
-    order : int >= 1
+    order : int in 1 .. 64
         Gauss–Legendre nodes per edge for a callable velocity (exact for polynomials of degree
-        ``2·order − 1`` along the edge; at most 64).
+        ``2·order − 1`` along the edge; at most 64: :func:`~dhlb.vortex.velocity.gauss_legendre` builds an
+        ``order × order`` matrix). A Python or numpy integer, not a bool.
     placement : {"balanced", "vertex"}
         Local gauge in which the zero on a crossed triangle is interpolated
         (:func:`~dhlb.vortex.face_zeros`).
@@ -37,26 +43,27 @@ class VortexOptions:
     Raises
     ------
     InvalidParameterError
-        Bad ``order`` (1 .. 64), ``placement`` or ``orientation``.
+        Bad ``order`` (an integer in 1 .. 64), ``placement`` or ``orientation``. Checked at construction,
+        and again by :meth:`replace`.
 
     Examples
     --------
     >>> VortexOptions(placement="middle")
     Traceback (most recent call last):
     ...
-    dhlb.errors.InvalidParameterError: placement must be one of 'balanced', 'vertex', got 'middle'
+    dhlb.errors.InvalidParameterError: VortexOptions.placement must be one of 'balanced', 'vertex', got 'middle'
     """
 
     order: int = DEFAULT_ORDER
     placement: str = "balanced"
     orientation: str = "fix"
 
+    _EXAMPLE = "order=6"   # the example of a right call (dhlb._deprecation.check_option_group)
+
     def __post_init__(self) -> None:
-        gauss_legendre(self.order)  # integer in 1 .. MAX_ORDER
-        for name, value, allowed in (("placement", self.placement, ("balanced", "vertex")),
-                                     ("orientation", self.orientation, ("fix", "require"))):
-            if not isinstance(value, str) or value not in allowed:
-                raise InvalidParameterError(f"{name} must be one of {', '.join(map(repr, allowed))}, got {value!r}")
+        check_integer(self.order, "VortexOptions.order", 1, MAX_ORDER, why="Gauss-Legendre nodes per edge")
+        check_choice(self.placement, "VortexOptions.placement", PLACEMENTS)
+        check_choice(self.orientation, "VortexOptions.orientation", ORIENTATIONS)
 
     def replace(self, **changes: Any) -> VortexOptions:
         """A copy with some fields changed (:func:`dataclasses.replace`; validated again).
