@@ -106,11 +106,14 @@ def distributed_direction_field(V, F=None, n: int = 1, s: float = 0.0, *, option
     >>> ok
     True
     """
+    from dhlb._deprecation import check_option_group
     from dhlb.linalg.distributed import scatter_values
     from dhlb.linalg.distributed_eigen import distributed_eigenpairs
     from dhlb.mesh.distribute import distribute_surface, gather_cells, gather_owned, parallel_report, world
 
     comm = world() if comm is None else comm
+    if options is not None:
+        check_option_group("distributed_direction_field", "options", options, FieldOptions())
     options = FieldOptions() if options is None else options
     solver = solver_options(solver)
     s = check_s(s)

@@ -92,6 +92,10 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
     """
     (camera,) = fold_deprecated_kwargs("render_conformal_png", deprecated,
                                        ("camera", camera, CONFORMAL_CAMERA, _CAMERA))
+    if style is not None:
+        from dhlb._deprecation import check_option_group
+
+        check_option_group("render_conformal_png", "style", style, ConformalStyle())
     style = ConformalStyle() if style is None else style
     Figure, FigureCanvasAgg, PolyCollection = _matplotlib()
     from matplotlib import colormaps

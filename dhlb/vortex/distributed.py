@@ -89,6 +89,7 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     UnresolvedFluxWarning
         Some triangle has ``|Ω| > π`` (rank 0 names the worst one).
     """
+    from dhlb._deprecation import check_option_group
     from dhlb.fem import bundle_matrices
     from dhlb.geometry import EuclideanComplex
     from dhlb.linalg.distributed import scatter_values
@@ -97,6 +98,8 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     from dhlb.vortex.stitch import filament_pieces, stitch_pieces
 
     comm = world() if comm is None else comm
+    if options is not None:
+        check_option_group("distributed_vortex_filaments", "options", options, VortexOptions())
     options = VortexOptions() if options is None else options
     solver = solver_options(solver)
     tol = solver.tol if solver.tol is not None else DEFAULT_TOL
