@@ -312,7 +312,10 @@ _OPTIONS = {
     "vortex": ["--box", "--hbar", "--circulation", "--core", "--order", "--tol", "--velocity", "--format",
                "--backend", "-o"],
     "demo": ["--only", "--backend"],
-    "field": ["--n", "--s", "--lambda", "--align", "--format", "--backend"],
+    "field": ["--n", "--s", "--lambda", "--align", "--format", "--backend", "--repair", "--singularity"],
+    "stripes": ["--spacing", "--n", "--iterations", "--seed", "--backend", "--repair", "--size", "--level",
+                "--section", "--energy"],
+    "conformal": ["--ball", "--charge", "--backend", "-o"],
 }
 _FLAGS = {"--no-homology", "--json", "--no-png", "--reorient", "--quiet", "--debug"}
 
@@ -322,11 +325,15 @@ def cli_argv(draw):
     """A dhlb command line: a command, its input, 1-3 options with hostile values."""
     command = draw(st.sampled_from(sorted(_OPTIONS)))
     argv = [command]
-    if command in ("info", "field"):
+    if command in ("info", "field", "stripes"):
         argv.append(draw(st.sampled_from(["oct.obj", "oct.off", "oct-le.ply", "ball.mesh", "cx.txt",
                                           "missing.obj", "", "oct.stl", "."])))
     if command == "vortex":
         argv += ["--box", draw(st.sampled_from(["2", "3"]))]
+    if command == "stripes":
+        argv += ["--spacing", draw(st.sampled_from(["4", "6"])), "--no-png", "--no-isolines"]
+    if command == "conformal":
+        argv += ["--ball", draw(st.sampled_from(["1", "2"])), "--no-png"]
     if command == "demo":
         argv += ["-o", "demo-out"]
     for _ in range(draw(st.integers(1, 3))):

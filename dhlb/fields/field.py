@@ -37,6 +37,7 @@ import warnings
 import numpy as np
 
 from dhlb._deprecation import fold_deprecated_kwargs
+from dhlb._memory_errors import check_memory, translate_memory_errors
 from dhlb.errors import DhlbWarning, InvalidParameterError, ShapeError
 from dhlb.fields.directions import direction_vectors, field_indices
 from dhlb.fields.energy import _tangent, check_s, energy_matrices
@@ -116,6 +117,68 @@ def _sub(S, idx):
     return S[idx][:, idx]
 
 
+DIRECTION_BYTES = 128
+"""Peak bytes per vertex and direction of the n directions of a field (measured 106–112 B, rounded up)."""
+FIELD_BYTES_PER_FACE = 3_500
+"""Peak bytes per face of :func:`direction_field` (measured 2.7–3.4 kB at 20k … 330k faces), for messages."""
+
+
+def _vertex_rows(V) -> int:
+    """The number of vertices of ``V`` (rows of an array, or of a mesh / tangent bundle), 0 if unknown."""
+    mesh = getattr(V, "mesh", V)
+    if hasattr(mesh, "n_vertices"):
+        return int(mesh.n_vertices)
+    try:
+        return int(np.shape(V)[0])
+    except (TypeError, ValueError, IndexError):
+        return 0
+
+
+def check_symmetry_memory(n: int, V) -> int:
+    """Refuse a symmetry ``n`` whose ``n`` directions per vertex would not fit in memory; return the estimate.
+
+    The work that grows with n is the ``(N, n, 3)`` array of directions (and its angles, sines and
+    cosines on the way): about :data:`DIRECTION_BYTES` bytes a vertex and direction.
+
+    Parameters
+    ----------
+    n : int
+        The symmetry, already checked to be an integer >= 1.
+    V : array or SurfaceMesh / TangentBundle
+        The vertices (their number is what counts).
+
+    Returns
+    -------
+    int
+        The estimated bytes.
+
+    Raises
+    ------
+    ResourceLimitError
+        The estimate exceeds the memory available (free memory, the cgroup's and the address-space limit;
+        :func:`dhlb.linalg.available_bytes`); the message gives the estimate and the largest n that fits.
+
+    Examples
+    --------
+    >>> check_symmetry_memory(4, [[0, 0, 0]] * 1000)
+    512000
+    """
+    rows = max(_vertex_rows(V), 1)
+    per = DIRECTION_BYTES * rows
+    return check_memory("n", n, per * int(n), largest=lambda room: (room // per) or None,
+                        advice=f"the field has n directions at each of its {rows:,} vertices, about "
+                               f"{DIRECTION_BYTES} bytes each")
+
+
+def _field_estimate(V, F=None, n=None, *args, **kwargs):
+    """``(bytes, what)`` for the message of a MemoryError: :data:`FIELD_BYTES_PER_FACE` a face, n directions."""
+    faces = len(F) if F is not None else int(getattr(getattr(V, "mesh", V), "n_faces", 0))
+    n = n if isinstance(n, numbers.Integral) else getattr(V, "n", 1)
+    need = FIELD_BYTES_PER_FACE * faces + DIRECTION_BYTES * _vertex_rows(V) * int(n)
+    return need, f"a field of {faces:,} faces ({FIELD_BYTES_PER_FACE / 1000:g} kB a face)"
+
+
+@translate_memory_errors("direction_field", _field_estimate)
 def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None, lam: float = 0.0, *,
                     options: FieldOptions | None = None, solver: SolverOptions | str | None = None,
                     **deprecated) -> DirectionField:
@@ -158,6 +221,12 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
     ------
     InvalidParameterError
         Bad n, s, lam or align (e.g. curvature alignment with odd n).
+    ResourceLimitError
+        The ``n`` directions per vertex would not fit in memory (:func:`check_symmetry_memory`): refused
+        before any work, with the estimate and the largest n that fits.
+    InsufficientMemoryError
+        The computation ran out of memory all the same (a mesh too large for the memory available, e.g.
+        under an address-space limit): the message says about how much it needs and how much is available.
     InvalidOperatorError
         ``A_s − λ_t M`` is singular or indefinite (aligned field with λ_t too large).
     TypeError
@@ -202,6 +271,7 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
         n = V.n if isinstance(V, TangentBundle) else 1
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 1:
         raise InvalidParameterError(f"n must be an integer >= 1, got {n!r}")
+    check_symmetry_memory(n, V)
     tb = _tangent(V, F, int(n), reorient, components, options.repair)
     guide = None
     if align is not None:

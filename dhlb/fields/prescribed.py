@@ -69,12 +69,14 @@ import numpy as np
 import scipy.sparse as sp
 
 from dhlb._deprecation import fold_deprecated_kwargs
+from dhlb._memory_errors import translate_memory_errors
 from dhlb.bundles._util import simplex_name, wrap_angle
 from dhlb.bundles.paths import bfs_forest, fundamental_cycles, spanning_forest, tree_accumulate
 from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.fem import cotan_edge_weights, solve
 from dhlb.fields.directions import direction_vectors, field_indices
 from dhlb.fields.energy import _tangent, energy_matrices
+from dhlb.fields.field import _field_estimate, check_symmetry_memory
 from dhlb.fields.options import FieldOptions
 from dhlb.fields.result import PrescribedField
 from dhlb.linalg import SolverOptions, solver_options
@@ -239,6 +241,7 @@ def _subtree_sums(parent: np.ndarray, depth: np.ndarray, R: np.ndarray) -> np.nd
     return acc
 
 
+@translate_memory_errors("prescribed_field", _field_estimate)
 def prescribed_field(V, F=None, n: int | None = None, singularities=None, *, holonomy=None,
                      weights: str = "auto", options: FieldOptions | None = None,
                      solver: SolverOptions | str | None = None, **deprecated) -> PrescribedField:
@@ -290,6 +293,13 @@ def prescribed_field(V, F=None, n: int | None = None, singularities=None, *, hol
         a non-integer index, an index that no triangle can carry, ``holonomy`` of the wrong
         length or not admissible, bad ``weights``, or a prescription whose minimal correction
         exceeds π on an edge (not representable on this mesh).
+    ResourceLimitError
+        The ``n`` directions per vertex would not fit in memory
+        (:func:`~dhlb.fields.field.check_symmetry_memory`): refused before any work, with the estimate and
+        the largest n that fits.
+    InsufficientMemoryError
+        The computation ran out of memory all the same (a mesh too large for the memory available): the
+        message says about how much it needs and how much is available.
     TypeError
         An unknown keyword argument.
 
@@ -313,6 +323,7 @@ def prescribed_field(V, F=None, n: int | None = None, singularities=None, *, hol
         n = V.n if isinstance(V, TangentBundle) else 1
     if isinstance(n, (bool, np.bool_)) or not isinstance(n, numbers.Integral) or n < 1:
         raise InvalidParameterError(f"n must be an integer >= 1, got {n!r}")
+    check_symmetry_memory(n, V)
     if weights not in ("auto", "cotan", "uniform"):
         raise InvalidParameterError(f"weights must be 'auto', 'cotan' or 'uniform', got {weights!r}")
     tb = _tangent(V, F, int(n), reorient, components, options.repair)

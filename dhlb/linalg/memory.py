@@ -29,9 +29,8 @@ True
 from __future__ import annotations
 
 import math
-import os
-import resource
 
+from dhlb import _memory_errors as _memory
 from dhlb.errors import InsufficientMemoryError
 
 __all__ = ["InsufficientMemoryError", "available_bytes", "check_factorization_memory", "factor_bytes",
@@ -43,7 +42,8 @@ _LIMIT: int | None = None
 def set_memory_limit(nbytes: int | None) -> None:
     """Pretend that at most ``nbytes`` are available (``None``: the machine's own figure).
 
-    For tests and for users who share a machine: every later memory check uses
+    For tests and for users who share a machine: every later memory check (of a factorization, and every
+    guard of a parameter that scales work, e.g. :func:`dhlb.mesh.ball_tet_mesh`'s ``n``) uses
     ``min(nbytes, available_bytes())``.  The environment variable ``DHLB_MEMORY_LIMIT`` (bytes,
     or with a suffix ``K``, ``M``, ``G``) does the same.
 
@@ -60,58 +60,22 @@ def set_memory_limit(nbytes: int | None) -> None:
     """
     global _LIMIT
     _LIMIT = None if nbytes is None else int(nbytes)
+    _memory.set_limit(_LIMIT)
 
 
 def _env_limit() -> int | None:
-    text = os.environ.get("DHLB_MEMORY_LIMIT", "").strip().upper()
-    if not text:
-        return None
-    scale = {"K": 2**10, "M": 2**20, "G": 2**30}.get(text[-1], 1)
-    try:
-        return int(float(text.rstrip("KMG")) * scale)
-    except ValueError:
-        return None
-
-
-def _meminfo_available() -> int | None:
-    try:
-        with open("/proc/meminfo") as fh:
-            for line in fh:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except OSError:
-        pass
-    return None
-
-
-def _cgroup_available() -> int | None:
-    try:
-        with open("/sys/fs/cgroup/memory.max") as fh:
-            top = fh.read().strip()
-        if top == "max":
-            return None
-        with open("/sys/fs/cgroup/memory.current") as fh:
-            return int(top) - int(fh.read().strip())
-    except (OSError, ValueError):
-        return None
-
-
-def _rlimit_available() -> int | None:
-    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
-    if soft == resource.RLIM_INFINITY:
-        return None
-    try:
-        with open("/proc/self/statm") as fh:
-            used = int(fh.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
-    except (OSError, ValueError):
-        used = 0
-    return soft - used
+    return _memory.env_limit()
 
 
 def available_bytes() -> int:
     """Bytes this process can still allocate: the least of free memory, cgroup and ``RLIMIT_AS`` room.
 
-    A limit set by :func:`set_memory_limit` or ``DHLB_MEMORY_LIMIT`` counts as one more figure.
+    The cgroup figure is the room under the memory limit (cgroup v2 ``memory.max``, v1
+    ``memory.limit_in_bytes``) of the process's own cgroup and of every ancestor, less the usage without
+    the reclaimable file cache; the ``RLIMIT_AS`` figure (``ulimit -v``, as batch schedulers set it) is the
+    limit less the address space in use (``VmSize``). A limit set by :func:`set_memory_limit` or
+    ``DHLB_MEMORY_LIMIT`` counts as one more figure. Every memory guard of dhlb uses these figures
+    (they are read in one place, the private module ``dhlb._memory_errors``).
 
     Returns
     -------
@@ -123,9 +87,8 @@ def available_bytes() -> int:
     >>> isinstance(available_bytes(), int)
     True
     """
-    figures = [f for f in (_meminfo_available(), _cgroup_available(), _rlimit_available(), _LIMIT, _env_limit())
-               if f is not None]
-    return max(0, min(figures)) if figures else 2**62
+    have = _memory.available_bytes()
+    return have if _LIMIT is None else max(0, min(have, _LIMIT))
 
 
 def factor_bytes(n: int, nnz: int, *, complex_: bool, dimension: float, triangles: int = 2) -> int:

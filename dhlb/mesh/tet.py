@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from dhlb._coerce import as_points, as_vec3, check_int
+from dhlb._memory_errors import check_memory, largest_fitting
 from dhlb.errors import (
     DegenerateSimplexError,
     InconsistentOrientationError,
@@ -431,6 +432,8 @@ BOX_BYTES_PER_CELL = 7_000
 """Peak bytes per cell of :func:`box_tet_mesh` (measured 5.8 kB at 52³ cells, rounded up)."""
 VORTEX_BYTES_PER_CELL = 12_000
 """Peak bytes per cell of ``dhlb vortex --box`` end to end (measured 9.3–9.7 kB at 28³ … 52³ cells)."""
+BALL_BYTES_PER_TET = 1_000
+"""Peak bytes per tetrahedron of :func:`ball_tet_mesh` (measured 917–931 B at n = 8 … 40, rounded up)."""
 _BASE_BYTES = 100_000_000  # the interpreter with numpy, scipy and dhlb imported (measured 66 MB)
 
 
@@ -462,6 +465,15 @@ def box_memory_estimate(m: int | Sequence[int], *, per_cell: int = BOX_BYTES_PER
     """
     _, cells = _cells(m)
     return _BASE_BYTES + int(per_cell) * cells
+
+
+def _ball_tets(n: int) -> int:
+    return 6 * n**3 + 36 * n**2 * max(1, -(-n // 2))
+
+
+def _ball_bytes(n: int) -> int:
+    """Estimated peak bytes of ``ball_tet_mesh(n)`` (:data:`BALL_BYTES_PER_TET` a tetrahedron + imports)."""
+    return _BASE_BYTES + BALL_BYTES_PER_TET * _ball_tets(n)
 
 
 def _available_bytes() -> int:
@@ -627,6 +639,11 @@ def ball_tet_mesh(n: int = 4, radius: float = 1.0, center: ArrayLike = (0.0, 0.0
     ------
     InvalidParameterError
         ``radius`` is not a finite number > 0, or ``n`` is not an integer >= 1.
+    ResourceLimitError
+        The mesh of ``n`` would need more memory than is available (about :data:`BALL_BYTES_PER_TET` bytes
+        a tetrahedron; the free memory, the cgroup's and the address-space limit count, see
+        :func:`dhlb.linalg.available_bytes`): refused before any work, with the estimate and the largest
+        ``n`` that fits.
     ShapeError, NonFiniteError
         ``center`` is not 3 numbers (or one), or is not finite.
 
@@ -645,6 +662,9 @@ def ball_tet_mesh(n: int = 4, radius: float = 1.0, center: ArrayLike = (0.0, 0.0
     if not (np.isfinite(R) and R > 0):
         raise InvalidParameterError(f"radius must be a finite number > 0, got {radius!r}")
     n = check_int(n, "n", 1)
+    check_memory("n", n, _ball_bytes(n), largest=lambda room: largest_fitting(_ball_bytes, room, 1, n),
+                 advice=f"ball_tet_mesh(n) has 6 n³ + 36 n² ceil(n/2) tetrahedra ({_ball_tets(n):,} here), "
+                        f"about {BALL_BYTES_PER_TET:,} bytes each")
     X, U = cube_nd(3, n, return_points=True)
     N = U.shape[0]
     r0 = _CORE_RATIO * R

@@ -19,6 +19,7 @@ import numbers
 
 import numpy as np
 
+from dhlb._memory_errors import check_memory
 from dhlb.errors import InvalidParameterError, InvalidSimplexError, InvalidTypeError
 
 __all__ = ["maximal_cliques", "group_pairs"]
@@ -58,6 +59,10 @@ def maximal_cliques(n: int, edges, max_dim: int | None = None) -> list[np.ndarra
         ``n`` or ``max_dim`` is negative.
     InvalidSimplexError
         An edge has a vertex outside ``0 .. n-1``, or joins a vertex to itself (a self-loop).
+    ResourceLimitError
+        The enumeration would need more memory than is available (a 30-clique has 2^30 cliques): checked
+        before each level of cliques is built, from the number of candidate pairs; the message gives the
+        estimate and the largest ``max_dim`` whose levels fit.
 
     Notes
     -----
@@ -107,7 +112,7 @@ def maximal_cliques(n: int, edges, max_dim: int | None = None) -> list[np.ndarra
     order = np.argsort(np.bincount(E.ravel(), minlength=n), kind="stable")  # order[rank] = vertex
     rank = np.empty(n, np.int64)
     rank[order] = np.arange(n)
-    levels, parents = _levels(n, rank[E], top)
+    levels, parents = _levels(n, rank[E], top, max_dim)
     return [np.sort(order[b], axis=1) for b in _maximal_blocks(n, levels, parents) if b.size]
 
 
@@ -144,11 +149,14 @@ def group_pairs(starts: np.ndarray, sizes: np.ndarray) -> tuple[np.ndarray, np.n
     return first, first + 1 + offset
 
 
-def _levels(n: int, E: np.ndarray, top: int) -> tuple[list[np.ndarray], list[np.ndarray | None]]:
+def _levels(n: int, E: np.ndarray, top: int, max_dim: int | None = None
+            ) -> tuple[list[np.ndarray], list[np.ndarray | None]]:
     """All k-cliques (k <= top) of the graph on ``0 .. n-1`` with edges ``E`` (rows in any order, repeats allowed).
 
     Returns the levels (sorted rows in lexicographic order, level k of width k+1) and, for each
-    level k >= 1, the row in level k-1 of every row without its last vertex.
+    level k >= 1, the row in level k-1 of every row without its last vertex. Before a level is built,
+    its memory (the candidate pairs and the new rows, on top of the levels so far) is checked against
+    the memory available (``max_dim`` is named in the refusal).
     """
     levels: list[np.ndarray] = [np.arange(n, dtype=np.int64).reshape(-1, 1)]
     parents: list[np.ndarray | None] = [None]
@@ -163,7 +171,9 @@ def _levels(n: int, E: np.ndarray, top: int) -> tuple[list[np.ndarray], list[np.
         k = C.shape[1]
         new_group = np.r_[True, np.any(C[1:, : k - 1] != C[:-1, : k - 1], axis=1)]
         starts = np.flatnonzero(new_group)
-        a, b = group_pairs(starts, np.diff(np.r_[starts, C.shape[0]]))
+        sizes = np.diff(np.r_[starts, C.shape[0]])
+        _check_level(levels, k, int(np.sum(sizes * (sizes - 1) // 2)), max_dim)
+        a, b = group_pairs(starts, sizes)
         q = C[a, -1] * n + C[b, -1]  # are the two last vertices adjacent?
         pos = np.minimum(np.searchsorted(keys, q), keys.size - 1)
         hit = keys[pos] == q
@@ -173,6 +183,20 @@ def _levels(n: int, E: np.ndarray, top: int) -> tuple[list[np.ndarray], list[np.
         levels.append(np.column_stack([C[a], C[b, -1]]))
         parents.append(a)
     return levels, parents
+
+
+def _check_level(levels: list[np.ndarray], k: int, pairs: int, max_dim: int | None) -> None:
+    """Refuse the level of (k+1)-cliques from ``pairs`` candidate pairs if it would not fit in memory.
+
+    The model: every clique kept so far costs its row, its parent and (later) its key (``8 (j + 3)``
+    bytes for j+1 vertices); the level costs about ``56 + 16 (k + 1)`` bytes a candidate pair (the pairs,
+    their keys and look-ups, the new rows; at most one new clique a pair).
+    """
+    held = sum(L.shape[0] * 8 * (L.shape[1] + 2) for L in levels)
+    check_memory("max_dim", max_dim, held + pairs * (56 + 16 * (k + 1)),
+                 largest=lambda room: k - 1,
+                 advice=f"{sum(L.shape[0] for L in levels):,} cliques of up to {k} vertices found so far and "
+                        f"{pairs:,} candidates for {k + 1} vertices (the estimate counts those levels only)")
 
 
 def _maximal_blocks(n: int, levels: list[np.ndarray], parents: list) -> list[np.ndarray]:

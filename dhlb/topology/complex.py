@@ -9,6 +9,7 @@ vertex-adjacency pattern are computed in the private module ``dhlb.topology._inc
 
 from __future__ import annotations
 
+import math
 from functools import cached_property
 from typing import TYPE_CHECKING
 
@@ -460,6 +461,11 @@ class SimplicialComplex:
             ``G`` has a self-loop (the message names the node), or an edge end that is not a node.
         EmptyComplexError
             ``G`` has no nodes.
+        ResourceLimitError
+            The cliques, or the complex built from them, would need more memory than is available (a
+            30-clique has 2^30 simplices): refused before the work (the cliques level by level, see
+            :func:`~dhlb.topology.cliques.maximal_cliques`; then the complex), with the estimate and the
+            largest ``max_dim`` that fits.
 
         Examples
         --------
@@ -469,8 +475,22 @@ class SimplicialComplex:
         """
         if kind != "clique":
             raise InvalidParameterError(f"kind must be one of ('clique',), got {kind!r}")
+        from dhlb._memory_errors import check_memory
+        from dhlb.topology.subdivision import complex_bytes
+
         nodes, edges = _graphs.read_graph(G)
-        return cls(maximal_cliques(len(nodes), edges, max_dim))
+        blocks = maximal_cliques(len(nodes), edges, max_dim)
+        shapes = [(b.shape[0], b.shape[1] - 1) for b in blocks]
+
+        def skeleton_bytes(d: int) -> int:  # max_dim = d: a larger clique gives C(m+1, d+1) d-cliques (not monotone)
+            return complex_bytes([(r, m) if m <= d else (r * math.comb(m + 1, d + 1), d) for r, m in shapes])
+
+        top = max(m for _, m in shapes)
+        check_memory("max_dim", max_dim, complex_bytes(shapes),
+                     largest=lambda room: max((d for d in range(top + 1) if skeleton_bytes(d) <= room), default=None),
+                     advice=f"the complex of the {sum(r for r, _ in shapes):,} maximal cliques (up to {top + 1} "
+                            "vertices) is built with all their faces")
+        return cls(blocks)
 
     def to_networkx(self, kind: str = "skeleton"):
         """The complex as a networkx graph: its 1-skeleton or its dual graph.

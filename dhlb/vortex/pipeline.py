@@ -54,6 +54,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhlb._deprecation import fold_deprecated_kwargs
+from dhlb._memory_errors import translate_memory_errors
 from dhlb.errors import (
     DhlbWarning,
     NonFiniteError,
@@ -173,6 +174,15 @@ def _warn_flux(X, points, Om) -> int:
     return nbig
 
 
+_BYTES_PER_TET = 2_000  # VORTEX_BYTES_PER_CELL of dhlb.mesh.tet over the 6 tetrahedra of a cell, for messages
+
+
+def _estimate(V, T=None, *args, **kwargs):
+    tets = len(T) if T is not None else int(np.shape(getattr(V, "tets", ()))[0])
+    return _BYTES_PER_TET * tets, f"a mesh of {tets:,} tetrahedra ({_BYTES_PER_TET / 1000:g} kB a tetrahedron)"
+
+
+@translate_memory_errors("vortex_filaments", _estimate)
 def vortex_filaments(
     V: ArrayLike | TetMesh,
     T: ArrayLike | None,
@@ -235,6 +245,9 @@ def vortex_filaments(
         (:func:`~dhlb.mesh.check_tet_mesh`).
     SectionZeroError
         The computed ψ vanishes exactly at a vertex (perturb the mesh).
+    InsufficientMemoryError
+        The computation ran out of memory (a mesh too large for the memory available, e.g. under an
+        address-space limit): the message says about how much it needs and how much is available.
 
     Warns
     -----
