@@ -83,8 +83,13 @@ def _mesh(args):
     if args.mesh is not None and args.ball is not None:
         raise UsageError("give either TETMESH or --ball N, not both")
     if args.mesh is None:
+        from dhlb.errors import ResourceLimitError
+
         n = 6 if args.ball is None else args.ball
-        m = ball_tet_mesh(n)
+        try:   # refused before any work when it cannot fit (a usage error naming the option)
+            m = ball_tet_mesh(n)
+        except ResourceLimitError as exc:
+            raise UsageError(f"argument --ball: {exc} (ball_tet_mesh's n is --ball)") from None
         return m, m.points.shape[0], f"ball {n}"
     from dhlb.io import read_volume
 
