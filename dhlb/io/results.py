@@ -92,7 +92,6 @@ def _unknown(result, path: str, known: tuple[str, ...]):
                                 f"({path}); use {', '.join(known)}")
 
 
-@functools.singledispatch
 def write(result, path: str | os.PathLike[str]) -> list[str]:
     """Write a result to ``path``, in the format of its extension (see the table of the module).
 
@@ -115,7 +114,21 @@ def write(result, path: str | os.PathLike[str]) -> list[str]:
         object that is no result.
     OutputError
         A file cannot be written.
+    OverwriteError
+        ``path`` (or a file written beside it) is a file the result was read from.
     """
+    from dhlb._files import refuse_overwrite
+
+    out = os.fspath(path)
+    stem, ext = os.path.splitext(out)
+    side = [stem + ".json"] if ext.lower() == ".obj" else []   # a stripe OBJ brings its sidecar
+    refuse_overwrite([out, *side], getattr(result, "_read_from", ()), role="a file this result was read from")
+    return _write(result, path)
+
+
+@functools.singledispatch
+def _write(result, path) -> list[str]:
+    """:func:`write` by the kind of result (one registered function per kind)."""
     raise InvalidParameterError(f"cannot save a {type(result).__name__}: dhlb.io.results.write takes a result of "
                                 "dhlb.fields, dhlb.stripes, dhlb.vortex or dhlb.conformal")
 
@@ -232,7 +245,7 @@ def write_field_files(out: str, res: DirectionField, V, F) -> dict[str, str]:
     return paths
 
 
-@write.register
+@_write.register
 def _(result: DirectionField, path) -> list[str]:
     out = os.fspath(path)
     ext = os.path.splitext(out)[1].lower()
@@ -249,7 +262,7 @@ def _(result: DirectionField, path) -> list[str]:
     return _unknown(result, out, (".json", ".npz", ".ply", ".vtu"))
 
 
-@write.register
+@_write.register
 def _(result: StripePattern, path) -> list[str]:
     out = os.fspath(path)
     ext = os.path.splitext(out)[1].lower()
@@ -266,7 +279,7 @@ def _(result: StripePattern, path) -> list[str]:
     return _unknown(result, out, (".json", ".obj", ".vtu"))
 
 
-@write.register
+@_write.register
 def _(result: VortexResult, path) -> list[str]:
     out = os.fspath(path)
     ext = os.path.splitext(out)[1].lower()
@@ -283,7 +296,7 @@ def _(result: VortexResult, path) -> list[str]:
     return _unknown(result, out, (".json", ".obj", ".ply", ".vtu"))
 
 
-@write.register
+@_write.register
 def _(result: ConformalResult, path) -> list[str]:
     out = os.fspath(path)
     ext = os.path.splitext(out)[1].lower()
@@ -320,6 +333,10 @@ def read_field(path: str | os.PathLike[str]) -> DirectionField:
     ``OUT.json`` beside it, when there, supplies the energy, eigenvalue, solver report and timings (NaN
     / None otherwise). A file written before the npz held its mesh needs ``OUT.ply`` beside it.
 
+    Every array is checked before it is used (kind, shape, range of the indices, finiteness where a
+    value must be finite, the frames unit tangent vectors of the mesh, the vertex rows the rows the
+    mask ``vertex_used`` marks), and so are the values of ``OUT.json`` that are used.
+
     Parameters
     ----------
     path : str or path-like
@@ -334,7 +351,9 @@ def read_field(path: str | os.PathLike[str]) -> DirectionField:
     InvalidParameterError
         There is no ``OUT.npz`` (a field PLY alone holds the directions, not the section).
     MeshParseError
-        The files do not hold a field, or disagree with each other.
+        The files do not hold a field (an empty, truncated or damaged archive, pickled objects, a
+        missing key, a wrong dtype or shape, an index out of range, a non-finite value, frames or rows
+        that do not fit the mesh), or disagree with each other; the message names the file and the key.
 
     Examples
     --------
@@ -349,8 +368,8 @@ def read_field(path: str | os.PathLike[str]) -> DirectionField:
     """
     import warnings
 
-    from dhlb.errors import MeshParseError, UnreferencedVertexWarning
-    from dhlb.io._text import output_stem, read_json
+    from dhlb.errors import DhlbError, MeshParseError, UnreferencedVertexWarning
+    from dhlb.io._text import check_array, load_npz, output_stem
     from dhlb.mesh import tangent_bundle, validate_surface
 
     base = output_stem(path)
@@ -358,43 +377,172 @@ def read_field(path: str | os.PathLike[str]) -> DirectionField:
     if not os.path.isfile(npz):
         raise InvalidParameterError(f"{base}: no field file {npz} (a field PLY alone holds the directions, not "
                                     "the section: read the .npz written beside it)")
-    try:
-        with np.load(npz, allow_pickle=False) as z:
-            data = {k: z[k] for k in z.files}
-    except (OSError, ValueError) as exc:
-        raise MeshParseError(f"not a readable .npz ({exc})", npz) from None
+    data = load_npz(npz)
     missing = [k for k in ("u", "directions", "frames", "vertex_rows") if k not in data]
     if missing:
         raise MeshParseError(f"not a field file of dhlb: no {', '.join(missing)}", npz)
-    summary = read_json(side) if os.path.isfile(side) else {}
+    n_in, n = _check_field_arrays(data, npz)
+    summary = _field_summary(side, n) if os.path.isfile(side) else {}
     if "mesh_u" in data:   # a repaired mesh: rebuilt from its parts, the section per mesh vertex
-        return _read_repaired_field(data, summary, npz)
+        return _read_repaired_field(data, summary, npz, n)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UnreferencedVertexWarning)  # the input PLY keeps unused rows
-        if "mesh_points" in data:
-            mesh = validate_surface(data["mesh_points"], data["mesh_faces"])
+        if "mesh_points" in data or "mesh_faces" in data:
+            P, F = _check_mesh_arrays(data, npz)
+            try:
+                mesh = validate_surface(P, F)
+            except DhlbError as exc:
+                raise MeshParseError(f"mesh_points and mesh_faces are not a valid surface ({exc})", npz) from None
         elif os.path.isfile(ply):
             from dhlb.io.ply import read_ply
 
-            mesh = validate_surface(*read_ply(ply))
+            V, F = read_ply(ply)
+            try:
+                mesh = validate_surface(V, F)
+            except DhlbError as exc:
+                raise MeshParseError(f"not the mesh of the field {npz} ({exc})", ply) from None
         else:
             raise MeshParseError(f"holds no mesh (written by an older dhlb) and {ply} is missing", npz)
-    rows = np.asarray(data["vertex_rows"], np.int64)
-    if rows.shape != (mesh.n_vertices,) or (rows.size and rows.max() >= len(data["u"])):
-        raise MeshParseError(f"vertex_rows does not fit the mesh ({mesh.n_vertices} vertices)", npz)
-    n = int(data["n"]) if "n" in data else int(data["directions"].shape[1])
+    _check_summary_mesh(summary, side, mesh)
+    rows = check_array(data["vertex_rows"], npz, "vertex_rows", kind="i", shape=(mesh.n_vertices,),
+                       bounds=(0, n_in - 1, f"rows of u, which has {n_in}"),
+                       dims=f"({mesh.n_vertices},): one row per vertex of the mesh")
+    seen = np.zeros(n_in, bool)
+    seen[rows] = True
+    if int(seen.sum()) != rows.size:
+        first = int(rows[np.flatnonzero(np.bincount(rows, minlength=n_in)[rows] > 1)[0]])
+        raise MeshParseError(f"vertex_rows names row {first} twice (one row per vertex of a mesh that was not "
+                             "repaired)", npz)
+    if "vertex_used" in data:
+        used = check_array(data["vertex_used"], npz, "vertex_used", kind="b", shape=(n_in,))
+        if not np.array_equal(used, seen):
+            r = int(np.flatnonzero(used != seen)[0])
+            raise MeshParseError(f"vertex_rows and vertex_used disagree on row {r} (vertex_used[{r}] = "
+                                 f"{bool(used[r])}, but vertex_rows {'does not name' if used[r] else 'names'} it)",
+                                 npz)
+    u = _finite_rows(data["u"], rows, npz, "u", np.complex128)
+    X = _finite_rows(data["frames"][:, 0], rows, npz, "frames", np.float64)
     tb = tangent_bundle(mesh, n=n)
-    X = np.asarray(data["frames"], np.float64)[rows, 0]  # the written frame X_i, at angle θ_i in the new frame
-    theta = np.arctan2(np.einsum("ij,ij->i", X, tb.frames[:, 1]), np.einsum("ij,ij->i", X, tb.frames[:, 0]))
-    return _field_from(tb, np.asarray(data["u"], np.complex128)[rows] * np.exp(1j * n * theta), data, summary)
+    theta = _frame_angles(X, tb, npz, "frames", rows)
+    return _field_from(tb, u * np.exp(1j * n * theta), data, summary)
+
+
+def _check_field_arrays(data: dict, npz: str) -> tuple[int, int]:
+    """Check the arrays of a field ``.npz`` that are in the input numbering; ``(rows of V, n)``."""
+    from dhlb.errors import MeshParseError
+    from dhlb.io._text import check_array, check_number
+
+    u = check_array(data["u"], npz, "u", kind="c", shape=(None,), dims="(n,): one value per row of the input V")
+    n_in = u.shape[0]
+    D = check_array(data["directions"], npz, "directions", shape=(n_in, None, 3),
+                    dims=f"({n_in}, n, 3): n directions per row of u")
+    check_array(data["frames"], npz, "frames", shape=(n_in, None, 3), dims=f"({n_in}, 3, 3): a frame per row of u")
+    if data["frames"].shape[1] == 0 or D.shape[1] == 0:
+        raise MeshParseError(f"frames and directions need at least one vector per row, got shapes "
+                             f"{data['frames'].shape} and {D.shape}", npz)
+    n = D.shape[1]
+    if "n" in data:
+        n_file = check_number(data["n"], npz, "n", integer=True, low=1)
+        if n_file != n:
+            raise MeshParseError(f"n = {n_file}, but directions holds {n} directions per vertex", npz)
+    for key in ("s", "lam"):
+        if key in data:
+            check_number(data[key], npz, key)
+    faces = None
+    if "face_index" in data:
+        faces = check_array(data["face_index"], npz, "face_index", kind="i", shape=(None,)).size
+    if "singular_faces" in data:
+        sf = check_array(data["singular_faces"], npz, "singular_faces", kind="i", shape=(None,),
+                         bounds=(0, None if faces is None else faces - 1, f"rows of face_index, which has {faces}"))
+        k = sf.size
+        if "singular_index" in data:
+            check_array(data["singular_index"], npz, "singular_index", kind="i", shape=(k,),
+                        dims=f"({k},): one per singular face")
+        if "singular_points" in data:
+            check_array(data["singular_points"], npz, "singular_points", shape=(k, 3), finite=True,
+                        dims=f"({k}, 3): one per singular face")
+    return n_in, n
+
+
+def _check_mesh_arrays(data: dict, npz: str):
+    """``mesh_points`` and ``mesh_faces`` of a field ``.npz``, checked (kinds, shapes, finite, index range)."""
+    from dhlb.errors import MeshParseError
+    from dhlb.io._text import check_array
+
+    for key in ("mesh_points", "mesh_faces"):
+        if key not in data:
+            raise MeshParseError(f"has no {key} (mesh_points and mesh_faces come together)", npz)
+    P = check_array(data["mesh_points"], npz, "mesh_points", shape=(None, 3), finite=True)
+    F = check_array(data["mesh_faces"], npz, "mesh_faces", kind="i", shape=(None, 3), bounds=(0, len(P) - 1,
+                    f"rows of mesh_points, which has {len(P)}"))
+    return P, F
+
+
+def _finite_rows(values, rows, npz: str, key: str, dtype) -> np.ndarray:
+    """``values[rows]`` (rows of the input V used by the mesh), which must be finite."""
+    from dhlb.errors import MeshParseError
+
+    out = np.asarray(values, dtype)[rows]
+    bad = ~np.isfinite(out).reshape(len(out), -1).all(axis=1)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise MeshParseError(f"{key}[{int(rows[i])}] is not finite, but row {int(rows[i])} belongs to vertex {i} "
+                             "of the mesh (only unused rows hold NaN)", npz)
+    return out
+
+
+def _frame_angles(X, tb, npz: str, key: str, rows=None) -> np.ndarray:
+    """The angle of each written frame vector ``X`` in the frames of ``tb``; ``X`` must be unit tangent vectors."""
+    from dhlb.errors import MeshParseError
+
+    c0 = np.einsum("ij,ij->i", X, tb.frames[:, 0])
+    c1 = np.einsum("ij,ij->i", X, tb.frames[:, 1])
+    norm = np.einsum("ij,ij->i", X, X)
+    bad = (np.abs(norm - 1.0) > 1e-6) | (np.abs(c0 * c0 + c1 * c1 - 1.0) > 1e-6)
+    if bad.any():
+        i = int(np.argmax(bad))
+        row = i if rows is None else int(rows[i])
+        what = "not a unit vector" if abs(norm[i] - 1.0) > 1e-6 else "not tangent to the mesh there"
+        raise MeshParseError(f"{key}[{row}, 0] (the frame of vertex {i}) is {what}: the frames do not fit the mesh",
+                             npz)
+    return np.arctan2(c1, c0)
+
+
+def _field_summary(side: str, n: int) -> dict:
+    """The values of a field's ``OUT.json`` that :func:`read_field` uses, checked (types; ``n`` as in the npz)."""
+    from dhlb.errors import MeshParseError
+    from dhlb.io._text import check_json_type, check_number, read_json
+
+    summary = read_json(side)
+    for key in ("energy", "eigenvalue", "t", "s", "lambda"):
+        if key in summary:
+            check_number(summary[key], side, key, optional=True, finite=False)
+    for key in ("solver", "timings"):
+        if key in summary:
+            check_json_type(summary[key], (dict, type(None)), side, key)
+    if "n" in summary and check_number(summary["n"], side, "n", integer=True) != n:
+        raise MeshParseError(f"n = {summary['n']}, but the field .npz beside it has n = {n}: the files are of "
+                             "different runs", side)
+    return summary
+
+
+def _check_summary_mesh(summary: dict, side: str, mesh) -> None:
+    """The counts of a field's ``OUT.json`` against the mesh of its ``.npz`` (files of different runs)."""
+    from dhlb.errors import MeshParseError
+    from dhlb.io._text import check_number
+
+    for key, have in (("n_vertices", mesh.n_vertices), ("n_faces", mesh.n_faces)):
+        if key in summary and check_number(summary[key], side, key, integer=True) != have:
+            raise MeshParseError(f"{key} = {summary[key]}, but the mesh of the field .npz beside it has {have}: "
+                                 "the files are of different runs", side)
 
 
 def _field_from(tb, u, data, summary) -> DirectionField:
     from dhlb.fields import direction_vectors, field_indices
 
     n = tb.n
-    s = float(data["s"]) if "s" in data else float(summary.get("s", np.nan))
-    lam = float(data["lam"]) if "lam" in data else float(summary.get("lambda", np.nan))
+    s, lam = (float(data[k]) if k in data else float(np.nan if summary.get(j) is None else summary[j])
+              for k, j in (("s", "s"), ("lam", "lambda")))
     energy = summary.get("energy")
     return DirectionField(n=n, s=s, lam=lam, tangent=tb, u=u, directions=direction_vectors(tb, u),
                           indices=field_indices(tb, u), energy=float("nan") if energy is None else float(energy),
@@ -402,36 +550,85 @@ def _field_from(tb, u, data, summary) -> DirectionField:
                           solver=dict(summary.get("solver") or {}), timings=dict(summary.get("timings") or {}))
 
 
-def _read_repaired_field(data: dict, summary: dict, npz: str) -> DirectionField:
+def _read_repaired_field(data: dict, summary: dict, npz: str, n: int) -> DirectionField:
     """The field of a ``.npz`` whose mesh was repaired: the mesh from its parts, ``u`` per mesh vertex."""
+    import json
+
     from dhlb.errors import DhlbError, MeshParseError
+    from dhlb.io._text import check_array, check_number, check_repairs
     from dhlb.mesh import tangent_bundle
     from dhlb.mesh.repair import MeshRepair, repaired_mesh
 
     needed = ("mesh_points", "mesh_faces", "face_rows", "mesh_frames", "vertex_of_input", "face_of_input",
-              "repair_options")
+              "repair_options", "repairs")
     missing = [k for k in needed if k not in data]
     if missing:
         raise MeshParseError(f"a repaired field without {', '.join(missing)}", npz)
+    n_in = data["u"].shape[0]
+    P, F = _check_mesh_arrays(data, npz)
+    N, M = len(P), len(F)
+    rows = check_array(data["vertex_rows"], npz, "vertex_rows", kind="i", shape=(N,), bounds=(0, n_in - 1,
+                       f"rows of u, which has {n_in}"), dims=f"({N},): one row per row of mesh_points")
+    voi = check_array(data["vertex_of_input"], npz, "vertex_of_input", kind="i", shape=(n_in,), bounds=(-1, N - 1,
+                      f"-1 or a row of mesh_points, which has {N}"), dims=f"({n_in},): one per row of u")
+    m_in = M if "face_index" not in data else data["face_index"].shape[0]
+    foi = check_array(data["face_of_input"], npz, "face_of_input", kind="i", shape=(m_in,), bounds=(-1, M - 1,
+                      f"-1 or a row of mesh_faces, which has {M}"), dims=f"({m_in},): one per row of face_index")
+    face_rows = check_array(data["face_rows"], npz, "face_rows", kind="i", shape=(M,), bounds=(0, m_in - 1,
+                            f"rows of face_of_input, which has {m_in}"), dims=f"({M},): one per row of mesh_faces")
+    lost = np.flatnonzero(voi[rows] < 0)
+    if lost.size:
+        v = int(lost[0])
+        raise MeshParseError(f"vertex_rows[{v}] = {int(rows[v])}, but vertex_of_input[{int(rows[v])}] = -1 (that "
+                             "row has no vertex of the mesh): vertex_rows and vertex_of_input disagree", npz)
+    if "vertex_used" in data:
+        used = check_array(data["vertex_used"], npz, "vertex_used", kind="b", shape=(n_in,))
+        if not np.array_equal(used, voi >= 0):
+            r = int(np.flatnonzero(used != (voi >= 0))[0])
+            raise MeshParseError(f"vertex_used[{r}] = {bool(used[r])} disagrees with vertex_of_input[{r}] = "
+                                 f"{int(voi[r])}", npz)
+    for key in ("repairs", "repair_options"):
+        if data[key].shape != () or data[key].dtype.kind != "U":
+            raise MeshParseError(f"{key} must be a text (a 0-d string array), got a {data[key].dtype} array of "
+                                 f"shape {data[key].shape}", npz)
     try:
-        info = MeshRepair.from_arrays(data, np.asarray(data["vertex_rows"], np.int64))
-        mesh = repaired_mesh(data["mesh_points"], data["mesh_faces"], data["face_rows"], info,
-                             data.get("mesh_edge_lengths"), data.get("mesh_flipped"))
-    except (DhlbError, ValueError) as exc:
+        items = json.loads(str(data["repairs"]))
+    except (ValueError, RecursionError) as exc:
+        raise MeshParseError(f"repairs is not readable JSON ({exc})", npz) from None
+    check_repairs(items, npz, "repairs")
+    delta = check_number(data["repair_delta"], npz, "repair_delta", low=0.0) if "repair_delta" in data else 0.0
+    lengths = flipped = None
+    if "mesh_edge_lengths" in data:
+        lengths = check_array(data["mesh_edge_lengths"], npz, "mesh_edge_lengths", shape=(None,), finite=True)
+        if lengths.size and lengths.min() <= 0:
+            i = int(np.argmin(lengths))
+            raise MeshParseError(f"mesh_edge_lengths[{i}] = {float(lengths[i])!r} is not a positive length", npz)
+    if "mesh_flipped" in data:
+        flipped = check_array(data["mesh_flipped"], npz, "mesh_flipped", kind="b", shape=(M,),
+                              dims=f"({M},): one per row of mesh_faces")
+    u_mesh = check_array(data["mesh_u"], npz, "mesh_u", kind="c", shape=(N,), finite=True,
+                         dims=f"({N},): one value per row of mesh_points")
+    X = check_array(data["mesh_frames"], npz, "mesh_frames", shape=(N, None, 3), finite=True,
+                    dims=f"({N}, 3, 3): a frame per row of mesh_points")
+    if X.shape[1] == 0:
+        raise MeshParseError(f"mesh_frames needs at least one vector per vertex, got shape {X.shape}", npz)
+    arrays = {"repairs": data["repairs"], "repair_options": data["repair_options"], "repair_delta": delta,
+              "vertex_of_input": voi, "face_of_input": foi}
+    try:
+        info = MeshRepair.from_arrays(arrays, rows)
+        mesh = repaired_mesh(P, F, face_rows, info, lengths, flipped)
+    except (DhlbError, ValueError, TypeError) as exc:
         raise MeshParseError(f"the repaired mesh cannot be rebuilt ({exc})", npz) from None
-    u_mesh = np.asarray(data["mesh_u"], np.complex128)
-    X = np.asarray(data["mesh_frames"], np.float64)
-    if u_mesh.shape != (mesh.n_vertices,) or X.shape[:2] != (mesh.n_vertices, 3):
-        raise MeshParseError(f"mesh_u / mesh_frames do not fit the mesh ({mesh.n_vertices} vertices)", npz)
-    n = int(data["n"]) if "n" in data else int(data["directions"].shape[1])
+    _check_summary_mesh(summary, os.path.splitext(npz)[0] + ".json", mesh)
     tb = tangent_bundle(mesh, n=n)
-    theta = np.arctan2(np.einsum("ij,ij->i", X[:, 0], tb.frames[:, 1]), np.einsum("ij,ij->i", X[:, 0], tb.frames[:, 0]))
+    theta = _frame_angles(X[:, 0], tb, npz, "mesh_frames")
     return _field_from(tb, u_mesh * np.exp(1j * n * theta), data, summary)
 
 
 def _kind(path: str) -> str:
     """``"field"``, ``"stripes"``, ``"vortex"`` or ``"conformal"``: what the files at ``path`` hold."""
-    from dhlb.io._text import OUTPUT_EXTENSIONS, output_stem, read_json
+    from dhlb.errors import MeshParseError
+    from dhlb.io._text import OUTPUT_EXTENSIONS, npz_keys, output_stem, read_json
 
     base = output_stem(path)
     ext = os.path.splitext(os.fspath(path))[1].lower() if base != os.fspath(path) else ""
@@ -442,17 +639,20 @@ def _kind(path: str) -> str:
         raise InvalidParameterError(f"{path}: no such file")
     side = read_json(base + ".json") if os.path.isfile(base + ".json") else {}
     if ext in ("", ".png", ".json", ".npz") and os.path.isfile(base + ".npz"):
-        with np.load(base + ".npz", allow_pickle=False) as z:
-            keys = set(z.files)
+        keys = npz_keys(base + ".npz")
         if "directions" in keys:
             return "field"
         if "tets" in keys:
             return "conformal"
+        if ext == ".npz":
+            raise MeshParseError(f"an .npz archive of {', '.join(sorted(keys)) or 'no arrays'}: not a field "
+                                 "(directions, u, ...) nor a conformal deformation (points, tets, ...) of dhlb", path)
     if side.get("format") == "dhlb-stripes":
         return "stripes"
     if "filaments" in side:
         return "vortex"
-    if ("points" in side and "tets" in side) or "distortion_mean" in (side.get("statistics") or {}):
+    stats = side.get("statistics")
+    if ("points" in side and "tets" in side) or (isinstance(stats, dict) and "distortion_mean" in stats):
         return "conformal"
     if "singularities" in side and "index_sum" in side:
         return "field"
@@ -528,7 +728,16 @@ def read_result(path: str | os.PathLike[str]):
         raise InvalidParameterError(f"{path} is a folder: give one output in it"
                                     + (f" ({', '.join(bases[:8])}{' ...' if len(bases) > 8 else ''})"
                                        if bases else ""))
-    kind = _kind(path)
+    from dhlb._result import mark_read_from
+    from dhlb.io._text import OUTPUT_EXTENSIONS, output_stem
+
+    result = _read_kind(path, _kind(path))
+    base = output_stem(path)   # save() and to_html() never write over the files it was read from
+    mark_read_from(result, [os.fspath(path)] + [base + e for e in OUTPUT_EXTENSIONS if os.path.isfile(base + e)])
+    return result
+
+
+def _read_kind(path, kind: str):
     if kind == "field":
         return read_field(path)
     if kind == "stripes":

@@ -52,7 +52,7 @@ from dhlb.stripes.texture import StripeTexture
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-__all__ = ["LoadedStripes", "read_stripes", "stripes_sidecar", "write_stripes_obj"]
+__all__ = ["BYTES_PER_OBJ_SUBTRIANGLE", "LoadedStripes", "read_stripes", "stripes_sidecar", "write_stripes_obj"]
 
 TWO_PI = 2.0 * np.pi
 
@@ -155,8 +155,39 @@ def _expanded(texture, refine: int):
     return np.vstack([mesh.points, extra]), vid.reshape(T, 3), sub.alpha / TWO_PI, sub.face
 
 
+BYTES_PER_OBJ_SUBTRIANGLE = 700
+"""Measured peak memory of an expanded stripe OBJ (:func:`write_stripes_obj` with ``expand`` >= 1) per sub-triangle."""
+
+
+def _check_expand(texture: StripeTexture, expand, max_bytes) -> int:
+    """``expand`` checked: an integer >= 0 whose subdivision fits in ``max_bytes`` (refused before the work)."""
+    from dhlb._coerce import check_real
+    from dhlb.errors import InvalidParameterError, ResourceLimitError
+    from dhlb.stripes.isolines import MAX_BYTES
+
+    expand = check_int(expand, "expand", 0)
+    budget = MAX_BYTES if max_bytes is None else check_real(max_bytes, "max_bytes")
+    if budget <= 0:
+        raise InvalidParameterError(f"max_bytes must be a positive number, got {max_bytes!r}")
+    if not expand:
+        return 0
+    z, b = int(texture.zero_faces.size), int(texture.branch_faces.size)
+    fixed = texture.mesh.n_faces - z + 2 * b                 # plain faces, and three cones per branch face
+    estimate = BYTES_PER_OBJ_SUBTRIANGLE * (fixed + 6.0 * expand * expand * z)
+    if estimate > budget:
+        room = budget / BYTES_PER_OBJ_SUBTRIANGLE - fixed
+        largest = int(np.sqrt(room / (6.0 * z))) if z and room >= 6.0 * z else 0
+        raise ResourceLimitError(
+            "expand", expand, estimate, budget,
+            f"the subdivision has {fixed:,} + 6·expand²·{z} sub-triangles (6·expand² in each of the {z} zero "
+            f"faces); allowed: {f'expand 0 to {largest}' if largest else 'expand = 0'} for this pattern, or a larger "
+            "max_bytes")
+    return expand
+
+
 def write_stripes_obj(
-    path: str | os.PathLike[str], texture: StripeTexture, *, sidecar: bool = True, expand: int = 0
+    path: str | os.PathLike[str], texture: StripeTexture, *, sidecar: bool = True, expand: int = 0,
+    max_bytes: float | None = None,
 ) -> tuple[str, str | None]:
     """Write the pattern as an OBJ with per-corner UVs (and ``<path minus .obj>.json`` as the sidecar).
 
@@ -170,6 +201,9 @@ def write_stripes_obj(
         Also write the JSON description of zero and branch faces.
     expand : int, optional
         0: the mesh faces as they are; r >= 1: the subdivision (branch cones, r × r grids in zero faces).
+    max_bytes : float, optional
+        Memory budget of an expanded OBJ (default :data:`dhlb.stripes.isolines.MAX_BYTES`, 1 GB): the
+        sub-triangles are counted before the work (:data:`BYTES_PER_OBJ_SUBTRIANGLE` each).
 
     Returns
     -------
@@ -181,7 +215,10 @@ def write_stripes_obj(
     Raises
     ------
     InvalidParameterError
-        ``expand`` is not an integer >= 0.
+        ``expand`` is not an integer >= 0, or ``max_bytes`` is not a positive number.
+    ResourceLimitError
+        The subdivision of ``expand`` would exceed ``max_bytes``; the message states the estimate and the
+        largest ``expand`` that fits. Nothing is written.
     OutputError
         A file cannot be written (missing folder, no permission, disk full): one line naming the path.
         Each file is written to a temporary file in its folder and renamed when complete, so an
@@ -204,7 +241,7 @@ def write_stripes_obj(
     >>> os.path.basename(side), sum(s.startswith("vt ") for s in lines), lines[-1]
     ('square.json', 6, 'f 2/4 4/5 3/6')
     """
-    expand = check_int(expand, "expand", 0)
+    expand = _check_expand(texture, expand, max_bytes)
     mesh = texture.mesh
     if expand:
         P, tri, u, face_of = _expanded(texture, int(expand))
@@ -317,6 +354,10 @@ class LoadedStripes(Result):
 def read_stripes(path: str | os.PathLike[str]) -> LoadedStripes:
     """Read back a stripe pattern: ``OUT.obj`` (:func:`write_stripes_obj`, ``dhlb stripes``) and its sidecar.
 
+    The OBJ is read by :func:`dhlb.io.polylines.read_uv_obj`; every value of the sidecar that is used is
+    checked (types, shapes, face numbers in range and not repeated, finite values, counts that match
+    the OBJ, the repair record) before the texture is rebuilt.
+
     Parameters
     ----------
     path : str or path-like
@@ -331,7 +372,11 @@ def read_stripes(path: str | os.PathLike[str]) -> LoadedStripes:
     ------
     MeshParseError
         A file is missing or unreadable, the sidecar is not a dhlb-stripes sidecar or does not fit the
-        OBJ, or the OBJ was written with ``expand`` >= 1 (the subdivision, not the mesh).
+        OBJ (a wrong type, a face number outside the faces or repeated, a non-finite value, counts that
+        differ from the OBJ), the OBJ is not a valid surface, or the OBJ was written with ``expand`` >= 1
+        (the subdivision, not the mesh); the message names the file and the field or line.
+    NonFiniteError
+        A vertex of the OBJ has a NaN or infinite coordinate (the message names the line).
 
     Examples
     --------
@@ -348,8 +393,8 @@ def read_stripes(path: str | os.PathLike[str]) -> LoadedStripes:
     ...                                                         [[0.2, 0.3, 0.5]] * 2), rtol=0, atol=1e-12))
     (2, True)
     """
-    from dhlb.errors import MeshParseError
-    from dhlb.io._text import output_stem, read_json
+    from dhlb.errors import DhlbError, MeshParseError
+    from dhlb.io._text import check_json_type, check_number, output_stem, read_json
     from dhlb.io.polylines import read_uv_obj
     from dhlb.mesh import validate_surface
 
@@ -361,34 +406,123 @@ def read_stripes(path: str | os.PathLike[str]) -> LoadedStripes:
     meta = read_json(side)
     if meta.get("format") != "dhlb-stripes":
         raise MeshParseError("not the sidecar of a dhlb stripe pattern (no 'format': 'dhlb-stripes')", side)
-    if meta.get("expanded"):
-        raise MeshParseError(f"the OBJ holds the subdivision (expand={meta['expanded']}), not the mesh: write the "
+    if "version" in meta and check_number(meta["version"], side, "version", integer=True) != 1:
+        raise MeshParseError(f"version {meta['version']} of the stripes sidecar; this dhlb reads version 1", side)
+    expanded = check_number(meta.get("expanded", 0), side, "expanded", integer=True, low=0, optional=True)
+    if expanded:
+        raise MeshParseError(f"the OBJ holds the subdivision (expand={expanded}), not the mesh: write the "
                              "pattern with expand=0 to read it back", side)
+    for key in ("n", "zeros", "branch"):
+        if key not in meta:
+            raise MeshParseError(f"the sidecar has no {key!r}", side)
+    n = check_number(meta["n"], side, "n", integer=True, low=1, high=2)
     V, F, U = read_uv_obj(obj)
-    if meta.get("edge_lengths") is not None:   # a mollified mesh: its own metric (zero-area faces in space)
-        from dhlb.errors import DhlbError
+    _check_counts(meta, side, obj, len(V), len(F))
+    lengths = _sidecar_lengths(meta, side)
+    if lengths is not None:   # a mollified mesh: its own metric (zero-area faces in space)
         from dhlb.mesh.repair import repaired_mesh
 
         try:
-            mesh = repaired_mesh(V, F, np.arange(len(F)), None, np.asarray(meta["edge_lengths"], float))
+            mesh = repaired_mesh(V, F, np.arange(len(F)), None, lengths)
         except (DhlbError, TypeError, ValueError) as exc:
             raise MeshParseError(f"the mesh and the sidecar's edge_lengths do not fit ({exc})", side) from None
     else:
-        mesh = validate_surface(V, F)
-    try:
-        n = check_int(meta["n"], "n", 1)
-        zeros, branch = meta["zeros"], meta["branch"]
-        zf = np.asarray(zeros["faces"], np.int64).reshape(-1)
-        zero_index = np.zeros(mesh.n_faces, np.int64)
-        zero_index[zf] = np.asarray(zeros["index"], np.int64).reshape(-1)
-        bf = np.asarray(branch["faces"], np.int64).reshape(-1)
-        balpha = TWO_PI * np.column_stack([np.asarray(branch["u_m"], float), np.asarray(branch["u_l"], float)])
-        freq = meta.get("frequency", {})
-        frequency = np.array([freq.get("min", np.nan), freq.get("max", np.nan)], float)
-        if mesh.n_faces != meta.get("n_faces", mesh.n_faces) or len(balpha) != bf.size:
-            raise ValueError(f"{meta.get('n_faces')} faces and {bf.size} branch faces do not fit the OBJ "
-                             f"({mesh.n_faces} faces)")
-        tex = _FileTexture(_FileForm(mesh, n, frequency), TWO_PI * U, zero_index, bf, balpha)
-    except (KeyError, TypeError, ValueError, IndexError) as exc:
-        raise MeshParseError(f"the sidecar does not describe {os.path.basename(obj)} ({exc})", side) from None
+        import warnings
+
+        from dhlb.errors import UnreferencedVertexWarning
+
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", UnreferencedVertexWarning)   # refused below
+                mesh = validate_surface(V, F)
+        except DhlbError as exc:
+            raise MeshParseError(f"not the mesh of a stripe pattern ({exc})", obj) from None
+    if mesh.n_vertices != len(V):
+        raise MeshParseError(f"{len(V) - mesh.n_vertices} vertices are on no face: not the OBJ of a stripe pattern",
+                             obj)
+    zf, zi, bf, balpha = _sidecar_faces(meta, side, mesh.n_faces, n)
+    zero_index = np.zeros(mesh.n_faces, np.int64)
+    zero_index[zf] = zi
+    freq = check_json_type(meta.get("frequency", {}), dict, side, "frequency")
+    frequency = np.array([check_number(freq.get(k), side, f"frequency.{k}", low=0.0, optional=True)
+                          for k in ("min", "max")], dtype=float)
+    if "interpolation" in meta:
+        check_json_type(meta["interpolation"], str, side, "interpolation")
+    if "obj" in meta:
+        check_json_type(meta["obj"], (str, type(None)), side, "obj")
+    tex = _FileTexture(_FileForm(mesh, n, frequency), TWO_PI * U, zero_index, bf, balpha)
     return LoadedStripes(tex, meta)
+
+
+def _check_counts(meta: dict, side: str, obj: str, n_vertices: int, n_faces: int) -> None:
+    """The sidecar's counts and per-vertex / per-face lists against the OBJ (a truncated OBJ, another pattern)."""
+    from dhlb.errors import MeshParseError
+    from dhlb.io._text import check_array, check_json_type, check_number, check_repairs
+
+    for key, have, what in (("n_vertices", n_vertices, "vertices"), ("n_faces", n_faces, "faces")):
+        if key in meta and check_number(meta[key], side, key, integer=True, low=0) != have:
+            raise MeshParseError(f"{key} = {meta[key]}, but {os.path.basename(obj)} has {have} {what} (a truncated "
+                                 "OBJ, or the sidecar of another pattern)", side)
+    for key, count, what in (("vertex_labels", n_vertices, "vertex"), ("vertex_rows", n_vertices, "vertex"),
+                             ("face_rows", n_faces, "face")):
+        if key in meta:
+            check_array(meta[key], side, key, kind="i", shape=(count,), bounds=(0, None),
+                        dims=f"({count},): one per {what} of {os.path.basename(obj)}")
+    if "repairs" in meta:
+        check_repairs(meta["repairs"], side, "repairs")
+    if "obj_face_of" in meta:
+        check_json_type(meta["obj_face_of"], list, side, "obj_face_of")
+
+
+def _sidecar_lengths(meta: dict, side: str):
+    """The ``edge_lengths`` of a mollified mesh in the sidecar (finite, positive), or None."""
+    from dhlb.errors import MeshParseError
+    from dhlb.io._text import check_array
+
+    if meta.get("edge_lengths") is None:
+        return None
+    L = check_array(meta["edge_lengths"], side, "edge_lengths", shape=(None,), finite=True)
+    if L.size and L.min() <= 0:
+        i = int(np.argmin(L))
+        raise MeshParseError(f"edge_lengths[{i}] = {float(L[i])!r} is not a positive length", side)
+    return L
+
+
+def _sidecar_faces(meta: dict, side: str, m: int, n: int):
+    """Zero faces and indices, branch faces and their α of the sidecar, checked against the ``m`` faces."""
+    from dhlb.errors import MeshParseError
+    from dhlb.io._text import check_array, check_json_type
+
+    out = []
+    for key in ("zeros", "branch"):
+        part = check_json_type(meta[key], dict, side, key)
+        if "faces" not in part:
+            raise MeshParseError(f"{key} has no 'faces'", side)
+        faces = check_array(part["faces"], side, f"{key}.faces", kind="i", shape=(None,), bounds=(0, m - 1,
+                            f"face rows of the OBJ, which has {m} faces"))
+        counts = np.bincount(faces, minlength=m)
+        if faces.size and counts.max() > 1:
+            raise MeshParseError(f"{key}.faces names face {int(np.argmax(counts))} twice", side)
+        k = faces.size
+        values = []
+        for field in ("index",) if key == "zeros" else ("u_m", "u_l"):
+            if field not in part:
+                raise MeshParseError(f"{key} has no {field!r}", side)
+            values.append(check_array(part[field], side, f"{key}.{field}", kind="i" if field == "index" else "f",
+                                      shape=(k,), finite=True, dims=f"({k},): one per face of {key}.faces"))
+        if "points" in part:
+            check_array(part["points"], side, f"{key}.points", shape=(k, 3) if k else None, finite=True,
+                        dims=f"({k}, 3): one per face of {key}.faces")
+        out.append((faces, values))
+    (zf, (zi,)), (bf, (um, ul)) = out
+    if zi.size and np.any(zi == 0):
+        i = int(np.flatnonzero(zi == 0)[0])
+        raise MeshParseError(f"zeros.index[{i}] = 0, but the index of a zero face is not 0", side)
+    both = np.intersect1d(zf, bf)
+    if both.size:
+        raise MeshParseError(f"face {int(both[0])} is in zeros.faces and in branch.faces (a branch face has no zero)",
+                             side)
+    if n == 1 and bf.size:
+        raise MeshParseError(f"n = 1 (a vector field), but branch.faces names {bf.size} faces: branch faces belong "
+                             "to line fields (n = 2)", side)
+    return zf, zi, bf, TWO_PI * np.column_stack([um, ul]).reshape(-1, 2)

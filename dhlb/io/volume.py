@@ -225,7 +225,8 @@ class LoadedConformal(Result):
     def __init__(self, points, mesh, distortion, summary: dict, input_known: bool = True):
         self.points, self.mesh, self.distortion = points, mesh, distortion
         self.summary, self.input_known = summary, bool(input_known)
-        self.eigenvalue = float(summary.get("eigenvalue", np.nan))
+        eigenvalue = summary.get("eigenvalue")
+        self.eigenvalue = float(np.nan if eigenvalue is None else eigenvalue)
 
     def to_json(self) -> dict:
         """The summary, with the deformed points and the tets.
@@ -256,10 +257,33 @@ def named_tet_mesh(name, folder: str = ""):
 
     ``"box N"`` (``dhlb vortex --box N``), ``"ball N"`` (``dhlb conformal --ball N``) or a mesh file,
     looked for as given and in ``folder``.
+
+    Parameters
+    ----------
+    name : str or None
+        The name (``None`` or ``""``: no mesh).
+    folder : str, optional
+        The folder of the JSON.
+
+    Returns
+    -------
+    TetMesh or None
+        None when the name is no ``box N`` / ``ball N`` and no such file exists.
+
+    Raises
+    ------
+    InvalidTypeError
+        ``name`` is not a string.
+    DhlbError
+        The errors of :func:`~dhlb.mesh.box_tet_mesh`, :func:`~dhlb.mesh.ball_tet_mesh` (``N`` 0, or too
+        large for the memory), :func:`read_volume` and :func:`~dhlb.mesh.check_tet_mesh`.
     """
+    from dhlb.errors import InvalidTypeError
     from dhlb.mesh import ball_tet_mesh, box_tet_mesh, check_tet_mesh
 
-    name = str(name or "")
+    if name is not None and not isinstance(name, str):
+        raise InvalidTypeError(f"a mesh name must be a string, got {type(name).__name__} {name!r}")
+    name = name or ""
     kind, _, size = name.partition(" ")
     if kind in ("box", "ball") and size.isdigit():
         return box_tet_mesh(int(size), lower=-1.0, upper=1.0) if kind == "box" else ball_tet_mesh(int(size))
@@ -269,10 +293,70 @@ def named_tet_mesh(name, folder: str = ""):
     return None
 
 
-def _input_points(name, folder: str):
-    """The points of the input mesh a ``dhlb conformal`` JSON names, or None."""
-    mesh = named_tet_mesh(name, folder)
-    return None if mesh is None else mesh.points
+def _input_mesh(name, folder: str, side: str):
+    """The input mesh a ``dhlb conformal`` JSON names (None when it names none that is there), errors naming it."""
+    from dhlb.errors import DhlbError
+    from dhlb.io._text import check_json_type
+
+    check_json_type(name, (str, type(None)), side, "mesh")
+    try:
+        return named_tet_mesh(name, folder)
+    except DhlbError as exc:
+        raise MeshParseError(f"mesh = {name!r} names no usable input mesh ({exc})", side) from None
+
+
+def _conformal_arrays(data, path: str):
+    """``(points, tets, input points or None, distortion or None)`` of an npz or JSON, every array checked."""
+    from dhlb.io._text import check_array
+
+    P = check_array(data["points"], path, "points", shape=(None, 3), finite=True)
+    N = len(P)
+    T = check_array(data["tets"], path, "tets", kind="i", shape=(None, 4), bounds=(0, N - 1,
+                    f"rows of points, which has {N}"))
+    M = len(T)
+    before = distortion = None
+    if data.get("input_points") is not None:
+        before = check_array(data["input_points"], path, "input_points", shape=(N, 3), finite=True,
+                             dims=f"({N}, 3): one per row of points")
+    for key in ("phi", "u"):
+        if data.get(key) is not None:
+            a = check_array(data[key], path, key, finite=True)
+            if a.ndim not in (1, 2) or a.shape[0] != N:
+                raise MeshParseError(f"{key} must have one row per row of points ({N}), got shape {a.shape}", path)
+    for key in ("distortion", "scale_error"):
+        if data.get(key) is None:
+            continue
+        a = check_array(data[key], path, key, shape=(M,), dims=f"({M},): one per row of tets")
+        bad = np.flatnonzero(np.isnan(a) | ((a < 1.0 - 1e-9) if key == "distortion" else False))
+        if bad.size:
+            i = int(bad[0])
+            need = "σ_max/σ_min, a number >= 1" if key == "distortion" else "a number"
+            raise MeshParseError(f"{key}[{i}] = {float(a[i])!r} is not {need}", path)
+        if key == "distortion":
+            distortion = a
+    return P, T, before, distortion
+
+
+def _check_conformal_summary(summary: dict, side: str) -> None:
+    """The values of a conformal JSON that are used (eigenvalue, statistics, timings), checked."""
+    from dhlb.io._text import check_json_type, check_number
+
+    if "eigenvalue" in summary:
+        check_number(summary["eigenvalue"], side, "eigenvalue", finite=False, optional=True)
+    for key in ("statistics", "timings"):
+        if key in summary:
+            check_json_type(summary[key], (dict, type(None)), side, key)
+
+
+def _check_counts(summary: dict, side: str, P, T, source: str) -> None:
+    """``statistics.n_vertices`` / ``n_tets`` of the JSON against the deformed mesh of ``source``."""
+    from dhlb.io._text import check_number
+
+    stats = summary.get("statistics") or {}
+    for key, have, what in (("n_vertices", len(P), "vertices"), ("n_tets", len(T), "tetrahedra")):
+        if key in stats and check_number(stats[key], side, f"statistics.{key}", integer=True, low=0) != have:
+            raise MeshParseError(f"statistics.{key} = {stats[key]}, but {os.path.basename(source)} has {have} {what}: "
+                                 "the files are of different runs", side)
 
 
 def read_conformal(path: str | os.PathLike[str]) -> LoadedConformal:
@@ -283,6 +367,11 @@ def read_conformal(path: str | os.PathLike[str]) -> LoadedConformal:
     beside the JSON); the distortion per tet is recomputed from the input and the deformed points
     (:func:`dhlb.conformal.tet_distortion`). ``result.save("OUT.npz")`` holds everything;
     ``result.save("OUT.json")`` (:meth:`~dhlb.conformal.ConformalResult.to_json`) all but the input points.
+
+    Every array is checked before it is used: the points finite, the tets ``(m, 4)`` indices of the
+    points, the input points, ``phi``, ``u``, one distortion (``>= 1``) and scale error per tet; the
+    counts of the summary must be those of the mesh, and a named input mesh must have the deformed
+    mesh's vertices and tetrahedra.
 
     Parameters
     ----------
@@ -296,7 +385,12 @@ def read_conformal(path: str | os.PathLike[str]) -> LoadedConformal:
     Raises
     ------
     MeshParseError
-        No such file, or files that do not hold a deformation.
+        No such file, or files that do not hold a deformation: an unreadable archive or JSON, pickled
+        objects, a missing or wrongly shaped array, an index out of range, a non-finite value, values
+        that do not fit together (3 distortions for 48 tets), or an input mesh that is not the one
+        deformed; the message names the file and the field.
+    NonFiniteError
+        A vertex of a mesh file has a NaN or infinite coordinate (the message names the line).
 
     Examples
     --------
@@ -310,37 +404,50 @@ def read_conformal(path: str | os.PathLike[str]) -> LoadedConformal:
     >>> bool(np.array_equal(back.points, res.points)), bool(np.array_equal(back.distortion, res.distortion))
     (True, True)
     """
-    from dhlb.io._text import output_stem, read_json
+    from dhlb.errors import DhlbError
+    from dhlb.io._text import check_number, load_npz, output_stem, read_json
     from dhlb.mesh import check_tet_mesh
 
     base = output_stem(path)
     ext = os.path.splitext(os.fspath(path))[1].lower()
     folder = os.path.dirname(os.path.abspath(base))
-    summary = read_json(base + ".json") if os.path.isfile(base + ".json") else {}
-    before = distortion = None
+    side = base + ".json"
+    summary = read_json(side) if os.path.isfile(side) else {}
+    _check_conformal_summary(summary, side)
     if ext in ("", ".npz", ".png") and os.path.isfile(base + ".npz"):
-        try:
-            with np.load(base + ".npz", allow_pickle=False) as z:
-                data = {k: z[k] for k in z.files}
-            P, T = np.asarray(data["points"], float), np.asarray(data["tets"], np.int64)
-        except (OSError, ValueError, KeyError) as exc:
-            raise MeshParseError(f"not a conformal deformation of dhlb ({exc})", base + ".npz") from None
-        before, distortion = data.get("input_points"), data.get("distortion")
-        summary = {**summary, "eigenvalue": float(data.get("eigenvalue", summary.get("eigenvalue", np.nan)))}
+        source = base + ".npz"
+        data = load_npz(source)
+        missing = [k for k in ("points", "tets") if k not in data]
+        if missing:
+            raise MeshParseError(f"not a conformal deformation of dhlb: no {', '.join(missing)}", source)
+        P, T, before, distortion = _conformal_arrays(data, source)
+        if "eigenvalue" in data:
+            summary = {**summary, "eigenvalue": check_number(data["eigenvalue"], source, "eigenvalue", finite=False)}
     elif "points" in summary and "tets" in summary:
-        P, T = np.asarray(summary["points"], float), np.asarray(summary["tets"], np.int64)
-        before, distortion = summary.get("input_points"), summary.get("distortion")
+        source = side
+        P, T, before, distortion = _conformal_arrays(summary, side)
         summary = {k: v for k, v in summary.items() if k not in ("points", "tets", "phi", "u", "input_points")}
     else:
         order = (ext,) if ext in (".mesh", ".vtk", ".msh") else (".mesh", ".vtk", ".msh")
         found = [base + e for e in order if os.path.isfile(base + e)]
         if not found:
             raise MeshParseError("no deformed mesh: none of .npz, .json with points, .mesh, .vtk, .msh", base)
-        P, T = read_volume(found[0])
-        before = _input_points(summary.get("mesh"), folder)
-    if before is not None and np.shape(before) != P.shape:
-        before = None  # the named input is another mesh than the one deformed
-    mesh = check_tet_mesh(P if before is None else np.asarray(before, float), T)  # rows of T keep their order
+        source = found[0]
+        P, T = read_volume(source)
+        distortion = None
+        named = _input_mesh(summary.get("mesh"), folder, side)
+        before = None if named is None else named.points
+        if named is not None and (named.points.shape != P.shape or not np.array_equal(named.tets, T)):
+            raise MeshParseError(f"mesh = {summary.get('mesh')!r} is not the mesh deformed in "
+                                 f"{os.path.basename(source)} ({len(named.points)} vertices and "
+                                 f"{len(named.tets)} tetrahedra there, {len(P)} and {len(T)} here, or other "
+                                 "tetrahedra)", side)
+    _check_counts(summary, side, P, T, source)
+    try:
+        mesh = check_tet_mesh(P if before is None else before, T)  # rows of T keep their order
+    except DhlbError as exc:
+        what = "points and tets" if before is None else "input_points and tets"
+        raise MeshParseError(f"the {what} are not a valid tetrahedral mesh ({exc})", source) from None
     if distortion is None and before is not None:
         from dhlb.conformal import tet_distortion
 

@@ -357,8 +357,11 @@ class MeshRepair:
                                    tuple(int(v) for v in r.get("vertices", ())),
                                    None if r.get("value") is None else float(r["value"])) for r in items)
             opts = RepairOptions.parse(str(data["repair_options"]))
-        except (KeyError, TypeError, AttributeError, json.JSONDecodeError, InvalidParameterError) as exc:
+            delta = float(np.asarray(data.get("repair_delta", 0.0), dtype=np.float64))
+        except (KeyError, TypeError, AttributeError, OverflowError, json.JSONDecodeError, InvalidParameterError) as exc:
             raise ValueError(f"the repair record is not readable ({exc})") from None
+        if not (np.isfinite(delta) and delta >= 0):
+            raise ValueError(f"repair_delta must be a finite number >= 0, got {delta!r}")
         voi = np.asarray(data["vertex_of_input"])
         foi = np.asarray(data["face_of_input"])
         rows = np.asarray(vertex_rows)
@@ -366,8 +369,9 @@ class MeshRepair:
             raise ValueError("vertex_of_input and face_of_input must be 1-d integer arrays")
         if voi.size and (voi.min() < -1 or voi.max() >= rows.size):
             raise ValueError(f"vertex_of_input refers to vertices outside 0 .. {rows.size - 1}")
-        return cls(repairs, opts, rows.astype(np.int64), voi.astype(np.int64), foi.astype(np.int64),
-                   float(data.get("repair_delta", 0.0)))
+        if foi.size and foi.min() < -1:
+            raise ValueError(f"face_of_input holds {int(foi.min())}: faces are numbered from 0 (-1: removed)")
+        return cls(repairs, opts, rows.astype(np.int64), voi.astype(np.int64), foi.astype(np.int64), delta)
 
 
 # ---------------------------------------------------------------------------- the steps
@@ -969,7 +973,11 @@ def repaired_mesh(points: ArrayLike, faces: ArrayLike, face_rows: ArrayLike, rep
     if lengths is not None and lengths.shape != (X.n_simplices(1),):
         raise InvalidParameterError(f"edge_lengths has shape {lengths.shape}, the mesh has {X.n_simplices(1)} edges")
     geometry = _geometry(X, P, lengths)
-    flip = np.zeros(len(Fc), bool) if flipped is None else np.asarray(flipped, bool)
+    flip = np.zeros(len(Fc), bool) if flipped is None else np.asarray(flipped)
+    if flip.shape != (len(Fc),) or flip.dtype != bool:
+        raise InvalidParameterError(f"flipped must be one bool per face ({len(Fc)}), got {flip.dtype} {flip.shape}")
+    if repair is not None and repair.face_of_input.size and repair.face_of_input.max() >= len(Fc):
+        raise InvalidParameterError(f"face_of_input refers to faces outside 0 .. {len(Fc) - 1}")
     n_input = N if repair is None else int(repair.vertex_of_input.size)
     mesh = SurfaceMesh(np.ascontiguousarray(P), Fc, X, rows, flip, n_input, repair=repair, edge_lengths=lengths)
     mesh.__dict__.update(_pairs=pairs, triangle_of_face=tri, geometry=geometry)
