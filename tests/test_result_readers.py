@@ -743,3 +743,20 @@ def test_no_reader_lets_a_raw_error_through(made, tmp_path):
                 read_result(folder / name)
             except DhlbError:
                 pass
+
+
+def test_the_long_fuzz_run_findings_are_typed_errors():
+    # DHLB_FUZZ_LONG=7200 of tests/test_fuzz_results.py (50,400 inputs) found these two: a JSON integer
+    # beyond every machine type (np.isfinite raised TypeError) and the area of a degenerate face in a
+    # mesh with coordinates near 1e308 (scale**2 raised OverflowError while the message was written)
+    import numpy as np
+
+    from dhlb.errors import DegenerateSimplexError, MeshParseError
+    from dhlb.io._text import check_number
+    from dhlb.mesh import validate_surface
+
+    with pytest.raises(MeshParseError, match="too large"):
+        check_number(10**30, "f.json", "n_vertices", integer=True)
+    V = np.array([[0.0, 0, 0], [1e308, 0, 0], [2e307, 0, 0], [0, 1e308, 0]])
+    with pytest.raises(DegenerateSimplexError, match="zero area"):
+        validate_surface(V, [[0, 1, 2], [0, 1, 3]])

@@ -599,7 +599,10 @@ def check_number(value, path, field: str, *, integer: bool = False, finite: bool
     if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, float, np.integer, np.floating)):
         raise MeshParseError(f"{field} must be {'an integer' if integer else 'a number'}"
                              f"{' or null' if optional else ''}, got {describe(x)}", path)
-    if (finite or integer) and not np.isfinite(x):
+    if isinstance(x, (int, np.integer)):   # a Python int of JSON may exceed every machine type
+        if abs(int(x)) >= 2**63:
+            raise MeshParseError(f"{field} is too large, got {x!r}", path)
+    elif (finite or integer) and not np.isfinite(x):
         raise MeshParseError(f"{field} must be finite, got {x!r}", path)
     if integer:
         if isinstance(x, (float, np.floating)) and float(x) != np.floor(float(x)):

@@ -160,7 +160,7 @@ def check_geometry(P, T, rows) -> None:
         r = int(deg[0])
         raise DegenerateSimplexError(
             f"{deg.size} face(s) have zero area, first face {int(rows[r])} (vertices "
-            f"{', '.join(str(int(v)) for v in T[r])}) with area {st.volumes[r] * scale**2:.3g}; "
+            f"{', '.join(str(int(v)) for v in T[r])}) with area {st.volumes[r] * scale * scale:.3g}; "
             "remove or repair them (collinear vertices)")
 
 
