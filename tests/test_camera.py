@@ -99,3 +99,24 @@ def test_the_viewer_does_not_clip_a_box(view):
     depth = (corners - p) @ f
     x, y = (corners - p) @ right / (depth * t), (corners - p) @ screen_up / (depth * t)
     assert np.all(np.abs(x) < 1) and np.all(np.abs(y) < 1), (x, y)
+
+
+def test_picture_sizes_are_checked_and_estimated_before_drawing():
+    # issue 39: a picture size scales the work (about PNG_BYTES_PER_PIXEL bytes a pixel)
+    from dhlb.errors import InvalidParameterError, ResourceLimitError
+    from dhlb.linalg import set_memory_limit
+    from dhlb.render import Camera
+
+    for bad in ((0, 10), (100_000, 100_000), (800, 800.0), (800,), True, "800x800"):
+        with pytest.raises(InvalidParameterError, match=r"Camera\.size"):
+            Camera(size=bad)
+    with pytest.raises(InvalidParameterError, match=r"Camera\.dpi"):
+        Camera(dpi=0)
+    set_memory_limit(200 * 2**20)
+    try:
+        with pytest.raises(ResourceLimitError, match="size") as err:
+            Camera(size=(4000, 4000))            # 640 MB of picture against 200 MB
+        assert "fits" in str(err.value)
+        assert Camera(size=(800, 800)).size == (800, 800)
+    finally:
+        set_memory_limit(None)

@@ -124,16 +124,17 @@ MAX_ITERATIONS = 100_000
 """The most ``--iterations`` accepted."""
 MAX_BYTES = 1_000_000_000
 """Memory budget of one ``dhlb stripes`` run's outputs (isolines, PNG), checked before the work."""
-_PNG_BYTES_PER_PIXEL = 40
 
 
 def _check_size(size):
+    from dhlb.render._figure import PNG_BYTES_PER_PIXEL
+
     low = PIXEL_SIZE.bounds[0]
-    est = size * size * _PNG_BYTES_PER_PIXEL
+    est = size * size * PNG_BYTES_PER_PIXEL
     if est > MAX_BYTES:
         from dhlb.errors import ResourceLimitError
 
-        allowed = int((MAX_BYTES / _PNG_BYTES_PER_PIXEL) ** 0.5)
+        allowed = int((MAX_BYTES / PNG_BYTES_PER_PIXEL) ** 0.5)
         raise ResourceLimitError("--size", size, est, MAX_BYTES, f"allowed: --size {low} to {allowed}")
 
 

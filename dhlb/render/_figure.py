@@ -72,6 +72,11 @@ class _Replace:
         return dataclasses.replace(self, **changes)
 
 
+PNG_BYTES_PER_PIXEL = 40
+"""Peak bytes per pixel of drawing a picture (matplotlib's RGBA buffers and the PNG encoder; the budget of
+``dhlb stripes --size``)."""
+
+
 @dataclass(frozen=True)
 class Camera(_Replace):
     """An orthographic camera and the picture it takes.
@@ -91,14 +96,19 @@ class Camera(_Replace):
         The world direction shown upward (default ``+y``; replaced by a perpendicular axis when
         parallel to ``view``).
     size : (2,) int
-        Width and height of the picture in pixels.
+        Width and height of the picture in pixels, each an integer in 16 .. 8192 (the picture needs about
+        :data:`PNG_BYTES_PER_PIXEL` bytes a pixel, checked against the memory available).
     dpi : int
-        Pixels per inch of the PNG (scales the line widths, which are in points).
+        Pixels per inch of the PNG (scales the line widths, which are in points), an integer in 10 .. 2400.
 
     Raises
     ------
     InvalidParameterError
-        ``view`` or ``up`` is not a finite nonzero 3D direction (or an axis name).
+        ``view`` or ``up`` is not a finite nonzero 3D direction (or an axis name); ``size`` or ``dpi`` is not
+        an integer in its range.
+    ResourceLimitError
+        The picture would need more memory than is available (the message says how much and the largest
+        square picture that fits).
 
     Examples
     --------
@@ -118,6 +128,19 @@ class Camera(_Replace):
     dpi: int = 100
 
     def __post_init__(self) -> None:
+        from dhlb._memory_errors import check_memory
+
+        size = self.size
+        if (not isinstance(size, (tuple, list)) or len(size) != 2
+                or not all(isinstance(v, (int, np.integer)) and not isinstance(v, bool) and 16 <= v <= 8192
+                           for v in size)):
+            raise InvalidParameterError(f"Camera.size must be two integers (width, height) in 16 .. 8192 pixels, "
+                                        f"got {size!r}")
+        if not (isinstance(self.dpi, (int, np.integer)) and not isinstance(self.dpi, bool) and 10 <= self.dpi <= 2400):
+            raise InvalidParameterError(f"Camera.dpi must be an integer in 10 .. 2400, got {self.dpi!r}")
+        check_memory("size", tuple(int(v) for v in size), PNG_BYTES_PER_PIXEL * int(size[0]) * int(size[1]),
+                     largest=lambda room: int((room / PNG_BYTES_PER_PIXEL) ** 0.5) or None,
+                     advice=f"a picture takes about {PNG_BYTES_PER_PIXEL} bytes a pixel while it is drawn")
         if self.view is not None:
             w = np.asarray(self.view, float).reshape(-1)
             if w.shape != (3,) or not np.all(np.isfinite(w)) or not np.any(w):
