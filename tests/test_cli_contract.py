@@ -67,3 +67,31 @@ def test_a_screenshot_leaves_no_imgui_ini(tmp_path):
     if shot.returncode != 0:
         pytest.skip(f"no headless OpenGL here: {shot.stderr.strip()[-200:]}")
     assert (tmp_path / "t.png").exists() and not (tmp_path / "imgui.ini").exists()
+
+
+def test_view_of_a_damaged_output_is_one_line_not_an_internal_error(tmp_path, capsys):
+    pytest.importorskip("plotly")
+    code, err = _run(["field", TORUS, "--n", "2", "-o", str(tmp_path / "t"), "--no-png", "-q"], capsys)
+    assert code == 0, err
+    npz = tmp_path / "t.npz"
+    npz.write_bytes(npz.read_bytes()[:3000])                   # a bad copy
+    code, err = _run(["view", str(tmp_path / "t"), "--html", str(tmp_path / "t.html")], capsys)
+    assert code in (1, 2) and "internal error" not in err and "t.npz" in err and err.count("\n") == 1, err
+    assert not (tmp_path / "t.html").exists()
+
+
+def test_a_result_read_from_files_is_never_written_over(tmp_path, capsys):
+    from dhlb.errors import OverwriteError
+    from dhlb.io import read_result
+
+    assert _run(["field", TORUS, "--n", "2", "-o", str(tmp_path / "t"), "--no-png", "-q"], capsys)[0] == 0
+    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    res = read_result(str(tmp_path / "t.json"))
+    for path in (tmp_path / "t.json", tmp_path / "t.npz", tmp_path / "t.ply"):
+        with pytest.raises(OverwriteError, match="read from"):
+            res.save(path)
+    if pytest.importorskip("plotly"):
+        with pytest.raises(OverwriteError, match="read from"):
+            res.to_html(tmp_path / "t.json")
+    assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
+    assert res.save(tmp_path / "copy.json") == [str(tmp_path / "copy.json")]
