@@ -101,6 +101,13 @@ GUARDS = {
                            "ResourceLimitError", ["max_dim = 6 needs about", "at most max_dim = "]),
     "barycentric_subdivision-12-simplex": ("dhlb.examples.simplex(12).barycentric_subdivision()", "ResourceLimitError",
                                            ["X.dim = 12 needs about", "at most X.dim = ", "6,227,020,800"]),
+    "Camera-size": ("dhlb.render.Camera(size=(8192, 8192))", "ResourceLimitError",
+                    ["size = (8192, 8192) needs about 2.7 GB", "address-space limit of 2.5 GB", "fits"]),
+    "write_stripes_obj-expand": (
+        "__import__('dhlb.io.stripes').io.stripes.write_stripes_obj("
+        "__import__('tempfile').gettempdir() + '/dhlb-guard-expand.obj', dhlb.stripes.stripe_pattern("
+        "*icosphere(2), dhlb.fields.direction_field(*icosphere(2), n=1), spacing=4.0).texture, expand=10**4)",
+        "ResourceLimitError", ["expand = 10000 needs about", "zero faces", "allowed: expand 0 to"]),
 }
 
 
