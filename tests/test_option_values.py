@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 
 import numpy as np
 import pytest
@@ -380,3 +381,39 @@ def test_did_you_mean():
 
     assert did_you_mean("superLU", ["superlu", "cholmod"]) == "; did you mean 'superlu'?"
     assert did_you_mean("zzz", ["superlu"]) == "" and did_you_mean(3, ["superlu"]) == ""
+
+
+# ----------------------------------------------------------------------------- the picture styles
+STYLE_CASES = [  # (class name, field, bad value, words of the message)
+    ("FieldStyle", "glyph_length", -1.0, "finite number > 0"), ("FieldStyle", "glyph_width", float("nan"), "> 0"),
+    ("FieldStyle", "glyph_color", "no-such-colour", "matplotlib colour"), ("FieldStyle", "ambient", 1.5, "[0, 1]"),
+    ("FieldStyle", "max_glyphs", 0, ">= 1"), ("FieldStyle", "dot_radius", "big", "> 0"),
+    ("FieldStyle", "background", 42, "matplotlib colour"), ("StripeStyle", "dark", (2.0, 0, 0), "colour"),
+    ("StripeStyle", "fn", "cos", "function"), ("StripeStyle", "max_triangles", 2.5, "integer"),
+    ("StripeStyle", "mark_singularities", "yes", "True or False"), ("FilamentStyle", "line_width", 0, "> 0"),
+    ("FilamentStyle", "fill", None, "colour"), ("ConformalStyle", "colormap", "viridiss", "did you mean"),
+    ("ConformalStyle", "colormap", 3, "colormap"),
+]
+
+
+@pytest.mark.parametrize("cls, field, bad, words", STYLE_CASES)
+def test_picture_styles_check_their_fields(cls, field, bad, words):
+    import dhlb.render as render
+
+    style = getattr(render, cls)
+    with pytest.raises(InvalidParameterError, match=re.escape(f"{cls}.{field}")) as err:
+        style(**{field: bad})
+    assert words in str(err.value)
+    with pytest.raises(InvalidParameterError):
+        style().replace(**{field: bad})
+    assert style() == style()                              # the defaults are valid
+
+
+def test_picture_styles_take_every_matplotlib_colour():
+    import numpy as np
+
+    from dhlb.render import ConformalStyle, FieldStyle, StripeStyle
+
+    assert FieldStyle(glyph_color="#1f77b4", face_color=(0.5, 0.5, 0.5), background="white").glyph_color == "#1f77b4"
+    assert StripeStyle(fn=np.sin, dark="black").fn is np.sin
+    assert ConformalStyle(colormap="magma").colormap == "magma"

@@ -72,6 +72,46 @@ class _Replace:
         return dataclasses.replace(self, **changes)
 
 
+def _check_style(style, spec: dict) -> None:
+    """Check the fields of a style (``spec``: field → kind), with messages naming ``Class.field``.
+
+    Kinds: ``"color"`` (a matplotlib colour), ``"positive"`` (a finite number > 0), ``"positive?"`` (that or
+    None), ``"unit"`` (a number in [0, 1]), ``"count"`` (an integer >= 1), ``"flag"`` (a bool),
+    ``"callable"``, ``"colormap"`` (a name of :data:`matplotlib.colormaps`).
+    """
+    import math
+
+    from dhlb._deprecation import check_choice, check_flag, check_integer, check_number
+
+    cls = type(style).__name__
+    for field, kind in spec.items():
+        value, name = getattr(style, field), f"{cls}.{field}"
+        if kind == "color":
+            from matplotlib.colors import is_color_like
+
+            if isinstance(value, bool) or not is_color_like(value):
+                raise InvalidParameterError(f"{name} must be a matplotlib colour (a name such as 'white', '#1f77b4' "
+                                            f"or an RGB tuple of numbers in [0, 1]), got {value!r}")
+        elif kind in ("positive", "positive?"):
+            if not (kind == "positive?" and value is None):
+                check_number(value, name, "a finite number > 0", lambda x: math.isfinite(x) and x > 0)
+        elif kind == "unit":
+            check_number(value, name, "a number in [0, 1]", lambda x: 0.0 <= x <= 1.0)
+        elif kind == "count":
+            check_integer(value, name, 1)
+        elif kind == "flag":
+            check_flag(value, name)
+        elif kind == "callable":
+            if not callable(value):
+                raise InvalidParameterError(f"{name} must be a function of the angle (e.g. numpy.cos), got {value!r}")
+        elif kind == "colormap":
+            from matplotlib import colormaps
+
+            if not isinstance(value, str):
+                raise InvalidParameterError(f"{name} must be the name of a matplotlib colormap, got {value!r}")
+            check_choice(value, name, sorted(colormaps))
+
+
 PNG_BYTES_PER_PIXEL = 40
 """Peak bytes per pixel of drawing a picture (matplotlib's RGBA buffers and the PNG encoder; the budget of
 ``dhlb stripes --size``)."""
@@ -253,6 +293,11 @@ class FieldStyle(_Replace):
     dot_radius : float, optional
         Radius of a singularity dot (default: the larger of 0.35 × mean edge length and 0.6 % of the picture).
 
+    Raises
+    ------
+    InvalidParameterError
+        A field of the wrong kind or out of its range (the message names ``FieldStyle.field``).
+
     Examples
     --------
     >>> FieldStyle(glyph_color="red").max_glyphs
@@ -267,6 +312,11 @@ class FieldStyle(_Replace):
     max_glyphs: int = 40000
     dot_radius: float | None = None
     background: Any = "white"
+
+    def __post_init__(self) -> None:
+        _check_style(self, {'glyph_length': 'positive?', 'glyph_width': 'positive', 'glyph_color': 'color',
+                            'face_color': 'color', 'ambient': 'unit', 'max_glyphs': 'count',
+                            'dot_radius': 'positive?', 'background': 'color'})
 
 
 @dataclass(frozen=True)
@@ -287,6 +337,11 @@ class StripeStyle(_Replace):
         Dots at the zeros (red: index > 0, blue: < 0) and branch points (green).
     background : matplotlib colour
 
+    Raises
+    ------
+    InvalidParameterError
+        A field of the wrong kind or out of its range (the message names ``StripeStyle.field``).
+
     Examples
     --------
     >>> StripeStyle(mark_singularities=True).ambient
@@ -300,6 +355,10 @@ class StripeStyle(_Replace):
     max_triangles: int = 400_000
     mark_singularities: bool = False
     background: Any = "white"
+
+    def __post_init__(self) -> None:
+        _check_style(self, {'dark': 'color', 'light': 'color', 'fn': 'callable', 'ambient': 'unit',
+                            'max_triangles': 'count', 'mark_singularities': 'flag', 'background': 'color'})
 
 
 @dataclass(frozen=True)
@@ -316,6 +375,11 @@ class FilamentStyle(_Replace):
         Of the domain's contour and feature edges.
     background : matplotlib colour
 
+    Raises
+    ------
+    InvalidParameterError
+        A field of the wrong kind or out of its range (the message names ``FilamentStyle.field``).
+
     Examples
     --------
     >>> FilamentStyle(line_width=3.0).fill
@@ -326,6 +390,10 @@ class FilamentStyle(_Replace):
     fill: Any = DOMAIN_COLOR
     outline_color: Any = OUTLINE_COLOR
     background: Any = "white"
+
+    def __post_init__(self) -> None:
+        _check_style(self, {'line_width': 'positive', 'fill': 'color', 'outline_color': 'color',
+                            'background': 'color'})
 
 
 @dataclass(frozen=True)
@@ -338,6 +406,11 @@ class ConformalStyle(_Replace):
         A matplotlib colormap name (distortion 1 at its low end).
     background : matplotlib colour
 
+    Raises
+    ------
+    InvalidParameterError
+        A field of the wrong kind or out of its range (the message names ``ConformalStyle.field``).
+
     Examples
     --------
     >>> ConformalStyle().colormap
@@ -346,6 +419,9 @@ class ConformalStyle(_Replace):
 
     colormap: str = "viridis"
     background: Any = "white"
+
+    def __post_init__(self) -> None:
+        _check_style(self, {'colormap': 'colormap', 'background': 'color'})
 
 
 _AXES = {"x": 0, "y": 1, "z": 2}
