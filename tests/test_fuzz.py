@@ -176,23 +176,32 @@ class Tally:
 TALLY = Tally()
 
 
-@pytest.fixture(scope="module")
-def worker():
-    with tempfile.TemporaryDirectory(prefix="dhlb-fuzz-") as d:
-        w = Worker(d)
+def run_worker(worker_class, prefix: str, tally: Tally, long: int):
+    """The module fixture of a fuzzer: a started worker; after the long run, the table and the report.
+
+    With ``long`` (``DHLB_FUZZ_LONG``) it prints the table of outcomes and the first failures, and
+    writes them as JSON to ``$DHLB_FUZZ_REPORT`` if that is set.
+    """
+    with tempfile.TemporaryDirectory(prefix=prefix) as d:
+        w = worker_class(d)
         w.start()
         yield w
         w.stop()
-        if LONG:
-            print("\n" + TALLY.table())
-            for name, task, res in TALLY.failures[:50]:
+        if long:
+            print("\n" + tally.table())
+            for name, task, res in tally.failures[:50]:
                 print(name, json.dumps(task)[:300], res)
             report = os.environ.get("DHLB_FUZZ_REPORT")
             if report:
                 Path(report).write_text(json.dumps(
-                    {"inputs_per_strategy": LONG, "table": TALLY.table(),
-                     "counts": {k: dict(v) for k, v in TALLY.counts.items()},
-                     "failures": [[n, t, r] for n, t, r in TALLY.failures]}, indent=1))
+                    {"inputs_per_strategy": long, "table": tally.table(),
+                     "counts": {k: dict(v) for k, v in tally.counts.items()},
+                     "failures": [[n, t, r] for n, t, r in tally.failures]}, indent=1))
+
+
+@pytest.fixture(scope="module")
+def worker():
+    yield from run_worker(Worker, "dhlb-fuzz-", TALLY, LONG)
 
 
 # ------------------------------------------------------------------------------------- seeds

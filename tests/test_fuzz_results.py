@@ -36,7 +36,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tests.test_fuzz import MEMORY_LIMIT, REPO, Tally, Worker
+from tests.test_fuzz import MEMORY_LIMIT, REPO, Tally, Worker, run_worker
 
 LONG = int(os.environ.get("DHLB_FUZZ_LONG", "0") or 0)
 FAST_EXAMPLES = int(os.environ.get("DHLB_FUZZ_RESULTS", "300"))
@@ -285,21 +285,7 @@ def mutated_output(draw, kind: str):
 
 @pytest.fixture(scope="module")
 def worker():
-    with tempfile.TemporaryDirectory(prefix="dhlb-fuzz-results-") as d:
-        w = ResultWorker(d)
-        w.start()
-        yield w
-        w.stop()
-        if LONG:
-            print("\n" + TALLY.table())
-            for name, task, res in TALLY.failures[:50]:
-                print(name, json.dumps(task)[:200], res)
-            report = os.environ.get("DHLB_FUZZ_REPORT")
-            if report:
-                Path(report).write_text(json.dumps({"inputs_per_kind": LONG, "table": TALLY.table(),
-                                                    "counts": {k: dict(v) for k, v in TALLY.counts.items()},
-                                                    "failures": [[n, t, r] for n, t, r in TALLY.failures]},
-                                                   indent=1))
+    yield from run_worker(ResultWorker, "dhlb-fuzz-results-", TALLY, LONG)
 
 
 _SETTINGS = settings(max_examples=EXAMPLES, deadline=None, derandomize=not LONG, database=None,
