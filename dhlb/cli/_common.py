@@ -206,7 +206,7 @@ def repair_choice(text: str) -> str:
     >>> repair_choice("splitt")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    argparse.ArgumentTypeError: unknown repair 'splitt' (did you mean 'split'?); give safe, none, all or ...
+    argparse.ArgumentTypeError: unknown repair 'splitt': give safe, none, all or ...; did you mean 'split'?
     """
     from dhlb.errors import InvalidParameterError
     from dhlb.mesh.repair import RepairOptions

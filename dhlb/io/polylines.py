@@ -166,6 +166,14 @@ _OBJ_OTHER = frozenset(
 )
 
 
+def _vertex_record(toks, line: int, path: str, rows: list, lines: list) -> None:
+    """Keep the coordinates of an OBJ ``v`` record (and its line); fewer than 3 is an error naming the line."""
+    if len(toks) < 4:
+        raise MeshParseError(f"a vertex needs 3 coordinates, got {len(toks) - 1}", path, line)
+    rows.append(toks[1:4])
+    lines.append(line)
+
+
 def _obj_text(path: str) -> str:
     """The text of an OBJ, undecodable bytes as U+FFFD; a NUL byte (a binary file) is an error naming its line."""
     from dhlb.io._text import read_text
@@ -248,10 +256,7 @@ def read_uv_obj(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray, n
     for line, toks in content_lines(_obj_text(path)):
         key = toks[0]
         if key == "v":
-            if len(toks) < 4:
-                raise MeshParseError(f"a vertex needs 3 coordinates, got {len(toks) - 1}", path, line)
-            vrows.append(toks[1:4])
-            vlines.append(line)
+            _vertex_record(toks, line, path, vrows, vlines)
         elif key == "vt":
             if len(toks) < 2:
                 raise MeshParseError("a texture coordinate 'vt' needs a value", path, line)
@@ -292,10 +297,7 @@ def _parse_polylines_obj(path: str):
     for line, toks in content_lines(_obj_text(path)):
         key = toks[0]
         if key == "v":
-            if len(toks) < 4:
-                raise MeshParseError(f"a vertex needs 3 coordinates, got {len(toks) - 1}", path, line)
-            vrows.append(toks[1:4])
-            vlines.append(line)
+            _vertex_record(toks, line, path, vrows, vlines)
         elif key == "l":
             if len(toks) < 2:
                 raise MeshParseError("a polyline 'l' needs at least one vertex index", path, line)

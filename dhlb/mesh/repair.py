@@ -220,12 +220,10 @@ class RepairOptions:
             elif w in _FIELDS:
                 chosen.add(w)
             else:
-                from difflib import get_close_matches
+                from dhlb._deprecation import did_you_mean
 
-                close = get_close_matches(w, list(REPAIRS) + ["safe", "none", "all"], n=1)
-                hint = f" (did you mean {close[0]!r}?)" if close else ""
-                raise InvalidParameterError(f"unknown repair {w!r}{hint}; give safe, none, all or a comma-separated "
-                                            f"list of {', '.join(REPAIRS)}")
+                raise InvalidParameterError(f"unknown repair {w!r}: give safe, none, all or a comma-separated list of "
+                                            f"{', '.join(REPAIRS)}{did_you_mean(w, [*REPAIRS, 'safe', 'none', 'all'])}")
         if "none" in words and len(words) > 1:
             raise InvalidParameterError(f"repair 'none' cannot be combined with other repairs, got {value!r}")
         return cls(**{_FIELDS[name]: name in chosen for name in REPAIRS})
