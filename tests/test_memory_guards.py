@@ -38,33 +38,13 @@ resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
 warnings.simplefilter("ignore")
 import numpy as np
 
-def icosphere(level):
-    '''Loop-subdivided icosahedron (as tests/surface_meshes.py), with integer edge keys: fast at level 8.'''
-    t = (1 + 5**0.5) / 2
-    V = np.array([[-1, t, 0], [1, t, 0], [-1, -t, 0], [1, -t, 0], [0, -1, t], [0, 1, t], [0, -1, -t],
-                  [0, 1, -t], [t, 0, -1], [t, 0, 1], [-t, 0, -1], [-t, 0, 1]], float)
-    F = np.array([[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4],
-                  [11, 10, 2], [10, 7, 6], [7, 1, 8], [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8],
-                  [3, 8, 9], [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1]])
-    V /= np.linalg.norm(V, axis=1, keepdims=True)
-    for _ in range(level):
-        E = np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
-        keys, inv = np.unique(E[:, 0] * len(V) + E[:, 1], return_inverse=True)
-        mid = V[keys // len(V)] + V[keys % len(V)]
-        mid /= np.linalg.norm(mid, axis=1, keepdims=True)
-        m = len(F)
-        a, b, c = (inv[k * m:(k + 1) * m] + len(V) for k in range(3))
-        V = np.vstack([V, mid])
-        F = np.concatenate([np.stack([F[:, 0], a, c], 1), np.stack([a, F[:, 1], b], 1),
-                            np.stack([c, b, F[:, 2]], 1), np.stack([a, b, c], 1)])
-    return V, F
-
 def complete_edges(n):
     i, j = np.triu_indices(n, 1)
     return np.column_stack([i, j])
 
 import networkx as nx
 import dhlb
+from tests.surface_meshes import icosphere
 import dhlb.examples, dhlb.fields, dhlb.mesh, dhlb.topology.cliques
 from dhlb.errors import DhlbError
 names = {"np": np, "nx": nx, "dhlb": dhlb, "icosphere": icosphere, "complete_edges": complete_edges}
