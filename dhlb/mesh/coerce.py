@@ -19,7 +19,8 @@ from typing import TYPE_CHECKING
 
 from dhlb._coerce import check_int
 from dhlb.errors import InvalidParameterError
-from dhlb.mesh.surface import SurfaceMesh, validate_surface
+from dhlb.mesh.repair import repair_surface
+from dhlb.mesh.surface import SurfaceMesh
 from dhlb.mesh.tangent import TangentBundle, tangent_bundle
 from dhlb.mesh.tet import TetMesh, check_tet_mesh
 
@@ -71,11 +72,7 @@ def as_surface(V: ArrayLike | SurfaceMesh | TangentBundle, F: ArrayLike | None =
         return V
     if F is None:
         raise InvalidParameterError(f"{caller} needs the face array F (or a SurfaceMesh as V)")
-    if repair is None or repair == "none":
-        return validate_surface(V, F, reorient=reorient, components=components)
-    from dhlb.mesh.repair import repair_surface
-
-    return repair_surface(V, F, repair, reorient=reorient, components=components)
+    return repair_surface(V, F, repair, reorient=reorient, components=components)   # "none": validate_surface
 
 
 def as_tangent_bundle(V: ArrayLike | SurfaceMesh | TangentBundle, F: ArrayLike | None = None, n: int | None = None,

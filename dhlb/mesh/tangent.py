@@ -52,7 +52,8 @@ from dhlb.errors import InvalidParameterError, NonFiniteError, ShapeError
 from dhlb.geometry.euclidean import EuclideanComplex
 from dhlb.mesh._vec3 import cross, dot, unit
 from dhlb.mesh.halfedge import TWO_PI, AngleMap
-from dhlb.mesh.surface import SurfaceMesh, validate_surface
+from dhlb.mesh.repair import repair_surface
+from dhlb.mesh.surface import SurfaceMesh
 
 if TYPE_CHECKING:
     from typing import Any
@@ -434,8 +435,4 @@ def tangent_bundle(
         return TangentBundle(V, n)
     if F is None:
         raise InvalidParameterError("tangent_bundle needs the face array F (or a SurfaceMesh as V)")
-    if repair is None or repair == "none":
-        return TangentBundle(validate_surface(V, F, reorient=reorient, components=components), n)
-    from dhlb.mesh.repair import repair_surface
-
     return TangentBundle(repair_surface(V, F, repair, reorient=reorient, components=components), n)

@@ -48,7 +48,7 @@ from dhlb.fem import SolverOptions, select_backend, smallest_eigenpairs
 from dhlb.linalg import solver_options
 from dhlb.linalg.backends import get_backend
 from dhlb.mesh.repair import repair_surface
-from dhlb.mesh.surface import SurfaceMesh, validate_surface
+from dhlb.mesh.surface import SurfaceMesh
 from dhlb.mesh.tangent import TangentBundle
 from dhlb.stripes.energy import stripe_matrices
 from dhlb.stripes.oneform import stripe_form
@@ -90,9 +90,7 @@ def _surface(V, F, reorient, components, fld=None, repair="none"):
         raise InvalidParameterError("stripe_pattern needs the face array F (or a SurfaceMesh / direction field as V)")
     if fld is not None and fld.mesh.is_validation_of(V, F, components):
         return fld.mesh
-    if repair is None or repair == "none":
-        return validate_surface(V, F, reorient=reorient, components=components)
-    return repair_surface(V, F, repair, reorient=reorient, components=components)
+    return repair_surface(V, F, repair, reorient=reorient, components=components)   # "none": validate_surface
 
 
 def _field_n(fld, n):
