@@ -32,8 +32,8 @@ from dhlb.topology.graph import graph_kernel, incidence, incidence_forest
 _I64 = np.iinfo(np.int64)
 
 
-def _to_dicts(A) -> tuple[dict, dict]:
-    """Row and column dicts ``{i: {j: v}}`` of a sparse integer matrix (exact Python ints)."""
+def _to_dicts(A, p: int | None = None) -> tuple[dict, dict]:
+    """Row and column dicts ``{i: {j: v}}`` of a sparse integer matrix (exact Python ints; modulo ``p`` if given)."""
     A = sp.csr_matrix(A)
     if A.dtype.kind == "f":
         if not np.all(np.isfinite(A.data)) or np.any(A.data != np.round(A.data)):
@@ -41,8 +41,10 @@ def _to_dicts(A) -> tuple[dict, dict]:
     elif A.dtype.kind not in "iub":
         raise InvalidMatrixError(f"matrix has dtype {A.dtype}, expected integers.")
     A = A.astype(np.int64)
-    A.eliminate_zeros()
     A.sum_duplicates()
+    if p is not None:
+        A.data %= p
+    A.eliminate_zeros()
     R, C = {}, {}
     ip, ind, dat = A.indptr, A.indices.tolist(), A.data.tolist()
     for i in range(A.shape[0]):
@@ -68,21 +70,31 @@ class ChainReduction:
         ``mats[0]`` is ignored.
     sizes : sequence of int
         ``(n_0, ..., n_n)``.
+    p : int, optional
+        A prime: eliminate over ``Z/p`` (every nonzero entry is a pivot; the entries of ``mats``
+        are read modulo ``p``).  Default: over ``Z`` with ±1 pivots.
+
+    Notes
+    -----
+    ``mats[k]`` may also be a pair ``(rows, cols)`` of dicts ``{i: {j: v}}`` (as from
+    :meth:`dhlb.topology._morse.MorseMatching.residual`); then it is used as it is.
     """
 
-    def __init__(self, mats, sizes):
+    def __init__(self, mats, sizes, p: int | None = None):
         self.sizes = [int(s) for s in sizes]
         self.n = len(self.sizes) - 1
+        self.p = p
         self.R = [None] * (self.n + 1)
         self.C = [None] * (self.n + 1)
         for k in range(2, self.n + 1):
-            self.R[k], self.C[k] = _to_dicts(mats[k])
+            self.R[k], self.C[k] = mats[k] if isinstance(mats[k], tuple) else _to_dicts(mats[k], p)
         self.alive = [np.ones(s, dtype=bool) for s in self.sizes]
-        self.row_steps = [[] for _ in self.sizes]  # row_steps[j]: pivots in ∂_j (b ∈ C_j): (b, u, row_a, a)
-        self.col_steps = [[] for _ in self.sizes]  # col_steps[j]: pivots in ∂_{j+1} (a ∈ C_j): (a, u, col_b, b)
-        self.graph_done = self.n >= 1 and self._eliminate_graph(mats[1])
+        self.row_steps = [[] for _ in self.sizes]  # row_steps[j]: pivots in ∂_j (b ∈ C_j): (b, u⁻¹, row_a, a)
+        self.col_steps = [[] for _ in self.sizes]  # col_steps[j]: pivots in ∂_{j+1} (a ∈ C_j): (a, u⁻¹, col_b, b)
+        self.graph_done = (self.n >= 1 and p is None and not isinstance(mats[1], tuple)
+                           and self._eliminate_graph(mats[1]))
         if self.n >= 1 and not self.graph_done:
-            self.R[1], self.C[1] = _to_dicts(mats[1])
+            self.R[1], self.C[1] = mats[1] if isinstance(mats[1], tuple) else _to_dicts(mats[1], p)
 
     def _eliminate_graph(self, A) -> bool:
         """Fast path for an incidence matrix ``∂_1``.
@@ -131,6 +143,7 @@ class ChainReduction:
     def eliminate(self, k: int) -> int:
         """Eliminate unit pivots of ``∂_k`` until none is left; return the number of pivots."""
         R, C = self.R[k], self.C[k]
+        p = self.p
         # heap of columns keyed by (length << 32 | column); rows are reached through their columns
         heap = [(len(v) << 32) | j for j, v in C.items()]
         heapq.heapify(heap)
@@ -144,7 +157,7 @@ class ChainReduction:
                 continue
             best, bl = None, None
             for k2, v in line.items():
-                if v == 1 or v == -1:
+                if p is not None or v == 1 or v == -1:
                     l2 = len(R[k2])
                     if bl is None or l2 < bl:
                         best, bl = k2, l2
@@ -155,6 +168,8 @@ class ChainReduction:
             a, b = best, key
             row_a = R.pop(a)
             u = row_a.pop(b)
+            if p is not None:
+                u = pow(u, -1, p)  # u⁻¹; over Z, u⁻¹ = u
             col_b = C.pop(b)
             del col_b[a]
             for c in row_a:
@@ -166,6 +181,8 @@ class ChainReduction:
                 rx = R[x]
                 for c, vc in row_a.items():
                     nv = rx.get(c, 0) - f * vc
+                    if p is not None:
+                        nv %= p
                     if nv:
                         rx[c] = nv
                         C[c][x] = nv
@@ -233,23 +250,28 @@ class ChainReduction:
                 M[i, cpos[c]] = v
         return np.asarray(rows, dtype=np.int64), np.asarray(cols, dtype=np.int64), M
 
-    @staticmethod
-    def _backsolve(steps, start: dict) -> dict:
-        """``vals[p] = -u Σ_c line[c] vals[c]`` over ``steps`` in reverse; vals are sparse dicts."""
+    def _backsolve(self, steps, start: dict) -> dict:
+        """``vals[t] = -u⁻¹ Σ_c line[c] vals[c]`` over ``steps`` in reverse; vals are sparse dicts."""
         vals = dict(start)
-        for p, u, line, _ in reversed(steps):
+        p = self.p
+        for t, u, line, _ in reversed(steps):
             acc: dict = {}
             for c, v in line.items():
                 zc = vals.get(c)
                 if zc:
                     for g, w in zc.items():
                         nv = acc.get(g, 0) + v * w
+                        if p is not None:
+                            nv %= p
                         if nv:
                             acc[g] = nv
                         else:
                             del acc[g]
             if acc:
-                vals[p] = {g: -u * w for g, w in acc.items()} if u == 1 else acc
+                if p is not None:
+                    vals[t] = {g: (-u * w) % p for g, w in acc.items()}
+                else:
+                    vals[t] = {g: -w for g, w in acc.items()} if u == 1 else acc
         return vals
 
     def _lift(self, steps, j: int, Z) -> np.ndarray:

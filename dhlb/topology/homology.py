@@ -35,13 +35,12 @@ Examples
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from math import gcd
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dhlb.errors import InvalidMatrixError
+from dhlb.errors import InvalidMatrixError, InvalidParameterError
 from dhlb.topology._homology_bases import HomologyBases
 from dhlb.topology._intmatrix import to_int_array
 
@@ -67,23 +66,62 @@ def _group_str(rank: int, torsion, free: str = "Z") -> str:
     return " ⊕ ".join(parts) if parts else "0"
 
 
-@dataclass(frozen=True)
-class HomologyGroup:
-    """``H_k ≅ Z^rank ⊕ Z/t_1 ⊕ ... ⊕ Z/t_s`` with representative cycles.
+class _Record:
+    """A read-only record whose array attribute (``_lazy``) may be given as a callable, computed on first access."""
 
-    Every parameter is kept as the attribute of the same name.
+    __slots__ = ()
+    _fields: tuple = ()
+    _lazy: str = ""
+
+    def _set(self, **values) -> None:
+        for key in self._fields:
+            object.__setattr__(self, "_v_" + key, values[key])
+
+    def __getattr__(self, name):
+        if name in type(self)._fields:
+            v = object.__getattribute__(self, "_v_" + name)
+            if name == self._lazy and callable(v):  # built once, on first access
+                v = v()
+                object.__setattr__(self, "_v_" + name, v)
+            return v
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+    def __setattr__(self, name, value):
+        raise AttributeError(f"{type(self).__name__} is read-only")
+
+    def _key(self) -> tuple:
+        return tuple(getattr(self, k) for k in self._fields if k != self._lazy)
+
+    def __eq__(self, other):
+        return self._key() == other._key() if type(other) is type(self) else NotImplemented
+
+    __hash__ = None
+
+    def __repr__(self) -> str:
+        inner = ", ".join(f"{k}={getattr(self, k)!r}" for k in self._fields if k != self._lazy)
+        return f"{type(self).__name__}({inner})"
+
+
+class HomologyGroup(_Record):
+    """``H_k ≅ Z^rank ⊕ Z/t_1 ⊕ ... ⊕ Z/t_s`` (or ``(Z/p)^rank``) with representative cycles.
+
+    Every parameter is kept as the attribute of the same name; the record is read-only.
 
     Parameters
     ----------
     degree : int
         The degree ``k``.
     rank : int
-        Betti number ``b_k``.
+        Betti number ``b_k``; over ``Z/p`` the dimension of ``H_k(X; Z/p)``.
     torsion : tuple of int
-        Torsion coefficients ``t_1 | t_2 | ...`` (all > 1).
-    generators : (n_k, rank + len(torsion)) int array
-        Integer cycles: the free generators first, then the torsion generators (in the order of
-        ``torsion``).  Column ``j`` is a chain over ``X.simplices(k)``.
+        Torsion coefficients ``t_1 | t_2 | ...`` (all > 1); ``()`` over ``Z/p``.
+    generators : (n_k, rank + len(torsion)) int array, or a callable returning it
+        Cycles: the free generators first, then the torsion generators (in the order of
+        ``torsion``); over ``Z/p`` cycles modulo ``p`` with entries in ``[0, p)``.  Column ``j``
+        is a chain over ``X.simplices(k)``.  :func:`homology` passes a callable: the basis is
+        built on first access to ``generators`` (the groups need none).
+    coefficients : str, default "Z"
+        ``"Z"`` or ``"Z/p"``.
 
     Examples
     --------
@@ -91,22 +129,28 @@ class HomologyGroup:
     >>> H1 = homology(projective_plane())[1]
     >>> str(H1), H1.rank, H1.torsion, H1.generators.shape
     ('Z/2', 0, (2,), (15, 1))
+    >>> str(homology(projective_plane(), "Z/2")[1])
+    'Z/2'
     """
 
-    degree: int
-    rank: int
-    torsion: tuple
-    generators: np.ndarray = field(repr=False, compare=False)
+    __slots__ = ("_v_coefficients", "_v_degree", "_v_generators", "_v_rank", "_v_torsion")
+    _fields = ("degree", "rank", "torsion", "generators", "coefficients")
+    _lazy = "generators"
+
+    def __init__(self, degree: int, rank: int, torsion: tuple, generators=None, coefficients: str = "Z"):
+        self._set(degree=degree, rank=rank, torsion=tuple(torsion), generators=generators, coefficients=coefficients)
 
     def __str__(self) -> str:
+        if self.coefficients != "Z":
+            f = self.coefficients
+            return "0" if not self.rank else (f if self.rank == 1 else f"({f})^{self.rank}")
         return _group_str(self.rank, self.torsion)
 
 
-@dataclass(frozen=True)
-class CohomologyGroup:
+class CohomologyGroup(_Record):
     """``H^k(X; G)`` described via universal coefficients, with representative cocycles.
 
-    Every parameter is kept as the attribute of the same name.
+    Every parameter is kept as the attribute of the same name; the record is read-only.
 
     Parameters
     ----------
@@ -121,10 +165,11 @@ class CohomologyGroup:
         Z: orders of the torsion part (``Ext(H_{k-1}, Z)``); Z/m: the orders of all cyclic
         factors (``Hom`` part first, then ``Ext`` part); S1: the orders of the finite part
         (``≅`` torsion of ``H_k``); R: ``()``.
-    cocycles : (n_k, rank + len(torsion)) int or float array
+    cocycles : (n_k, rank + len(torsion)) int or float array, or a callable returning it
         One cocycle per generator, over ``X.simplices(k)``: Z: int cocycles; R: float; Z/m: ints
         in ``[0, m)``; S1: float — first ``rank`` columns are integer cocycles ``ε_i`` (the torus
         is ``{θ·ε : θ ∈ (R/2πZ)^rank}``), then the finite part as angles in ``(−π, π]``.
+        :func:`cohomology` passes a callable: the cocycles are built on first access.
     n_hom : int, default 0
         The first ``n_hom`` cocycles represent ``Hom(H_k, G)``, the others ``Ext(H_{k-1}, G)``.
 
@@ -136,12 +181,13 @@ class CohomologyGroup:
     (['Z', '0', 'Z/2'], ['S¹', 'Z/2', '0'])
     """
 
-    degree: int
-    coefficients: str
-    rank: int
-    torsion: tuple
-    cocycles: np.ndarray = field(repr=False, compare=False)
-    n_hom: int = 0
+    __slots__ = ("_v_cocycles", "_v_coefficients", "_v_degree", "_v_n_hom", "_v_rank", "_v_torsion")
+    _fields = ("degree", "coefficients", "rank", "torsion", "cocycles", "n_hom")
+    _lazy = "cocycles"
+
+    def __init__(self, degree: int, coefficients: str, rank: int, torsion: tuple, cocycles, n_hom: int = 0):
+        self._set(degree=degree, coefficients=coefficients, rank=rank, torsion=tuple(torsion), cocycles=cocycles,
+                  n_hom=n_hom)
 
     def __str__(self) -> str:
         if self.coefficients == "R":
@@ -153,14 +199,71 @@ class CohomologyGroup:
         return _group_str(self.rank, self.torsion)
 
 
-def homology_from_boundaries(boundaries: Sequence[Any]) -> list:
-    """Integral homology of a chain complex given by its boundary matrices.
+def _is_prime(p: int) -> bool:
+    """Deterministic Miller–Rabin for ``p < 3.3·10²⁴`` (the first 12 prime bases)."""
+    if p < 2:
+        return False
+    bases = (2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37)
+    if p in bases:
+        return True
+    if any(p % b == 0 for b in bases):
+        return False
+    d, r = p - 1, 0
+    while d % 2 == 0:
+        d, r = d // 2, r + 1
+    for b in bases:
+        x = pow(b, d, p)
+        if x in (1, p - 1):
+            continue
+        for _ in range(r - 1):
+            x = x * x % p
+            if x == p - 1:
+                break
+        else:
+            return False
+    return True
+
+
+def _check_prime(p, name: str) -> int:
+    if isinstance(p, bool) or not isinstance(p, (int, np.integer)):
+        raise InvalidParameterError(f"{name} must be a prime number (an int), got {p!r}.")
+    p = int(p)
+    if p >= 2**64 or not _is_prime(p):
+        raise InvalidParameterError(f"{name} must be a prime below 2**64, got {p}; for a composite m the integer "
+                                    "groups give H_k(X; Z/m) = H_k ⊗ Z/m ⊕ Tor(H_(k-1), Z/m).")
+    return p
+
+
+def _homology_field(coefficients) -> int | None:
+    """``None`` for ``"Z"``, else the prime ``p`` of ``"Z/p"`` / ``("Z", p)``."""
+    c = coefficients
+    if isinstance(c, str) and c.strip().upper() == "Z":
+        return None
+    if isinstance(c, tuple) and len(c) == 2 and c[0] == "Z":
+        return _check_prime(c[1], "the p of ('Z', p)")
+    if isinstance(c, str) and c.strip().upper().startswith("Z/") and c.strip()[2:].isdigit():
+        return _check_prime(int(c.strip()[2:]), f"the p of {c!r}")
+    raise InvalidParameterError(f"homology coefficients must be 'Z', 'Z/p' or ('Z', p) with p prime, got "
+                                f"{coefficients!r}; cohomology() also takes 'R', 'S1' and any 'Z/m'.")
+
+
+def _groups(S: HomologyBases) -> list:
+    """The homology groups of a reduced complex; their generators are built on first access."""
+    coeff = "Z" if S.p is None else f"Z/{S.p}"
+    return [HomologyGroup(k, S.rank(k), S.torsion(k), (lambda k=k: S.homology_generators(k)[2]), coeff)
+            for k in range(S.n + 1)]
+
+
+def homology_from_boundaries(boundaries: Sequence[Any], coefficients: str | tuple = "Z") -> list:
+    """Homology of a chain complex given by its boundary matrices.
 
     Parameters
     ----------
     boundaries : list of sparse or dense integer matrices
         ``[∂_0, ∂_1, ..., ∂_n]`` with ``∂_0`` of shape ``(0, n_0)`` and ``∂_k`` of shape
         ``(n_{k-1}, n_k)`` (as ``[X.boundary(k) for k in range(X.dim + 1)]``).
+    coefficients : "Z" or "Z/p" or ("Z", p), default "Z"
+        Integers (ranks and torsion), or the field ``Z/p`` for a prime ``p`` (dimensions).
 
     Returns
     -------
@@ -174,6 +277,8 @@ def homology_from_boundaries(boundaries: Sequence[Any]) -> list:
         match the columns of ``∂_{k-1}``.
     InvalidMatrixError
         A matrix has non-integer entries (or entries beyond int64), or ``∂_{k-1} ∂_k ≠ 0``.
+    InvalidParameterError
+        ``coefficients`` is none of the above (or ``p`` is not prime).
 
     Examples
     --------
@@ -184,31 +289,40 @@ def homology_from_boundaries(boundaries: Sequence[Any]) -> list:
     >>> [str(h) for h in H], H[0].generators.shape
     (['Z', '0', '0'], (3, 1))
     """
-    S = HomologyBases(boundaries)
-    return [HomologyGroup(k, *S.homology_generators(k)) for k in range(S.n + 1)]
+    return _groups(HomologyBases(boundaries, _homology_field(coefficients)))
 
 
 def _boundaries(X):
     return [X.boundary(k) for k in range(X.dim + 1)]
 
 
-def homology(X: ComplexLike) -> list:
-    """Integral homology ``H_0(X), ..., H_dim(X)`` of a simplicial complex.
+def homology(X: ComplexLike, coefficients: str | tuple = "Z") -> list:
+    """Homology ``H_0(X), ..., H_dim(X)`` of a simplicial complex, with integer or ``Z/p`` coefficients.
 
-    Returns a list of :class:`HomologyGroup` (rank, torsion, integer generator cycles over
-    ``X.simplices(k)``).  Large complexes are fine: boundary matrices are reduced by sparse ±1
-    pivoting before an exact Smith form on the small residual.
+    Returns a list of :class:`HomologyGroup` (rank, torsion, generator cycles over
+    ``X.simplices(k)``).  The groups are computed without any basis: the complex is reduced by an
+    acyclic matching (collapses and coreductions), then by sparse elimination of unit pivots,
+    and an exact Smith form runs on the small rest.  The generator cycles are built (sparsely,
+    then returned dense) only when ``generators`` is first read.
 
     Parameters
     ----------
     X : SimplicialComplex
         Any complex.
+    coefficients : "Z" or "Z/p" or ("Z", p), default "Z"
+        Integers, or the field ``Z/p`` for a prime ``p``: then ``rank`` is the dimension of
+        ``H_k(X; Z/p)`` and the generators are cycles modulo ``p``.
 
     Returns
     -------
     list of HomologyGroup
         ``H_0, ..., H_dim``; ``H_k.generators`` is an ``(n_k, rank + len(torsion))`` int array
         of cycles over ``X.simplices(k)``.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``coefficients`` is none of the above (or ``p`` is not prime).
 
     Examples
     --------
@@ -218,30 +332,46 @@ def homology(X: ComplexLike) -> list:
     ['Z', 'Z']
     >>> homology(X)[1].generators.ravel().tolist() in ([1, -1, 1], [-1, 1, -1])
     True
+    >>> from dhlb.examples import projective_plane
+    >>> [str(h) for h in homology(projective_plane(), "Z/2")], [str(h) for h in homology(projective_plane(), "Z/3")]
+    (['Z/2', 'Z/2', 'Z/2'], ['Z/3', '0', '0'])
     """
-    return homology_from_boundaries(_boundaries(X))
+    return homology_from_boundaries(_boundaries(X), coefficients)
 
 
-def betti_numbers(X: ComplexLike) -> tuple:
-    """Betti numbers ``(b_0, ..., b_dim)`` (ranks of integral homology).
+def betti_numbers(X: ComplexLike, p: int | None = None) -> tuple:
+    """Betti numbers ``(b_0, ..., b_dim)``: ranks of integral homology, or dimensions over ``Z/p``.
 
     Parameters
     ----------
     X : SimplicialComplex
         Any complex.
+    p : int, optional
+        A prime: the dimensions of ``H_k(X; Z/p)`` (by elimination modulo ``p``).  Torsion shows
+        as the difference: ``dim H_k(X; Z/p) − b_k`` counts the torsion coefficients of ``H_k``
+        and ``H_{k-1}`` divisible by ``p``.
 
     Returns
     -------
     tuple of int, length X.dim + 1
-        ``b_k = rank H_k(X; Z)``.
+        ``b_k = rank H_k(X; Z)``, or ``dim H_k(X; Z/p)``.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``p`` is not a prime.
 
     Examples
     --------
     >>> import dhlb
     >>> betti_numbers(dhlb.SimplicialComplex([(0, 1, 2), (0, 2, 3), (0, 1, 3), (1, 2, 3)]))  # S²
     (1, 0, 1)
+    >>> from dhlb.examples import projective_plane
+    >>> betti_numbers(projective_plane()), betti_numbers(projective_plane(), p=2)
+    ((1, 0, 0), (1, 1, 1))
     """
-    return tuple(h.rank for h in homology(X))
+    S = HomologyBases(_boundaries(X), None if p is None else _check_prime(p, "p"))
+    return tuple(S.rank(k) for k in range(S.n + 1))
 
 
 def _parse_coefficients(coefficients):
@@ -258,6 +388,41 @@ def _parse_coefficients(coefficients):
                              "'Z/m' with m >= 2.")
 
 
+def _cocycles(S: HomologyBases, k: int, kind: str, m: int | None) -> tuple:
+    """``(cocycles, orders, n_hom)`` of ``H^k(G)`` by universal coefficients (module docstring, step 3)."""
+    d = S.degree(k)
+    b, nt = S.rank(k), len(d["tors"])
+    eps = S.dual_cochains(k)  # (n_k, b + nt): free then torsion
+    if kind == "Z":
+        tau, ords = S.ext_cocycles(k)
+        return to_int_array(np.concatenate([np.asarray(eps[:, :b], dtype=object), tau], axis=1)), tuple(ords), b
+    if kind == "R":
+        return eps[:, :b].astype(float), (), b
+    if kind == "S1":
+        cols = [eps[:, i].astype(float) for i in range(b)]
+        for j, o in enumerate(d["orders"]):
+            e = np.array([int(x) % o for x in eps[:, b + j]], dtype=np.int64)
+            e = np.where(2 * e > o, e - o, e)  # representative in (−o/2, o/2] -> angle in (−π, π]
+            cols.append(2 * np.pi * e / o)
+        return (np.stack(cols, axis=1) if cols else np.zeros((S.sizes[k], 0))), d["orders"], b + nt
+    cols, ords = [eps[:, i] for i in range(b)], [m] * b
+    for j, o in enumerate(d["orders"]):
+        g = gcd(o, m)
+        if g > 1:
+            cols.append((m // g) * eps[:, b + j])
+            ords.append(g)
+    n_hom = len(cols)
+    tau, tords = S.ext_cocycles(k)
+    for j, o in enumerate(tords):
+        g = gcd(o, m)
+        if g > 1:
+            cols.append(tau[:, j])
+            ords.append(g)
+    coc = np.array([[int(x) % m for x in c] for c in cols], dtype=np.int64).T if cols else \
+        np.zeros((S.sizes[k], 0), dtype=np.int64)
+    return coc.reshape(S.sizes[k], len(cols)), tuple(ords), n_hom
+
+
 def cohomology_from_boundaries(boundaries: Sequence[Any], coefficients: str | int = "Z") -> list:
     """Cohomology ``H^k(G)``, ``k = 0..n``, of a chain complex; see :func:`cohomology`.
 
@@ -272,7 +437,8 @@ def cohomology_from_boundaries(boundaries: Sequence[Any], coefficients: str | in
     Returns
     -------
     list of CohomologyGroup
-        ``H^0, ..., H^n``; the cocycles of ``H^k`` are over the ``n_k`` columns of ``∂_k``.
+        ``H^0, ..., H^n``; the cocycles of ``H^k`` are over the ``n_k`` columns of ``∂_k`` (built
+        on first access).
 
     Raises
     ------
@@ -293,40 +459,19 @@ def cohomology_from_boundaries(boundaries: Sequence[Any], coefficients: str | in
     S = HomologyBases(boundaries)
     out = []
     for k in range(S.n + 1):
-        d = S.deg[k]
-        b, nt = len(d["free"]), len(d["tors"])
-        eps = S.dual_cochains(k)  # (n_k, b + nt) object
+        b, tors_k = S.rank(k), S.torsion(k)
+        tors_below = S.torsion(k - 1) if k else ()
         if kind == "Z":
-            tau, ords = S.ext_cocycles(k)
-            coc = to_int_array(np.concatenate([eps[:, :b], tau], axis=1))
-            out.append(CohomologyGroup(k, "Z", b, tuple(ords), coc, b))
+            rank, orders, n_hom = b, tors_below, b
         elif kind == "R":
-            out.append(CohomologyGroup(k, "R", b, (), eps[:, :b].astype(float), b))
+            rank, orders, n_hom = b, (), b
         elif kind == "S1":
-            cols = [eps[:, i].astype(float) for i in range(b)]
-            for j, o in enumerate(d["orders"]):
-                e = np.array([int(x) % o for x in eps[:, b + j]], dtype=np.int64)
-                e = np.where(2 * e > o, e - o, e)  # representative in (−o/2, o/2] -> angle in (−π, π]
-                cols.append(2 * np.pi * e / o)
-            coc = np.stack(cols, axis=1) if cols else np.zeros((S.sizes[k], 0))
-            out.append(CohomologyGroup(k, "S1", b, d["orders"], coc, b + nt))
+            rank, orders, n_hom = b, tors_k, b + len(tors_k)
         else:
-            cols, ords = [eps[:, i] for i in range(b)], [m] * b
-            for j, o in enumerate(d["orders"]):
-                g = gcd(o, m)
-                if g > 1:
-                    cols.append((m // g) * eps[:, b + j])
-                    ords.append(g)
-            n_hom = len(cols)
-            tau, tords = S.ext_cocycles(k)
-            for j, o in enumerate(tords):
-                g = gcd(o, m)
-                if g > 1:
-                    cols.append(tau[:, j])
-                    ords.append(g)
-            coc = np.array([[int(x) % m for x in c] for c in cols], dtype=np.int64).T if cols else \
-                np.zeros((S.sizes[k], 0), dtype=np.int64)
-            out.append(CohomologyGroup(k, f"Z/{m}", 0, tuple(ords), coc.reshape(S.sizes[k], len(cols)), n_hom))
+            hom = [m] * b + [gcd(o, m) for o in tors_k if gcd(o, m) > 1]
+            rank, orders, n_hom = 0, tuple(hom + [gcd(o, m) for o in tors_below if gcd(o, m) > 1]), len(hom)
+        coeff = {"Z": "Z", "R": "R", "S1": "S1"}.get(kind, f"Z/{m}")
+        out.append(CohomologyGroup(k, coeff, rank, tuple(orders), (lambda k=k: _cocycles(S, k, kind, m)[0]), n_hom))
     return out
 
 
