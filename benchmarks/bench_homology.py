@@ -1,20 +1,40 @@
-"""Timings of integral (co)homology on large complexes.
+"""Homology at scale (issue 40): dhlb's integer homology against gudhi's Z/2 persistence, in one run.
 
-Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_homology.py``.  Builds
+Run: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bench_homology.py [--quick] [--json out.json]``.
+gudhi is optional (``pip install gudhi``); without it only dhlb's column is filled.
 
-* a closed surface with >= 100k triangles (Freudenthal triangulation of a flat 2-torus grid,
-  and the same grid with a cross-cap glued in: a non-orientable surface with Z/2 torsion),
-* a closed 3-manifold with >= 50k tetrahedra (Freudenthal triangulation of the 3-torus),
+Every case runs in a fresh process per tool (so peak memory is the case's own), end to end from
+the same input: the graph or the top simplices.  dhlb builds the complex
+(:meth:`SimplicialComplex.from_graph` or the constructor) and computes the integer groups
+(``homology``: ranks and torsion, no bases); gudhi builds a ``SimplexTree`` (``expansion`` for flag
+complexes) and runs ``compute_persistence(homology_coeff_field=2)``.  Columns: simplices, seconds,
+peak resident memory, the groups.  The cases:
 
-and prints the time for ``homology`` (ranks, torsion and generator cycles) and ``cohomology``.
+* random flag complexes ``gnp_random_graph(n, p, seed=3)`` of 200–2,000 vertices, up to
+  dimension 2 or 3 (the largest has 1.01M simplices);
+* a Rips complex: 1,500 random points in the unit cube, the ε-neighbourhood graph, dimension 3;
+* triangulated manifolds: the Freudenthal 3-torus 40³ (384k tetrahedra, 1.66M simplices) and
+  the 2-torus with a cross-cap (H_1 = Z² ⊕ Z/2, 100k triangles);
+* bases: the generator cycles of H_1 for b_1 = 1,041 (dhlb only: gudhi has no integer bases).
+
+A case gudhi cannot finish within the time or memory limit (``--limit-s``, ``--limit-gb``) is
+reported as such; so is one of dhlb's.
 """
 
 from __future__ import annotations
 
+import argparse
 import itertools
+import json
+import os
+import resource
+import subprocess
+import sys
 import time
 
 import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def freudenthal_torus(N: int, d: int) -> np.ndarray:
@@ -51,43 +71,169 @@ def torus_with_crosscap(N: int) -> np.ndarray:
     return np.concatenate([T, rp2, annulus])
 
 
-def run():
-    import dhlb
-    from dhlb.topology.homology import cohomology, homology
-    from dhlb.topology.intlinalg import integer_kernel_basis, solve_integer
+def rips_graph(n: int, eps: float, seed: int = 0):
+    """The ε-neighbourhood graph of ``n`` uniform points in the unit cube: ``(n, edges)``."""
+    from scipy.spatial import cKDTree
 
-    cases = [
-        ("2-torus, Freudenthal 224x224", freudenthal_torus(224, 2)),
-        ("T^2 # RP^2 (torus grid 224x224 + cross-cap)", torus_with_crosscap(224)),
-        ("3-torus, Freudenthal 21^3", freudenthal_torus(21, 3)),
-    ]
-    for name, F in cases:
-        t0 = time.perf_counter()
-        X = dhlb.SimplicialComplex(F)
-        t1, c1 = time.perf_counter(), time.process_time()
-        H = homology(X)
-        t2, c2 = time.perf_counter(), time.process_time()
-        C = cohomology(X, "Z")
-        t3, c3 = time.perf_counter(), time.process_time()
-        print(f"{name}: counts {X.counts}")
-        print(f"    build complex {t1 - t0:6.2f} s | homology {t2 - t1:6.2f} s wall ({c2 - c1:5.2f} s cpu): "
-              f"{[str(h) for h in H]} | cohomology(Z) {t3 - t2:6.2f} s wall ({c3 - c2:5.2f} s cpu): "
-              f"{[str(h) for h in C]}")
-        if X.dim == 2:
-            for k in (1, 2):
-                t0 = time.perf_counter()
-                K = integer_kernel_basis(X.boundary(k))
-                print(f"    Z-basis of ker ∂_{k}: {K.shape[1]} cycles, {K.nnz} nonzeros, "
-                      f"{time.perf_counter() - t0:6.2f} s")
-            rng = np.random.default_rng(0)
-            for k in (0, 1):
-                d = X.coboundary(k)
-                beta = d @ rng.integers(-3, 4, X.n_simplices(k))
-                t0 = time.perf_counter()
-                alpha = solve_integer(d, beta)
-                assert alpha is not None and np.array_equal(d @ alpha, beta)
-                print(f"    solve_integer(d_{k}, β) over Z: {time.perf_counter() - t0:6.2f} s")
+    P = np.random.default_rng(seed).random((n, 3))
+    return n, cKDTree(P).query_pairs(eps, output_type="ndarray"), P
+
+
+CASES = {  # name: (kind, parameters, max_dim)
+    "flag 200/0.03": ("gnp", (200, 0.03), 2),
+    "flag 300/0.02": ("gnp", (300, 0.02), 2),
+    "flag 1000/0.10": ("gnp", (1000, 0.10), 3),
+    "flag 1000/0.13": ("gnp", (1000, 0.13), 3),
+    "flag 2000/0.07": ("gnp", (2000, 0.07), 3),
+    "flag 2000/0.08 (1M)": ("gnp", (2000, 0.08), 3),
+    "rips 1500 pts": ("rips", (1500, 0.12), 3),
+    "3-torus 40^3": ("tops", ("torus3", 40), 3),
+    "T^2 # RP^2 224^2": ("tops", ("crosscap", 224), 2),
+    "bases b1=1041": ("bases", (500, 0.012), 2),
+}
+QUICK = ["flag 200/0.03", "flag 300/0.02", "flag 1000/0.10", "rips 1500 pts", "bases b1=1041"]
+
+
+def _input(kind, params):
+    import networkx as nx
+
+    if kind in ("gnp", "bases"):
+        G = nx.gnp_random_graph(*params, seed=3)
+        return G.number_of_nodes(), np.array(list(G.edges()), dtype=np.int64).reshape(-1, 2)
+    if kind == "rips":
+        n, edges, _ = rips_graph(*params)
+        return n, edges
+    name, N = params
+    return freudenthal_torus(N, 3) if name == "torus3" else torus_with_crosscap(N)
+
+
+def run_dhlb(kind, params, max_dim) -> dict:
+    import dhlb
+    from dhlb.topology.homology import homology
+
+    data = _input(kind, params)
+    t0 = time.perf_counter()
+    if kind == "tops":
+        X = dhlb.SimplicialComplex(data)
+    else:
+        n, edges = data
+
+        class G:  # what from_graph reads: .nodes and .edges()
+            nodes = range(n)
+
+            @staticmethod
+            def edges():
+                return edges.tolist()
+
+        X = dhlb.SimplicialComplex.from_graph(G, max_dim=max_dim)
+    t1 = time.perf_counter()
+    H = homology(X)
+    groups = [str(h) for h in H]
+    t2 = time.perf_counter()
+    out = dict(simplices=int(sum(X.counts)), build_s=t1 - t0, homology_s=t2 - t1, total_s=t2 - t0,
+               groups=[g if len(g) < 40 else g[:37] + "…" for g in groups])
+    if kind == "bases":
+        t3 = time.perf_counter()
+        g = H[1].generators
+        out["bases_s"] = time.perf_counter() - t3
+        out["b1"] = int(g.shape[1])
+    return out
+
+
+def run_gudhi(kind, params, max_dim) -> dict:
+    import gudhi
+
+    data = _input(kind, params)
+    t0 = time.perf_counter()
+    st = gudhi.SimplexTree()
+    if kind == "tops":
+        for s in data.tolist():
+            st.insert(s)
+    else:
+        n, edges = data
+        st.insert_batch(np.arange(n)[None, :], np.zeros(n))
+        if len(edges):
+            st.insert_batch(edges.T, np.zeros(len(edges)))
+        st.expansion(max_dim)
+    t1 = time.perf_counter()
+    st.compute_persistence(homology_coeff_field=2, persistence_dim_max=True)
+    b = st.betti_numbers()
+    t2 = time.perf_counter()
+    return dict(simplices=int(st.num_simplices()), build_s=t1 - t0, homology_s=t2 - t1, total_s=t2 - t0,
+                groups=[f"(Z/2)^{x}" for x in b])
+
+
+def _child(tool: str, name: str) -> None:
+    kind, params, max_dim = CASES[name]
+    out = (run_dhlb if tool == "dhlb" else run_gudhi)(kind, params, max_dim)
+    out["peak_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(json.dumps(out))
+
+
+def measure(tool: str, name: str, limit_s: float, limit_gb: float) -> dict:
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
+
+    def cap():
+        lim = int(limit_gb * 2**30)
+        resource.setrlimit(resource.RLIMIT_AS, (lim, lim))
+
+    try:
+        r = subprocess.run([sys.executable, __file__, "--child", tool, name], capture_output=True, text=True,
+                           timeout=limit_s, env=env, preexec_fn=cap)
+    except subprocess.TimeoutExpired:
+        return dict(failed=f"not done in {limit_s:.0f} s")
+    if r.returncode:
+        tail = (r.stderr.strip().splitlines() or ["?"])[-1]
+        return dict(failed=f"exit {r.returncode}: {tail[:80]}")
+    return json.loads(r.stdout.strip().splitlines()[-1])
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="the small cases only")
+    ap.add_argument("--limit-s", type=float, default=300.0, help="time limit per case and tool (default 300)")
+    ap.add_argument("--limit-gb", type=float, default=8.0, help="address-space limit per case and tool (default 8)")
+    ap.add_argument("--json", help="also write the table here")
+    ap.add_argument("--child", nargs=2, help=argparse.SUPPRESS)
+    a = ap.parse_args(argv)
+    if a.child:
+        _child(*a.child)
+        return
+    try:
+        import gudhi  # noqa: F401
+
+        tools = ["dhlb", "gudhi"]
+    except ImportError:
+        tools = ["dhlb"]
+        print("gudhi is not installed (pip install gudhi): dhlb only")
+    print(f"load average before: {os.getloadavg()[0]:.2f}")
+    rows = {}
+    names = QUICK if a.quick else list(CASES)
+    print(f"{'case':22s} {'simplices':>10s} | {'dhlb s':>7s} {'MB':>6s} | {'gudhi s':>7s} {'MB':>6s} | ratio | groups")
+    for name in names:
+        peers = [t for t in tools if not (t == "gudhi" and name.startswith("bases"))]  # gudhi has no integer bases
+        res = {t: measure(t, name, a.limit_s, a.limit_gb) for t in peers}
+        rows[name] = res
+        d, g = res["dhlb"], res.get("gudhi", {})
+
+        def cell(r):
+            if not r:
+                return f"{'—':>7s} {'':>6s}"
+            if "failed" in r:
+                return f"{'fail':>7s} {'':>6s}"
+            return f"{r['total_s']:7.3f} {r['peak_mb']:6.0f}"
+
+        ratio = f"{d['total_s'] / g['total_s']:5.1f}" if "total_s" in d and "total_s" in g else "  —  "
+        simp = d.get("simplices", g.get("simplices", 0))
+        extra = f" bases {d['bases_s']:.3f} s" if "bases_s" in d else ""
+        why = "; ".join(f"{t}: {r['failed']}" for t, r in res.items() if "failed" in r)
+        print(f"{name:22s} {simp:10,d} | {cell(d)} | {cell(g)} | {ratio} | {d.get('groups', '')}{extra} {why}",
+              flush=True)
+    print(f"load average after: {os.getloadavg()[0]:.2f}")
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(rows, f, indent=1)
 
 
 if __name__ == "__main__":
-    run()
+    main()

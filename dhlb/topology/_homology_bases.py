@@ -28,8 +28,8 @@ from dhlb.topology._sparse_elim import ChainReduction
 __all__ = ["check_boundaries", "HomologyBases"]
 
 
-def check_boundaries(boundaries) -> list:
-    """Validate ``[∂_0, ..., ∂_n]`` (shapes, integer entries, ``∂_{k-1} ∂_k = 0``) and return them as int64 CSR."""
+def check_boundaries(boundaries, trusted: bool = False) -> list:
+    """Validate ``[∂_0, ..., ∂_n]`` (shapes, integer entries, ``∂_{k-1} ∂_k = 0`` unless ``trusted``) as int64 CSR."""
     mats = []
     for k, B in enumerate(boundaries):
         if not sp.issparse(B):
@@ -52,7 +52,7 @@ def check_boundaries(boundaries) -> list:
             if A.dtype.kind != "f" or np.any(A.data != np.round(A.data)) or not np.all(np.isfinite(A.data)):
                 raise InvalidMatrixError(f"∂_{k} has non-integer entries; boundary matrices are integer.")
         mats[k] = mats[k].astype(np.int64)
-        if k >= 2:
+        if k >= 2 and not trusted:
             P = (mats[k - 1] @ mats[k]).tocoo()
             P.eliminate_zeros()
             if P.nnz:
@@ -71,10 +71,13 @@ class HomologyBases:
     p : int, optional
         A prime: work over ``Z/p`` (then ``rank(k)`` is the dimension of ``H_k(Z/p)`` and there
         is no torsion).  Default: over ``Z``.
+    trusted : bool, default False
+        The matrices are a :class:`~dhlb.topology.complex.SimplicialComplex`'s own: ``∂∂ = 0`` is
+        not checked again.
     """
 
-    def __init__(self, boundaries, p: int | None = None):
-        self.mats = check_boundaries(boundaries)
+    def __init__(self, boundaries, p: int | None = None, trusted: bool = False):
+        self.mats = check_boundaries(boundaries, trusted)
         self.p = p
         self.n = len(self.mats) - 1
         self.sizes = [self.mats[0].shape[1]] + [M.shape[1] for M in self.mats[1:]]
@@ -152,6 +155,11 @@ class HomologyBases:
         return lift(k, {int(crit[i]): z for i, z in vals.items()})
 
     def _dense(self, k: int, vals: dict, g: int) -> np.ndarray:
+        from dhlb._memory_errors import check_memory
+
+        check_memory(f"the basis of degree {k} ({g:,} chains over {self.sizes[k]:,} cells)", g, 16 * self.sizes[k] * g,
+                     advice="the groups themselves (rank, torsion) need no basis; ask for the basis of a "
+                            "smaller complex or a lower degree")
         out = np.zeros((self.sizes[k], g), dtype=object)
         for cell, z in vals.items():
             for j, w in z.items():

@@ -296,6 +296,13 @@ def _boundaries(X):
     return [X.boundary(k) for k in range(X.dim + 1)]
 
 
+def _reduced(X, p: int | None = None) -> HomologyBases:
+    """The reduced complex of ``X`` (a SimplicialComplex's own boundary matrices need no ``∂∂ = 0`` check)."""
+    from dhlb.topology.complex import SimplicialComplex
+
+    return HomologyBases(_boundaries(X), p, trusted=isinstance(X, SimplicialComplex))
+
+
 def homology(X: ComplexLike, coefficients: str | tuple = "Z") -> list:
     """Homology ``H_0(X), ..., H_dim(X)`` of a simplicial complex, with integer or ``Z/p`` coefficients.
 
@@ -336,7 +343,7 @@ def homology(X: ComplexLike, coefficients: str | tuple = "Z") -> list:
     >>> [str(h) for h in homology(projective_plane(), "Z/2")], [str(h) for h in homology(projective_plane(), "Z/3")]
     (['Z/2', 'Z/2', 'Z/2'], ['Z/3', '0', '0'])
     """
-    return homology_from_boundaries(_boundaries(X), coefficients)
+    return _groups(_reduced(X, _homology_field(coefficients)))
 
 
 def betti_numbers(X: ComplexLike, p: int | None = None) -> tuple:
@@ -370,7 +377,7 @@ def betti_numbers(X: ComplexLike, p: int | None = None) -> tuple:
     >>> betti_numbers(projective_plane()), betti_numbers(projective_plane(), p=2)
     ((1, 0, 0), (1, 1, 1))
     """
-    S = HomologyBases(_boundaries(X), None if p is None else _check_prime(p, "p"))
+    S = _reduced(X, None if p is None else _check_prime(p, "p"))
     return tuple(S.rank(k) for k in range(S.n + 1))
 
 
@@ -455,8 +462,12 @@ def cohomology_from_boundaries(boundaries: Sequence[Any], coefficients: str | in
     >>> [str(h) for h in cohomology_from_boundaries([sp.csr_matrix((0, 3)), d1], "R")]
     ['R', 'R']
     """
+    return _cohomology_groups(HomologyBases(boundaries), coefficients)
+
+
+def _cohomology_groups(S: HomologyBases, coefficients) -> list:
+    """The cohomology groups of a reduced complex; their cocycles are built on first access."""
     kind, m = _parse_coefficients(coefficients)
-    S = HomologyBases(boundaries)
     out = []
     for k in range(S.n + 1):
         b, tors_k = S.rank(k), S.torsion(k)
@@ -511,4 +522,5 @@ def cohomology(X: ComplexLike, coefficients: str | int = "Z") -> list:
     >>> bool(np.isclose(abs(np.angle(np.exp(1j * (z @ H1.cocycles[:, 0])))), np.pi))
     True
     """
-    return cohomology_from_boundaries(_boundaries(X), coefficients)
+    _parse_coefficients(coefficients)  # bad coefficients fail before the work
+    return _cohomology_groups(_reduced(X), coefficients)
