@@ -8,13 +8,15 @@ the same input: the graph or the top simplices.  dhlb builds the complex
 (:meth:`SimplicialComplex.from_graph` or the constructor) and computes the integer groups
 (``homology``: ranks and torsion, no bases); gudhi builds a ``SimplexTree`` (``expansion`` for flag
 complexes) and runs ``compute_persistence(homology_coeff_field=2)``.  Columns: simplices, seconds,
-peak resident memory, the groups.  The cases:
+peak resident memory, the time ratio, whether dhlb's integer groups give gudhi's Z/2 Betti numbers
+through the universal coefficient theorem (``=``), the groups.  The cases:
 
 * random flag complexes ``gnp_random_graph(n, p, seed=3)`` of 200–2,000 vertices, up to
-  dimension 2 or 3 (the largest has 1.01M simplices);
+  dimension 2 or 3 (the largest has 1.01M simplices), and one of 32 vertices cut at dimension 4;
 * a Rips complex: 1,500 random points in the unit cube, the ε-neighbourhood graph, dimension 3;
-* triangulated manifolds: the Freudenthal 3-torus 40³ (384k tetrahedra, 1.66M simplices) and
-  the 2-torus with a cross-cap (H_1 = Z² ⊕ Z/2, 100k triangles);
+* triangulated manifolds: the Freudenthal 3-torus 40³ (384k tetrahedra, 1.66M simplices), the
+  1M-tetrahedron cube 55³ of ``bench_complex.py`` (4.4M simplices) and the 2-torus with a
+  cross-cap (torsion: H_1 = Z² ⊕ Z/2, 100k triangles);
 * bases: the generator cycles of H_1 for b_1 = 1,041 (dhlb only: gudhi has no integer bases).
 
 A case gudhi cannot finish within the time or memory limit (``--limit-s``, ``--limit-gb``) is
@@ -82,16 +84,19 @@ def rips_graph(n: int, eps: float, seed: int = 0):
 CASES = {  # name: (kind, parameters, max_dim)
     "flag 200/0.03": ("gnp", (200, 0.03), 2),
     "flag 300/0.02": ("gnp", (300, 0.02), 2),
+    "flag 32/0.65 to dim 4": ("gnp", (32, 0.65), 4),
     "flag 1000/0.10": ("gnp", (1000, 0.10), 3),
     "flag 1000/0.13": ("gnp", (1000, 0.13), 3),
     "flag 2000/0.07": ("gnp", (2000, 0.07), 3),
     "flag 2000/0.08 (1M)": ("gnp", (2000, 0.08), 3),
     "rips 1500 pts": ("rips", (1500, 0.12), 3),
     "3-torus 40^3": ("tops", ("torus3", 40), 3),
+    "cube 55^3 (1M tets)": ("tops", ("cube", 55), 3),
     "T^2 # RP^2 224^2": ("tops", ("crosscap", 224), 2),
     "bases b1=1041": ("bases", (500, 0.012), 2),
 }
-QUICK = ["flag 200/0.03", "flag 300/0.02", "flag 1000/0.10", "rips 1500 pts", "bases b1=1041"]
+QUICK = ["flag 200/0.03", "flag 300/0.02", "flag 32/0.65 to dim 4", "flag 1000/0.10", "rips 1500 pts",
+         "bases b1=1041"]
 
 
 def _input(kind, params):
@@ -104,6 +109,11 @@ def _input(kind, params):
         n, edges, _ = rips_graph(*params)
         return n, edges
     name, N = params
+    if name == "cube":
+        from dhlb.examples import cube_nd
+
+        X = cube_nd(3, N)
+        return np.asarray(X.vertex_labels[X.simplices(3)])
     return freudenthal_torus(N, 3) if name == "torus3" else torus_with_crosscap(N)
 
 
@@ -130,8 +140,10 @@ def run_dhlb(kind, params, max_dim) -> dict:
     H = homology(X)
     groups = [str(h) for h in H]
     t2 = time.perf_counter()
+    even = [sum(1 for t in h.torsion if t % 2 == 0) for h in H]  # universal coefficients over Z/2
+    mod2 = [h.rank + even[k] + (even[k - 1] if k else 0) for k, h in enumerate(H)]
     out = dict(simplices=int(sum(X.counts)), build_s=t1 - t0, homology_s=t2 - t1, total_s=t2 - t0,
-               groups=[g if len(g) < 40 else g[:37] + "…" for g in groups])
+               groups=[g if len(g) < 40 else g[:37] + "…" for g in groups], mod2=mod2)
     if kind == "bases":
         t3 = time.perf_counter()
         g = H[1].generators
@@ -160,7 +172,7 @@ def run_gudhi(kind, params, max_dim) -> dict:
     b = st.betti_numbers()
     t2 = time.perf_counter()
     return dict(simplices=int(st.num_simplices()), build_s=t1 - t0, homology_s=t2 - t1, total_s=t2 - t0,
-                groups=[f"(Z/2)^{x}" for x in b])
+                groups=[f"(Z/2)^{x}" for x in b], mod2=list(b))
 
 
 def _child(tool: str, name: str) -> None:
@@ -209,7 +221,8 @@ def main(argv=None) -> None:
     print(f"load average before: {os.getloadavg()[0]:.2f}")
     rows = {}
     names = QUICK if a.quick else list(CASES)
-    print(f"{'case':22s} {'simplices':>10s} | {'dhlb s':>7s} {'MB':>6s} | {'gudhi s':>7s} {'MB':>6s} | ratio | groups")
+    print(f"{'case':22s} {'simplices':>10s} | {'dhlb s':>7s} {'MB':>6s} | {'gudhi s':>7s} {'MB':>6s} | ratio | Z/2 | "
+          "groups (dhlb, over Z)")
     for name in names:
         peers = [t for t in tools if not (t == "gudhi" and name.startswith("bases"))]  # gudhi has no integer bases
         res = {t: measure(t, name, a.limit_s, a.limit_gb) for t in peers}
@@ -224,11 +237,17 @@ def main(argv=None) -> None:
             return f"{r['total_s']:7.3f} {r['peak_mb']:6.0f}"
 
         ratio = f"{d['total_s'] / g['total_s']:5.1f}" if "total_s" in d and "total_s" in g else "  —  "
+        if "mod2" in d and "mod2" in g:  # gudhi lists Betti numbers up to its last nonzero one
+            n = max(len(d["mod2"]), len(g["mod2"]))
+            same = d["mod2"] + [0] * (n - len(d["mod2"])) == g["mod2"] + [0] * (n - len(g["mod2"]))
+            agree = " = " if same else " ≠ "
+        else:
+            agree = " — "
         simp = d.get("simplices", g.get("simplices", 0))
         extra = f" bases {d['bases_s']:.3f} s" if "bases_s" in d else ""
         why = "; ".join(f"{t}: {r['failed']}" for t, r in res.items() if "failed" in r)
-        print(f"{name:22s} {simp:10,d} | {cell(d)} | {cell(g)} | {ratio} | {d.get('groups', '')}{extra} {why}",
-              flush=True)
+        groups = d.get("groups", "")
+        print(f"{name:22s} {simp:10,d} | {cell(d)} | {cell(g)} | {ratio} | {agree} | {groups}{extra} {why}", flush=True)
     print(f"load average after: {os.getloadavg()[0]:.2f}")
     if a.json:
         with open(a.json, "w") as f:

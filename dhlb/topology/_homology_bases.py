@@ -84,6 +84,7 @@ class HomologyBases:
         self.morse = MorseMatching(self.mats, p)
         crit = [len(c) for c in self.morse.critical]
         self.red = ChainReduction([None] + [self.morse.residual(k) for k in range(1, self.n + 1)], crit, p)
+        self.morse.release()
         self.red.reduce_all()
         self.alive = [self.red.alive_index(k) for k in range(self.n + 1)]
         self.cores = [None] + [self.red.residual_core(k) for k in range(1, self.n + 1)]

@@ -18,7 +18,7 @@ def _as_int_row(simplex, position: int) -> np.ndarray:
         row = row.reshape(1)
     if row.ndim != 1:
         raise InvalidSimplexError(f"simplex #{position} {simplex!r} must be a flat sequence of vertex labels")
-    return _check_labels(row, lambda: f"simplex #{position} {tuple(simplex)!r}")
+    return _check_labels(row, lambda: f"simplex #{position} {tuple(row.tolist()) if row.ndim else simplex!r}")
 
 
 def _check_labels(values: np.ndarray, where) -> np.ndarray:

@@ -425,6 +425,7 @@ class SimplicialComplex:
         return all(np.array_equal(a, b) for a, b in zip(self._rows, other._rows))
 
     __hash__ = None  # mutable-free but array-valued: compare, don't hash
+    _exact_boundaries = True  # ∂_{k-1} ∂_k = 0 by construction: homology() does not check it again
 
     # ------------------------------------------------------------------ graphs (networkx, optional)
     @classmethod

@@ -298,9 +298,7 @@ def _boundaries(X):
 
 def _reduced(X, p: int | None = None) -> HomologyBases:
     """The reduced complex of ``X`` (a SimplicialComplex's own boundary matrices need no ``∂∂ = 0`` check)."""
-    from dhlb.topology.complex import SimplicialComplex
-
-    return HomologyBases(_boundaries(X), p, trusted=isinstance(X, SimplicialComplex))
+    return HomologyBases(_boundaries(X), p, trusted=getattr(type(X), "_exact_boundaries", False) is True)
 
 
 def homology(X: ComplexLike, coefficients: str | tuple = "Z") -> list:
