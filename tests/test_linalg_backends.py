@@ -187,9 +187,11 @@ def test_symbolic_analysis_is_reused_across_a_parameter_sweep(backend, torus_pro
 
 
 @pytest.mark.skipif(not B._importable("threadpoolctl"), reason="threadpoolctl is not installed")
-def test_blas_threads_are_limited_inside_factorizations():
+def test_blas_threads_are_limited_inside_factorizations(monkeypatch):
     from threadpoolctl import threadpool_info, threadpool_limits
 
+    for v in B.THREAD_VARIABLES:  # a user's variable would win (next test)
+        monkeypatch.delenv(v, raising=False)
     seen = []
 
     class Spy(B.SuperLUBackend):
@@ -208,6 +210,24 @@ def test_blas_threads_are_limited_inside_factorizations():
         after = [p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"]
     assert len(seen) == 2 and all(t == [B.BLAS_THREADS] * len(t) for t in seen)
     assert after == before                                   # restored on exit
+
+
+def test_a_users_thread_variable_wins(monkeypatch):
+    """With OPENBLAS_NUM_THREADS (or another thread variable) set, dhlb leaves the pools alone."""
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    monkeypatch.setenv("OPENBLAS_NUM_THREADS", "2")
+    with threadpool_limits(limits=2, user_api="blas"):
+        before = [p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"]
+        with B.blas_guard():
+            inside = [p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"]
+    assert inside == before
+    monkeypatch.delenv("OPENBLAS_NUM_THREADS")
+    for v in B.THREAD_VARIABLES:
+        monkeypatch.delenv(v, raising=False)
+    with threadpool_limits(limits=2, user_api="blas"), B.blas_guard():
+        inside = [p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"]
+    assert inside and all(t == B.BLAS_THREADS for t in inside)
 
 
 def test_real_embedding_is_symmetric_and_equivalent():

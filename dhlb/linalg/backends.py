@@ -30,8 +30,8 @@ name            method                                                          
 Symbolic analysis (fill-reducing ordering) is computed once per sparsity pattern and reused: the
 cache is keyed by ``(backend, shape, dtype kind, hash of indptr/indices)`` (:func:`cache_info`).
 All factorizations and solves run under :func:`blas_guard`, which limits the BLAS thread pools
-to :data:`BLAS_THREADS` threads (threadpoolctl, when installed) so that users need not set
-``OPENBLAS_NUM_THREADS``.
+to :data:`BLAS_THREADS` threads (threadpoolctl, a dependency) so that users need not set
+``OPENBLAS_NUM_THREADS``; a thread variable the user did set wins.
 
 Examples
 --------
@@ -48,6 +48,7 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import importlib.util
+import os
 from collections import OrderedDict
 
 import numpy as np
@@ -62,7 +63,13 @@ __all__ = ["BLAS_THREADS", "SuperLUBackend", "available_backends", "blas_guard",
            "get_backend", "pattern_dimension", "register_backend", "select_backend"]
 
 BLAS_THREADS = 1
-"""Number of BLAS threads allowed inside factorizations and solves (``None``: leave them alone)."""
+"""Number of BLAS threads allowed inside factorizations and solves (``None``: leave them alone).
+
+A thread variable the user set (:data:`THREAD_VARIABLES`) wins: then the pools are left alone."""
+
+THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS",
+                    "VECLIB_MAXIMUM_THREADS", "GOTO_NUM_THREADS")
+"""Environment variables through which a user sets the BLAS threads explicitly."""
 
 _CACHE_SIZE = 8
 _cache: OrderedDict = OrderedDict()
@@ -75,9 +82,11 @@ _guard_depth = 0
 
 @contextlib.contextmanager
 def blas_guard():
-    """Context manager limiting BLAS threads to :data:`BLAS_THREADS` (no-op without threadpoolctl).
+    """Context manager limiting BLAS threads to :data:`BLAS_THREADS` (threadpoolctl).
 
-    Re-entrant: only the outermost guard talks to threadpoolctl (about 2 ms), nested ones are free.
+    A no-op when the user set a thread variable (:data:`THREAD_VARIABLES`: their setting wins), when
+    ``BLAS_THREADS`` is None, or without threadpoolctl.  Re-entrant: only the outermost guard talks to
+    threadpoolctl (about 2 ms), nested ones are free.
 
     Examples
     --------
@@ -85,7 +94,8 @@ def blas_guard():
     ...     pass
     """
     global _guard_depth
-    if _guard_depth or BLAS_THREADS is None or not _importable("threadpoolctl"):
+    if (_guard_depth or BLAS_THREADS is None or any(os.environ.get(v) for v in THREAD_VARIABLES)
+            or not _importable("threadpoolctl")):
         limiter = contextlib.nullcontext()
     else:
         from threadpoolctl import threadpool_limits
