@@ -383,3 +383,21 @@ def test_indefinite_pencil_lowest_pairs_certified_by_inertia(complex_):
     with pytest.raises(InvalidParameterError, match="psd"):
         smallest_eigenpairs(A, M, k=1, psd="no")
 
+
+
+def test_the_pencil_is_not_copied_nor_changed():
+    """A canonical float or complex pencil is used as it is; duplicates in the caller's matrix are summed in a copy."""
+    from dhlb.linalg._checks import validate_pair
+
+    n = 40
+    A = sp.diags([-np.ones(n - 1), 2 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1], format="csr").astype(complex)
+    M = sp.identity(n, format="csr")
+    A2, M2 = validate_pair(A, M)
+    assert np.shares_memory(A2.data, A.data) and np.shares_memory(M2.data, M.data)
+    D = sp.csr_matrix((np.ones(n + 1), np.r_[0, 0, np.arange(1, n)], np.r_[0, 2, np.arange(3, n + 2)]),
+                      shape=(n, n))                                    # entry (0, 0) stored twice: not canonical
+    assert not D.has_canonical_format
+    before = (D.indptr.copy(), D.indices.copy(), D.data.copy())
+    _, D2 = validate_pair(A, D)
+    assert all(np.array_equal(a, b) for a, b in zip(before, (D.indptr, D.indices, D.data)))   # the input is untouched
+    assert D2[0, 0] == 2.0 and D2.nnz == n and not np.shares_memory(D2.data, D.data)

@@ -24,8 +24,10 @@ def as_sparse(A, name: str) -> sp.csr_matrix:
         raise ShapeError(f"{name} is empty (shape {S.shape})")
     if not (np.issubdtype(S.dtype, np.number) and not np.issubdtype(S.dtype, np.bool_)):
         raise ShapeError(f"{name} must have a numeric dtype, got {S.dtype}")
-    S = S.astype(np.complex128 if np.iscomplexobj(S.data) else np.float64)
-    S.sum_duplicates()
+    S = S.astype(np.complex128 if np.iscomplexobj(S.data) else np.float64, copy=False)  # no copy of a large pencil
+    if not S.has_canonical_format:  # summing duplicates works in place: never on the caller's arrays
+        S = S.copy()
+        S.sum_duplicates()
     if not np.all(np.isfinite(S.data)):
         coo = S.tocoo()
         i = np.nonzero(~np.isfinite(coo.data))[0][0]
