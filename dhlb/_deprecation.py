@@ -235,7 +235,7 @@ def _numpy_bool(value: Any) -> bool:
     return np is not None and isinstance(value, np.bool_)
 
 
-def did_you_mean(word: Any, choices: Iterable[str]) -> str:
+def did_you_mean(word: Any, choices: Iterable[str], quote: bool = True) -> str:
     """``"; did you mean 'X'?"`` for the choice closest to ``word`` (:mod:`difflib`), or ``""``.
 
     Parameters
@@ -244,6 +244,8 @@ def did_you_mean(word: Any, choices: Iterable[str]) -> str:
         What was given; only a string gets a hint.
     choices : iterable of str
         The known names.
+    quote : bool, default True
+        Quote the name as Python does (``'X'``); the command line's messages speak shell: ``X``.
 
     Returns
     -------
@@ -254,13 +256,15 @@ def did_you_mean(word: Any, choices: Iterable[str]) -> str:
     --------
     >>> did_you_mean("larget", ("all", "largest")), did_you_mean("zzz", ("all", "largest"))
     ("; did you mean 'largest'?", '')
+    >>> did_you_mean("linked-ring", ["ring", "linked-rings"], quote=False)
+    '; did you mean linked-rings?'
     """
     if not isinstance(word, str):
         return ""
     import difflib
 
     close = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
-    return f"; did you mean {close[0]!r}?" if close else ""
+    return (f"; did you mean {close[0]!r}?" if quote else f"; did you mean {close[0]}?") if close else ""
 
 
 def check_flag(value: Any, name: str, *, optional: bool = False) -> None:

@@ -12,12 +12,13 @@ in the words of the command line (:func:`cli_warning`).
 from __future__ import annotations
 
 import argparse
-import difflib
+import functools
 import math
 import os
 import sys
 import warnings
 
+from dhlb._deprecation import did_you_mean as _did_you_mean
 from dhlb.errors import DhlbError, MeshParseError, MeshRepairWarning, UnreferencedVertexWarning
 
 __all__ = ["UsageError", "add_command", "common_options", "run_command", "write_output", "resolve_input",
@@ -302,18 +303,8 @@ EXIT_CODES_HELP = (
 """The exit-code paragraph of every ``--help`` (``dhlb --help`` too)."""
 
 
-def did_you_mean(word: str, choices) -> str:
-    """``"; did you mean X?"`` for the choice closest to ``word`` (difflib), or ``""``.
-
-    Examples
-    --------
-    >>> did_you_mean("linked-ring", ["ring", "linked-rings", "trefoil"])
-    '; did you mean linked-rings?'
-    >>> did_you_mean("zzz", ["ring"])
-    ''
-    """
-    close = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
-    return f"; did you mean {close[0]}?" if close else ""
+did_you_mean = functools.partial(_did_you_mean, quote=False)
+"""``"; did you mean X?"`` for the choice closest to a word (:func:`dhlb._deprecation.did_you_mean`, unquoted)."""
 
 
 # ------------------------------------------------------------------------------ inputs and outputs
