@@ -167,20 +167,26 @@ class HomologyBases:
                 out[cell, j] = w
         return to_int_array(out) if self.p is None else out.astype(np.int64)
 
+    def _start(self, k: int, d: dict, vectors) -> tuple[dict, int]:
+        """The basis of degree ``k`` on the residual as ``({cell: {g: v}}, count)``.
+
+        The unit vectors of ``free0`` first, then ``vectors`` (over ``W``), numbered in that order;
+        ``d`` is :meth:`degree` ``(k)``.
+        """
+        cells = self.alive[k]
+        start: dict = {int(cells[i]): {g: 1} for g, i in enumerate(d["free0"])}
+        g = len(d["free0"])
+        for vec in vectors:
+            for i, w in enumerate(vec):
+                if w:
+                    start.setdefault(int(cells[d["W"][i]]), {})[g] = int(w)
+            g += 1
+        return start, g
+
     def homology_generators(self, k: int) -> tuple:
         """``(rank, torsion, generators)`` of ``H_k``: generator cycles lifted to ``X.simplices(k)``."""
         d = self.degree(k)
-        start: dict = {}
-        g = 0
-        for i in d["free0"]:
-            start[int(self.alive[k][i])] = {g: 1}
-            g += 1
-        G = d["G"]
-        for col in d["free"] + d["tors"]:
-            for i, w in enumerate(G[:, col]):
-                if w:
-                    start.setdefault(int(self.alive[k][d["W"][i]]), {})[g] = int(w)
-            g += 1
+        start, g = self._start(k, d, [d["G"][:, col] for col in d["free"] + d["tors"]])
         vals = self.red._backsolve(self.red.row_steps[k], start)
         gens = self._dense(k, self._to_cells(k, vals, self.morse.lift_chains), g)
         if gens.dtype == np.int64 and gens.size and k >= 1:  # cheap exact check: the lifted chains are cycles
@@ -197,17 +203,7 @@ class HomologyBases:
         """Lifted ε rows for the free then torsion generators of H_k, as columns."""
         if k not in self._cochains:
             d = self.degree(k)
-            start: dict = {}
-            g = 0
-            for i in d["free0"]:
-                start[int(self.alive[k][i])] = {g: 1}
-                g += 1
-            eps = d["eps"]
-            for row in d["free"] + d["tors"]:
-                for i, w in enumerate(eps[row]):
-                    if w:
-                        start.setdefault(int(self.alive[k][d["W"][i]]), {})[g] = int(w)
-                g += 1
+            start, g = self._start(k, d, [d["eps"][row] for row in d["free"] + d["tors"]])
             self._cochains[k] = self._lift_cochains(k, start, g)
         return self._cochains[k]
 

@@ -35,6 +35,7 @@ from collections import deque
 import numpy as np
 import scipy.sparse as sp
 
+from dhlb.topology._sparse_elim import substitute
 from dhlb.topology.graph import incidence, incidence_forest
 
 __all__ = ["MorseMatching"]
@@ -239,30 +240,13 @@ class MorseMatching:
 
     # ------------------------------------------------------------------ lifting
     def _solve(self, lines, order, vals: dict) -> dict:
-        """``vals[target] = −u⁻¹ Σ_{c ≠ other} line[c] vals[c]`` over ``order`` (sparse dicts of generators)."""
+        """``vals[target] = −u⁻¹ Σ_{c ≠ target} line[c] vals[c]`` over ``order`` (sparse dicts of generators)."""
         ptr, ind, dat = lines
-        p = self.p
         for target, other, u in order:
-            acc: dict = {}
-            for t in range(ptr[other], ptr[other + 1]):
-                c = ind[t]
-                if c == target:
-                    continue
-                zc = vals.get(c)
-                if zc:
-                    v = dat[t]
-                    for g, w in zc.items():
-                        nv = acc.get(g, 0) + v * w
-                        if p is not None:
-                            nv %= p
-                        if nv:
-                            acc[g] = nv
-                        else:
-                            del acc[g]
-            if acc:
-                f = -self._inverse(u)
-                vals[target] = {g: (f * w) % p for g, w in acc.items()} if p is not None else \
-                    ({g: -w for g, w in acc.items()} if f == -1 else acc)
+            z = substitute(((dat[t], zc) for t in range(ptr[other], ptr[other + 1])
+                            if ind[t] != target and (zc := vals.get(ind[t]))), self._inverse(u), self.p)
+            if z:
+                vals[target] = z
         return vals
 
     def lift_chains(self, k: int, start: dict) -> dict:

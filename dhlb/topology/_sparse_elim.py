@@ -60,6 +60,27 @@ def _to_dicts(A, p: int | None = None) -> tuple[dict, dict]:
     return R, C
 
 
+def substitute(terms, u_inv: int, p: int | None = None) -> dict:
+    """One back-substitution step on sparse chains: ``−u⁻¹ Σ v z`` over ``terms`` = pairs ``(v, z)``.
+
+    ``z`` are sparse vectors ``{generator: value}`` (the chains of several generators at once);
+    exact Python integers, or residues modulo ``p``.  Returns the (possibly empty) result dict.
+    """
+    acc: dict = {}
+    for v, z in terms:
+        for g, w in z.items():
+            nv = acc.get(g, 0) + v * w
+            if p is not None:
+                nv %= p
+            if nv:
+                acc[g] = nv
+            else:
+                del acc[g]
+    if p is not None:
+        return {g: (-u_inv * w) % p for g, w in acc.items()}
+    return {g: -w for g, w in acc.items()} if u_inv == 1 else acc
+
+
 class ChainReduction:
     """Unit-pivot reduction of a chain complex ``C_n -> ... -> C_0``.
 
@@ -253,25 +274,10 @@ class ChainReduction:
     def _backsolve(self, steps, start: dict) -> dict:
         """``vals[t] = -u⁻¹ Σ_c line[c] vals[c]`` over ``steps`` in reverse; vals are sparse dicts."""
         vals = dict(start)
-        p = self.p
         for t, u, line, _ in reversed(steps):
-            acc: dict = {}
-            for c, v in line.items():
-                zc = vals.get(c)
-                if zc:
-                    for g, w in zc.items():
-                        nv = acc.get(g, 0) + v * w
-                        if p is not None:
-                            nv %= p
-                        if nv:
-                            acc[g] = nv
-                        else:
-                            del acc[g]
-            if acc:
-                if p is not None:
-                    vals[t] = {g: (-u * w) % p for g, w in acc.items()}
-                else:
-                    vals[t] = {g: -w for g, w in acc.items()} if u == 1 else acc
+            z = substitute(((v, zc) for c, v in line.items() if (zc := vals.get(c))), u, self.p)
+            if z:
+                vals[t] = z
         return vals
 
     def _lift(self, steps, j: int, Z) -> np.ndarray:
