@@ -14,7 +14,7 @@ from dhlb.linalg import SolverOptions, backward_errors, smallest_eigenpairs, sol
 from dhlb.linalg import backends as B
 
 ALL = ["superlu", "cholmod", "cholespy", "amg-lobpcg"]
-NEEDS = {"cholmod": "sksparse", "cholespy": "cholespy", "amg-lobpcg": "pyamg"}
+NEEDS = {"cholmod": "cvxopt", "cholespy": "cholespy", "amg-lobpcg": "pyamg"}
 
 
 def _param(name):
@@ -132,15 +132,16 @@ def test_amg_lobpcg_rejects_sigma(torus_problem):
 def test_auto_selection_rules(torus_problem, monkeypatch):
     avail = B.available_backends()
     assert avail[0] == "superlu" and set(avail) <= set(ALL)
-    assert B.select_backend(1000, 7000) == "superlu"                           # small: always SuperLU
-    direct = "cholmod" if "cholmod" in avail else "superlu"
+    assert B.select_backend(1000, 7000) == "cholmod"                           # small: CHOLMOD (AMD) too
+    assert "cholmod" in avail                                                   # cvxopt is a dependency
+    direct = "cholmod"
     assert B.select_backend(50_000, 350_000) == direct                          # 2-D pattern
-    assert B.select_backend(30_000, 210_000) == "superlu"                       # 2-D, < 40k: SuperLU is faster
     three_d = "amg-lobpcg" if "amg-lobpcg" in avail else direct
     assert B.select_backend(50_000, 750_000) == three_d                         # 3-D pattern
     assert B.select_backend(30_000, 450_000, dimension=2.6) == three_d          # 3-D, >= 10k: not SuperLU's rule
-    assert B.select_backend(50_000, 750_000, shifted=True) == direct            # σ given: direct
-    assert B.select_backend(50_000, 750_000, eigen=False) == direct             # linear solve: direct
+    assert B.select_backend(50_000, 750_000, shifted=True) == "superlu"         # maybe indefinite: L D Lᴴ
+    assert B.select_backend(50_000, 750_000, eigen=False) == direct             # PD linear solve: Cholesky
+    assert B.select_backend(50_000, 750_000, eigen=False, shifted=True) == "superlu"
     assert B.select_backend(3_000_000, 21_000_000) == direct                    # a huge surface: still direct
     # availability is honoured: with only SuperLU installed everything goes to SuperLU
     monkeypatch.setattr(B, "available_backends", lambda: ["superlu"])
@@ -151,7 +152,7 @@ def test_auto_selection_rules(torus_problem, monkeypatch):
     assert smallest_eigenpairs(A, M, k=1).backend == "dense"                     # auto solves it densely
     assert smallest_eigenpairs(A, M, k=1, solver=SolverOptions(backend="auto")).method == "dense"
     big = sp.block_diag([A] * 3, format="csr"), sp.block_diag([M] * 3, format="csr")
-    assert smallest_eigenpairs(*big, k=1).backend == B.select_backend(big[0].shape[0], big[0].nnz) == "superlu"
+    assert smallest_eigenpairs(*big, k=1).backend == B.select_backend(big[0].shape[0], big[0].nnz) == "cholmod"
 
 
 def test_bad_backend_name_lists_available(monkeypatch):
@@ -163,7 +164,7 @@ def test_bad_backend_name_lists_available(monkeypatch):
     with pytest.raises(InvalidParameterError, match="unknown backend"):
         solve(A, M, 0.5, np.ones(3), backend="mumps")
     monkeypatch.setattr(B, "available_backends", lambda: ["superlu"])         # registered, not installed
-    with pytest.raises(InvalidParameterError, match=r"'cholmod' is not installed.*scikit-sparse"):
+    with pytest.raises(InvalidParameterError, match=r"'cholmod' is not installed.*cvxopt"):
         smallest_eigenpairs(A, M, k=1, solver=SolverOptions(backend="cholmod"))
     with pytest.raises(TypeError, match="factorize"):
         smallest_eigenpairs(A, M, k=1, solver=SolverOptions(backend=object()))
@@ -171,8 +172,13 @@ def test_bad_backend_name_lists_available(monkeypatch):
 
 # ---------------------------------------------------------------------- symbolic reuse, thread guard
 @pytest.mark.parametrize("backend", [b for b in DIRECT if b.values[0] in ("superlu", "cholmod")])
-def test_symbolic_analysis_is_reused_across_a_parameter_sweep(backend, torus_problem):
+def test_symbolic_analysis_is_reused_across_a_parameter_sweep(backend, torus_problem, monkeypatch):
+    import dhlb.linalg.backends_cholesky as C
+    import dhlb.linalg.ordering as O
+
     A, M = torus_problem
+    monkeypatch.setattr(O, "ND_MIN", 10)         # the torus counts as large: both order by (cached) METIS
+    monkeypatch.setattr(C, "METIS_MIN", 10)
     B.clear_cache()
     lams = []
     for t in (1.0, 2.0, 3.0):                       # same pattern, new values: a sweep over a scale
@@ -273,17 +279,46 @@ def test_pattern_dimension_tells_surfaces_with_blocks_from_tet_meshes(torus_prob
     assert B.select_backend(50_000, 700_000, dimension=lambda: 2.6) == three_d
 
 
-@pytest.mark.skipif(not B._importable("sksparse"), reason="scikit-sparse is not installed")
-def test_cholmod_metis_ordering_for_large_matrices_gives_the_same_eigenpairs(torus_problem, monkeypatch):
+def test_cholmod_nested_dissection_for_large_matrices_gives_the_same_eigenpairs(torus_problem, monkeypatch):
     import dhlb.linalg.backends_cholesky as C
+    import dhlb.linalg.ordering as O
 
     A, M = torus_problem
     ref = smallest_eigenpairs(A, M, k=2, solver=SolverOptions(backend="superlu"))
-    monkeypatch.setattr(C, "METIS_MIN", 10)  # the torus counts as "large": METIS ordering (or the fallback)
+    monkeypatch.setattr(C, "METIS_MIN", 10)  # the torus counts as "large": METIS' order is passed to CHOLMOD
+    monkeypatch.setattr(O, "ND_MIN", 10)
     B.clear_cache()
     res = smallest_eigenpairs(A, M, k=2, solver=SolverOptions(backend="cholmod"))
-    assert res.backend == "cholmod"
+    assert res.backend == "cholmod" and B.cache_info()["misses"] >= 1
     np.testing.assert_allclose(res.eigenvalues, ref.eigenvalues, rtol=1e-9)
+
+
+def test_cholmod_solves_complex_right_hand_sides_with_real_and_complex_factors():
+    rng = np.random.default_rng(3)
+    n = 60
+    R = sp.random(n, n, density=0.1, random_state=4)
+    K = (R @ R.T + n * sp.identity(n)).tocsc()                       # real SPD
+    H = (K + 1j * (R - R.T)).tocsc()                                 # complex Hermitian PD (diagonally dominant)
+    B2 = rng.standard_normal((n, 3)) + 1j * rng.standard_normal((n, 3))
+    for mat in (K, H):
+        fac = B.get_backend("cholmod").factorize(mat, positive_definite=True)
+        assert fac.name == "cholmod"
+        for rhs in (B2, B2[:, 0], B2.real[:, 1]):
+            x = fac.solve(rhs)
+            assert x.shape == rhs.shape
+            np.testing.assert_allclose(mat @ x, rhs, atol=1e-10 * np.abs(rhs).max())
+        before = B2.copy()
+        fac.solve(B2)
+        assert np.array_equal(B2, before)                            # the right-hand side is not overwritten
+
+
+def test_cholmod_refuses_or_falls_back_on_an_indefinite_matrix():
+    K = sp.diags([2.0, -1.0, 3.0]).tocsc()
+    with pytest.raises(InvalidOperatorError, match=r"not positive definite \(CHOLMOD"):
+        B.get_backend("cholmod").factorize(K, positive_definite=True)
+    fac = B.get_backend("cholmod").factorize(K)
+    assert fac.name == "superlu"
+    np.testing.assert_allclose(fac.solve(np.ones(3)), [0.5, -1.0, 1 / 3])
 
 
 # ---------------------------------------------------------------------- memory
@@ -365,7 +400,7 @@ def _tet_pencil(m):
     return geo.stiffness_matrix().tocsr(), geo.mass_matrix(lumped=True).tocsr()
 
 
-@pytest.mark.parametrize("m, expected, bound", [(8, "superlu", 60), (22, "amg-lobpcg" if _AMG else "superlu", 80)])
+@pytest.mark.parametrize("m, expected, bound", [(8, "cholmod", 60), (22, "amg-lobpcg" if _AMG else "cholmod", 80)])
 def test_auto_choice_on_tet_laplacians_converges_in_bounded_iterations(m, expected, bound):
     A, M = _tet_pencil(m)                     # 729 and 12,167 unknowns: below and above ITERATIVE_3D
     res = smallest_eigenpairs(A, M, k=3)
@@ -378,11 +413,11 @@ def test_auto_choice_on_2d_problems_converges_in_bounded_iterations(torus_proble
     A, M = torus_problem                                        # small: dense
     res = smallest_eigenpairs(A, M, k=4)
     assert res.backend == "dense" and res.converged
-    n = 120                                                     # 14,400 unknowns, a 2-D grid: SuperLU
+    n = 120                                                     # 14,400 unknowns, a 2-D grid: CHOLMOD
     T = sp.diags([-np.ones(n - 1), np.r_[1, 2 * np.ones(n - 2), 1], -np.ones(n - 1)], [-1, 0, 1])
     A = (sp.kron(T, sp.identity(n)) + sp.kron(sp.identity(n), T)).tocsr()
     res = smallest_eigenpairs(A, sp.identity(n * n, format="csr"), k=3)
-    assert res.backend == "superlu" and res.converged and res.iterations <= 60, res.iterations
+    assert res.backend == "cholmod" and res.converged and res.iterations <= 60, res.iterations
 
 
 def test_auto_choice_on_a_quaternionic_pencil_converges_in_bounded_iterations():

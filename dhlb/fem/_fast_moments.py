@@ -69,21 +69,30 @@ def _add(p: dict, q: dict) -> dict:
     return out
 
 
-def _degree(polys: tuple, r: float) -> int:
-    """Smallest Q: the terms of degree > Q sum to at most _TAIL times the lowest-order term (|A| <= r)."""
+def _degree(profiles: tuple, r: float) -> int:
+    """Smallest Q: the terms of degree > Q sum to at most _TAIL times the lowest-order term (|A| <= r).
+
+    ``profiles``: :func:`_profiles` of the polynomials.
+    """
     best = 1
-    for p in polys:
-        qmax = max(sum(k) for k in p)
-        per = np.zeros(qmax + 1)
-        for key, c in p.items():
-            per[sum(key)] += abs(c)
-        d0 = int(np.nonzero(per)[0][0])
-        rel = per[d0:] * r ** np.arange(qmax + 1 - d0) / per[d0]
+    for d0, per in profiles:
+        rel = per * r ** np.arange(per.size)
         tail = np.cumsum(rel[::-1])[::-1]              # tail[j] = Σ_{deg >= d0 + j}
         ok = np.nonzero(tail <= _TAIL)[0]
         assert ok.size and rel[-1] < 1e-30, "series table too short for this radius"
         best = max(best, d0 + int(ok[0]) - 1)
     return best
+
+
+def _profiles(polys: tuple) -> tuple:
+    """Per polynomial: its lowest degree d0 and the sums of |coefficients| per degree from d0, relative to d0's."""
+    out = []
+    for p in polys:
+        degrees = np.fromiter((sum(k) for k in p), np.int64, len(p))
+        per = np.bincount(degrees, weights=np.abs(np.fromiter(p.values(), np.complex128, len(p))))
+        d0 = int(np.nonzero(per)[0][0])
+        out.append((d0, per[d0:] / per[d0]))
+    return tuple(out)
 
 
 @cache
@@ -112,7 +121,12 @@ def _polys_1d(key: tuple) -> tuple:
 
 @cache
 def _degree_1d(key: tuple, r: float) -> int:
-    return _degree(_polys_1d(key), r) // 2 + 1
+    return _degree(_profiles_1d(key), r) // 2 + 1
+
+
+@cache
+def _profiles_1d(key: tuple) -> tuple:
+    return _profiles(_polys_1d(key))
 
 
 def _per_degree(rho: np.ndarray, degree, fn, rows: int):
@@ -200,7 +214,12 @@ def _matrix_3d(q: int):
 
 @cache
 def _degree_3d(r: float) -> int:
-    return _degree(_polys_3d(), r)
+    return _degree(_profiles_3d(), r)
+
+
+@cache
+def _profiles_3d() -> tuple:
+    return _profiles(_polys_3d())
 
 
 # families (β, γ) of the complete homogeneous sums h_q^{(β,γ)}(A1, A2) =

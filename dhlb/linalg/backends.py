@@ -21,7 +21,7 @@ Implemented backends (see ``docs/performance.md`` for measurements):
 name            method                                                                   needs
 =============== ======================================================================== ==============
 ``superlu``     :func:`scipy.sparse.linalg.splu`, symmetric mode, nested dissection      scipy, pymetis
-``cholmod``     CHOLMOD supernodal ``L Lᴴ``, complex Hermitian directly                  scikit-sparse
+``cholmod``     CHOLMOD supernodal ``L Lᴴ``, complex Hermitian directly                  cvxopt, pymetis
 ``cholespy``    CHOLMOD inside cholespy, real only: the real 2N embedding of ``K``        cholespy
 ``amg-lobpcg``  LOBPCG preconditioned by smoothed-aggregation AMG; O(N) memory           pyamg
 ``petsc``       SLEPc Krylov–Schur, shift-and-invert by MUMPS, under MPI                 petsc4py, slepc4py
@@ -266,13 +266,12 @@ def _lazy(module: str, cls: str):
 
 _REGISTRY = {
     "superlu": (SuperLUBackend, ()),
-    "cholmod": (_lazy("dhlb.linalg.backends_cholesky", "CholmodBackend"), ("sksparse",)),
+    "cholmod": (_lazy("dhlb.linalg.backends_cholesky", "CholmodBackend"), ("cvxopt",)),
     "cholespy": (_lazy("dhlb.linalg.backends_cholesky", "CholespyBackend"), ("cholespy",)),
     "amg-lobpcg": (_lazy("dhlb.linalg.backends_amg", "AMGLobpcgBackend"), ("pyamg",)),
     "petsc": (_lazy("dhlb.linalg.backends_petsc", "PetscBackend"), ("petsc4py", "slepc4py", "mpi4py")),
 }
-_INSTALL = {"sksparse": "apt-get install libsuitesparse-dev && pip install 'scikit-sparse<0.5' (SuiteSparse 5) "
-                        "or pip install scikit-sparse (SuiteSparse >= 7)",
+_INSTALL = {"cvxopt": "pip install cvxopt (a dependency of dhlb: reinstall dhlb)",
             "cholespy": "pip install cholespy", "pyamg": "pip install pyamg",
             "petsc4py": "Debian 12: .ci/mpi-setup.sh (python3-petsc4py-complex python3-slepc4py-complex "
                         "python3-mpi4py; see docs/mpi.md)",
@@ -333,15 +332,6 @@ def get_backend(backend=None, *, n: int = 0, nnz: int = 0, eigen: bool = False, 
     return backend
 
 
-SMALL = 5_000
-"""Below this many unknowns ``auto`` uses SuperLU (every backend takes milliseconds)."""
-SURFACE_SUPERLU = 40_000
-"""Below this many unknowns a 2-D pattern uses SuperLU even if CHOLMOD is installed.
-
-Measured (2 cores, one BLAS thread): the bunny's n = 4 field (34,834 unknowns) takes 0.83 s with
-SuperLU and 1.15 s with CHOLMOD (whose single-right-hand-side solves are slower); the two are
-even at 38k unknowns, and CHOLMOD is 1.5× faster at 150k.
-"""
 ITERATIVE_3D = 10_000
 """From this many unknowns on, a 3-D-like pattern (>= 10 nonzeros per row) goes to ``amg-lobpcg``."""
 
@@ -389,12 +379,16 @@ def select_backend(n: int, nnz: int, *, eigen: bool = True, shifted: bool = Fals
       field (655k unknowns) LOBPCG with an AMG preconditioner broke down at a residual of 2e-2,
       where SuperLU's factorization and 13 solves took 21 s in 3.8 GB (issue 30); a factorization
       that does not fit in memory still falls back to ``amg-lobpcg``, and says so;
-    * ``n < SMALL``, or a 2-D pattern with ``n < SURFACE_SUPERLU``: ``superlu``;
-    * otherwise ``cholmod`` if installed, else ``superlu`` (cholespy needs the 2N real embedding
-      of complex matrices and measured slower than SuperLU; choose it explicitly).
+    * ``shifted`` (``A − σM`` may be indefinite: ``sigma`` given, or a linear solve not asserted
+      positive definite): ``superlu`` (its ``L D Lᴴ`` takes indefinite matrices);
+    * otherwise ``cholmod`` (a dependency).  Its Cholesky factor is half of SuperLU's ``L`` and
+      ``U``, and it is faster at every size (cross-field matrices, factorization and 15 solves,
+      the ordering counted): 864 unknowns 4.6 ms against 8.5 ms, spot (2,930) 16 ms against 25 ms,
+      the bunny (34,834) 0.44 s against 0.76 s, the 1.31M-face icosphere (655,362) 16 s and 790 MiB
+      against 19 s and 1.36 GiB.  cholespy needs the 2N real embedding of complex matrices and
+      measured slower than SuperLU: choose it explicitly.
 
-    ``shifted`` (``sigma`` given: interior eigenvalues, indefinite ``A − σM``) excludes the
-    iterative path.
+    ``shifted`` also excludes the iterative path.
 
     Parameters
     ----------
@@ -405,7 +399,8 @@ def select_backend(n: int, nnz: int, *, eigen: bool = True, shifted: bool = Fals
     eigen : bool, optional
         Whether the problem is a smallest-eigenpair problem (else a linear solve).
     shifted : bool, optional
-        Whether a shift ``sigma`` is given (interior eigenvalues).
+        Whether the factorized matrix may be indefinite (a shift ``sigma`` inside the spectrum, a linear
+        solve not asserted positive definite).
     dimension : float or callable or None, optional
         The :func:`pattern_dimension` of the matrix, or a callable returning it (called only when needed).
 
@@ -416,14 +411,14 @@ def select_backend(n: int, nnz: int, *, eigen: bool = True, shifted: bool = Fals
 
     Examples
     --------
-    >>> select_backend(100, 700)
-    'superlu'
+    >>> select_backend(100, 700), select_backend(100, 700, shifted=True)
+    ('cholmod', 'superlu')
     """
     avail = available_backends()
     three_d = nnz >= 10 * n and (dimension is None or (dimension() if callable(dimension) else dimension) >= 2.2)
     big = n >= ITERATIVE_3D and nnz >= 10 * n and three_d
     if eigen and not shifted and big and "amg-lobpcg" in avail:
         return "amg-lobpcg"
-    if n < SMALL or (n < SURFACE_SUPERLU and not three_d):
+    if shifted or "cholmod" not in avail:
         return "superlu"
-    return "cholmod" if "cholmod" in avail else "superlu"
+    return "cholmod"

@@ -143,7 +143,7 @@ class AMGLobpcgBackend:
         broke_down = len(hist) + 1 < int(maxiter)        # LOBPCG stops early only when converged, or when it fails
         halving = done >= STALL_MIN_ITERATIONS and not best <= STALL_FACTOR * before
         if best > res_tol and (broke_down or halving):
-            direct = "cholmod" if _importable("sksparse") else "superlu"
+            direct = "cholmod" if _importable("cvxopt") else "superlu"
             why = (f"LOBPCG broke down after {its} of {int(maxiter)} iterations" if broke_down else
                    f"the last {its} iterations did not halve the best residual norm before them ({before:.3g})")
             raise ConvergenceError(

@@ -75,7 +75,7 @@ def solve(A, M, lam, b, *, backend=None, positive_definite: bool = False) -> np.
     if not np.all(np.isfinite(B)):
         raise NonFiniteError("b contains NaN or inf")
     K = (A - lam * M).tocsc()
-    be = get_backend(backend, n=n, nnz=A.nnz, eigen=False)
+    be = get_backend(backend, n=n, nnz=A.nnz, eigen=False, shifted=not positive_definite)
     not_pd = (f"A − λM is not positive definite for λ = {lam:.10g} (...): λ must lie below the smallest "
               "eigenvalue of A u = λ M u; lower λ (or pass positive_definite=False for an indefinite solve)")
     with blas_guard():

