@@ -122,7 +122,7 @@ DIRECTION_BYTES = 128
 LEAN_MIN_VERTICES = 250_000
 """From this many vertices on, :func:`direction_field` drops the mesh's cached arrays before the solve.
 
-:meth:`dhlb.mesh.SurfaceMesh.release_caches`: at 655k vertices (the 1.31M-face icosphere) the peak
+:meth:`dhlb.mesh.TangentBundle.release_caches`: at 655k vertices (the 1.31M-face icosphere) the peak
 memory falls by 650 MiB, and recomputing what the indices need costs 2.5 s of 38 s.
 """
 FIELD_BYTES_PER_FACE = 3_500
@@ -297,7 +297,7 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
     eigs, ts, stats = [], [], []
     unaligned: list[tuple] = []   # components that get their smoothest field (one warning for all)
     if N >= LEAN_MIN_VERTICES:    # the assembly's cached arrays make room for the factor
-        tb.mesh.release_caches()
+        tb.release_caches()
     for ci, idx in enumerate(comps):
         Ac, Mc = (A, M) if len(comps) == 1 else (_sub(A, idx), _sub(M, idx))
         uc = None if guide is None else _aligned(Ac, Mc, guide.values[idx], lam, backend, stats, ts,

@@ -6,8 +6,9 @@
 * :func:`solve` — ``(A − λM) x = b``.
 * :class:`SolverOptions` — the solver knobs (backend, tolerance, ...) as one frozen value, taken by
   every solving function as ``solver=`` (a backend name is shorthand, :func:`solver_options`).
-* backends (:mod:`dhlb.linalg.backends`): SuperLU in a nested-dissection order (always),
-  CHOLMOD, cholespy and AMG-LOBPCG when their packages are installed; :func:`select_backend`
+* backends (:mod:`dhlb.linalg.backends`): CHOLMOD (cvxopt's wheel) and SuperLU in a
+  nested-dissection order (always), cholespy and AMG-LOBPCG when their packages are installed;
+  :func:`select_backend`
   chooses by size, sparsity and the memory a factorization would need
   (:mod:`dhlb.linalg.memory`, :mod:`dhlb.linalg.ordering`).
 
@@ -20,6 +21,7 @@ Examples
 [2.0, 3.0]
 """
 
+from dhlb.linalg import backends_cholesky  # noqa: F401  (the default direct backend: cvxopt loads with the layer)
 from dhlb.linalg.backends import available_backends, select_backend
 from dhlb.linalg.eigen import EigenResult, backward_errors, default_shift, default_tol, smallest_eigenpairs
 from dhlb.linalg.linear import solve

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 import scipy.sparse as sp
+from cvxopt import cholmod, matrix, spmatrix
 
 from dhlb.errors import InvalidOperatorError
 from dhlb.linalg.backends import (
@@ -69,17 +70,15 @@ class _CholmodFactor:
         self.factor, self.n, self.complex_ = factor, n, complex_
 
     def solve(self, B):
-        from cvxopt import cholmod, matrix
-
         B = np.asarray(B)
         cols = B.reshape(self.n, -1)
         if not self.complex_ and np.iscomplexobj(cols):   # a real factor: the real and imaginary parts together
-            X = self._solve(np.hstack([cols.real, cols.imag]), np.float64, cholmod, matrix)
+            X = self._solve(np.hstack([cols.real, cols.imag]), np.float64)
             k = cols.shape[1]
             return (X[:, :k] + 1j * X[:, k:]).reshape(B.shape)
-        return self._solve(cols, np.complex128 if self.complex_ else np.float64, cholmod, matrix).reshape(B.shape)
+        return self._solve(cols, np.complex128 if self.complex_ else np.float64).reshape(B.shape)
 
-    def _solve(self, cols, dtype, cholmod, matrix):
+    def _solve(self, cols, dtype):
         X = matrix(np.asfortranarray(cols, dtype=dtype))
         with blas_guard():
             cholmod.solve(self.factor, X)
@@ -102,8 +101,6 @@ class CholmodBackend:
 
     def factorize(self, K, *, positive_definite: bool = False):
         """Factorize ``K``; raises :class:`InvalidOperatorError` if asserted PD and it is not."""
-        from cvxopt import cholmod, matrix, spmatrix
-
         K = canonical_csc(K)
         complex_ = K.dtype.kind == "c" and bool(np.any(K.data.imag))
         n = K.shape[0]

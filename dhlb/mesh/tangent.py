@@ -376,6 +376,30 @@ class TangentBundle:
         theta = self.angle_map.to_rescaled(np.arange(len(W)), psi)
         return theta, np.hypot(x, y)
 
+    def release_caches(self) -> int:
+        """Drop what this bundle and its mesh have derived and cached, except the line bundle; return how many.
+
+        The bundle's angles, frames and curvatures and the mesh's arrays
+        (:meth:`SurfaceMesh.release_caches`) are recomputed on the next access; :attr:`bundle` (the
+        connection and curvature the energy was built from) and :attr:`geometry` stay.
+
+        Returns
+        -------
+        int
+            The number of cached values dropped.
+
+        Examples
+        --------
+        >>> from dhlb.mesh import tangent_bundle
+        >>> tb = tangent_bundle([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], n=2)
+        >>> rho = tb.transport_angles
+        >>> tb.release_caches() > 0, bool((tb.transport_angles == rho).all())
+        (True, True)
+        """
+        from dhlb._caches import drop_cached
+
+        return drop_cached(self, keep=("bundle", "geometry")) + self.mesh.release_caches()
+
     def __repr__(self) -> str:
         return f"TangentBundle(n={self.n}, {self.mesh!r})"
 
