@@ -111,7 +111,7 @@ _pools = None
 
 
 def _blas_pools():
-    """threadpoolctl's handle on the BLAS libraries of this process (None without threadpoolctl).
+    """The threadpoolctl handle on the BLAS libraries of this process (None without threadpoolctl).
 
     Made once: finding the libraries takes about 5 ms, limiting them through the handle 0.05 ms
     (a fresh ``threadpool_limits`` each time took 1.4 ms).  It is made when this module is
