@@ -5,9 +5,11 @@ times of ``stripe_pattern`` (setup = mesh + form + matrices, solve = smallest ei
 section, texture) with the direction field given (the field's own time is printed apart), and the
 ratio of the end-to-end stripe time to ``L_ref``, **one factorization + one solve of the plain real
 cotangent Laplacian** ``K + εM`` of the same mesh (``scipy.sparse.linalg.splu``, default options;
-CHOLMOD when that backend is named), measured in the same run.  Issue 30's targets on the bunny:
-n = 1 at most 2.5 L_ref, n = 2 at most 5 L_ref (printed last, with the factorizations and solves).
-Each figure is the best of ``REPEAT`` runs.
+CHOLMOD when that backend is named), measured in the same run: ``REPEAT`` pairs timed in turns
+(L_ref, then the pattern), the ratio the median of the pairs' ratios, the times the best.
+Issue 30's targets on the bunny: n = 1 at most 2.5 L_ref, n = 2 at most 5 L_ref (printed last,
+with the factorizations and solves).
+Each time is the best of ``REPEAT`` runs.
 
 Sections (issue 18): on stanford-bunny, n = 1 and n = 2 (cotan), the time of ``stripe_pattern``
 with ``section="unit"`` (eigenvector, then the unit-modulus iteration on the same factorization)
@@ -41,7 +43,7 @@ from dhlb.stripes import SectionOptions, StripeOptions, stripe_pattern
 
 MESHES = os.path.join(os.path.dirname(__file__), "..", "..", "shared", "meshes")
 FILES = ["spot.obj", "kitten.obj", "stanford-bunny.obj"]
-REPEAT = 2
+REPEAT = 5   # the machine's speed varies by up to 40 % from run to run (session 12): the best of 5
 CASES = [(1, "cotan"), (2, "cotan"), (2, "fem")]
 
 
@@ -54,8 +56,28 @@ def best(fn, repeat=REPEAT):
     return out, t
 
 
+def paired(fn, lref, repeat=REPEAT):
+    """``(result, best time, best L_ref time, ratio)``: ``fn`` and ``lref`` timed in turns, ``repeat`` pairs.
+
+    The ratio is the median over the pairs of ``time(fn) / time(lref)``: both of a pair see the same
+    state of the machine, whose speed drifts by up to 40 % from minute to minute here (session 12:
+    the best of 5 of each, measured apart, gave 1.96–2.86 for the same code).
+    """
+    out, times, refs = None, [], []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        lref()
+        refs.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t0)
+    return out, min(times), min(refs), float(np.median(np.array(times) / np.array(refs)))
+
+
 def baseline(V, F, backend):
-    """L_ref: one factorization + solve of the plain real cotangent Laplacian ``L + εM`` (the mesh is not timed).
+    """L_ref as a function to time: one factorization + solve of the plain real cotangent Laplacian ``L + εM``.
+
+    (The mesh and the matrices are made here, not timed.)
 
     With the default backend this is issue 30's definition, ``scipy.sparse.linalg.splu`` with its
     default options (the first thing a new user would write); with ``cholmod``, CHOLMOD.
@@ -71,7 +93,7 @@ def baseline(V, F, backend):
             return solve(K, M, -eps, b, backend=backend, positive_definite=True)
         return spla.splu(A).solve(b)
 
-    return best(run, 3)[1]
+    return run
 
 
 def main(backend=None):
@@ -83,21 +105,23 @@ def main(backend=None):
             print(f"skipping {name}: not found in {MESHES}")
             continue
         V, F = read_surface(path)
-        t_base = baseline(V, F, backend)
+        lref = baseline(V, F, backend)
         for n, energy in CASES:
             fld, t_field = best(lambda: direction_field(V, F, n=n, solver=backend), 1)
-            res, t_all = best(lambda: stripe_pattern(V, F, fld, spacing=8.0, n=n, options=StripeOptions(energy=energy),
-                                                     solver=backend))
+            pattern = lambda: stripe_pattern(V, F, fld, spacing=8.0, n=n, options=StripeOptions(energy=energy),  # noqa: E731
+                                             solver=backend)
+            res, t_all, t_base, ratio = paired(pattern, lref)
             t = res.timings
             st = res.solver
             rows.append((name, res.mesh.n_faces, n, energy, t_field, t["setup"], t["solve"], t["texture"], t_all,
-                         t_base, t_all / t_base, f"{st['factorizations']}/{st['solves']}+{st['section_solves']}",
+                         t_base, ratio, f"{st['factorizations']}/{st['solves']}+{st['section_solves']}",
                          res.solver["unknowns"], res.zero_faces.size, res.branch_faces.size))
     head = ("mesh", "faces", "n", "energy", "field s", "setup s", "solve s", "texture s", "stripes s",
             "L_ref s", "ratio", "fact/solves", "unknowns", "zeros", "branch")
     fmt = "{:<18} {:>6} {:>2} {:>6} {:>8} {:>8} {:>8} {:>9} {:>9} {:>8} {:>6} {:>11} {:>8} {:>5} {:>6}"
     print(f"backend: {backend or 'auto'}; OPENBLAS_NUM_THREADS="
-          f"{os.environ.get('OPENBLAS_NUM_THREADS')}; best of {REPEAT}; solve s includes the section")
+          f"{os.environ.get('OPENBLAS_NUM_THREADS')}; best of {REPEAT}; ratio: median of {REPEAT} pairs timed "
+          "in turns; solve s includes the section")
     print(fmt.format(*head))
     for r in rows:
         print(fmt.format(r[0], r[1], r[2], r[3], *(f"{x:.3f}" for x in r[4:10]), f"{r[10]:.2f}", *r[11:]))
