@@ -312,6 +312,24 @@ def test_cholmod_solves_complex_right_hand_sides_with_real_and_complex_factors()
         assert np.array_equal(B2, before)                            # the right-hand side is not overwritten
 
 
+def test_cholmod_leaves_cvxopts_global_options_as_it_found_them():
+    from cvxopt import cholmod
+
+    before = dict(cholmod.options)
+    cholmod.options["supernodal"] = 0                            # a user's own setting
+    try:
+        K = sp.csc_matrix(np.array([[4.0, 1.0], [1.0, 3.0]]))
+        fac = B.get_backend("cholmod").factorize(K, positive_definite=True)
+        np.testing.assert_allclose(K @ fac.solve(np.ones(2)), np.ones(2))
+        assert cholmod.options == {"supernodal": 0}
+        with pytest.raises(InvalidOperatorError):
+            B.get_backend("cholmod").factorize(sp.csc_matrix(np.diag([1.0, -1.0])), positive_definite=True)
+        assert cholmod.options == {"supernodal": 0}
+    finally:
+        cholmod.options.clear()
+        cholmod.options.update(before)
+
+
 def test_cholmod_refuses_or_falls_back_on_an_indefinite_matrix():
     K = sp.diags([2.0, -1.0, 3.0]).tocsc()
     with pytest.raises(InvalidOperatorError, match=r"not positive definite \(CHOLMOD"):

@@ -92,9 +92,9 @@ class CholmodBackend:
     the factor ``L`` is all that is stored (half of SuperLU's ``L`` and ``U``).  ``P`` is CHOLMOD's
     own AMD ordering, or from :data:`METIS_MIN` unknowns on the nested-dissection order of
     :func:`dhlb.linalg.ordering.nested_dissection` (METIS, computed once per sparsity pattern and
-    cached).  The factorization succeeds iff ``K`` is positive
-    definite, which is therefore proved at every size; a matrix that is not falls back to SuperLU
-    (or raises :class:`~dhlb.errors.InvalidOperatorError` under ``positive_definite=True``).
+    cached).  The factorization succeeds iff ``K`` is positive definite, which is therefore proved
+    at every size; a matrix that is not falls back to SuperLU (or raises
+    :class:`~dhlb.errors.InvalidOperatorError` under ``positive_definite=True``).
     """
 
     name = "cholmod"
@@ -113,6 +113,7 @@ class CholmodBackend:
         A = spmatrix(matrix(np.ascontiguousarray(data, np.complex128 if complex_ else np.float64)),
                      matrix(K.indices[lower].astype(np.intp)), matrix(cols[lower]), (n, n))
         del cols, lower, data
+        saved = dict(cholmod.options)     # cvxopt's options are global: set ours, then give the caller's back
         cholmod.options["supernodal"] = 2
         try:
             with blas_guard():
@@ -132,6 +133,9 @@ class CholmodBackend:
                 f"GiB, {available_bytes() / 2**30:.2f} GiB available now); use backend='amg-lobpcg' "
                 "(pip install pyamg) or a machine with more memory", needed=need, available=available_bytes()) \
                 from err
+        finally:
+            cholmod.options.clear()
+            cholmod.options.update(saved)
         return _CholmodFactor(factor, n, complex_)
 
 
