@@ -17,6 +17,8 @@ InvalidSimplexError
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 __all__ = [
     # base classes
     "DhlbError", "DhlbWarning",
@@ -82,6 +84,11 @@ class MeshParseError(DhlbError, ValueError):
     line : int or None, optional
         The 1-based line number in ``path``; when given (with ``path``), the message starts with
         ``"{path}, line {line}: "``.
+    found : {"volume", "surface"} or None, optional
+        The file holds the other kind of mesh: tetrahedra where a surface was to be read
+        (``"volume"``), or only triangles where a volume was (``"surface"``).  The message then ends
+        with the reader to use (:func:`dhlb.io.read_volume`, :func:`dhlb.io.read_surface`); the
+        command line names its commands instead.
 
     Attributes
     ----------
@@ -89,23 +96,35 @@ class MeshParseError(DhlbError, ValueError):
         The file, as given.
     line : int or None
         The line number, as given.
+    found : str or None
+        As given.
+    reason : str
+        The message without the file, the line and the reader to use.
 
     Examples
     --------
     >>> print(MeshParseError("expected 3 vertex indices", path="m.off", line=7))
     m.off, line 7: expected 3 vertex indices
+    >>> print(MeshParseError("a volume mesh (12 tetrahedra)", path="t.mesh", found="volume"))
+    t.mesh: a volume mesh (12 tetrahedra); read it with dhlb.io.read_volume
     """
 
-    def __init__(self, message: str, path: str | None = None, line: int | None = None):
+    READERS: ClassVar[dict[str, str]] = {"volume": "dhlb.io.read_volume", "surface": "dhlb.io.read_surface"}
+    """The reader to name for each kind of mesh found."""
+
+    def __init__(self, message: str, path: str | None = None, line: int | None = None, *, found: str | None = None):
         where = ""
         if path is not None:
             where = f"{path}"
             if line is not None:
                 where += f", line {line}"
             where += ": "
-        super().__init__(where + message)
+        hint = f"; read it with {self.READERS[found]}" if found in self.READERS else ""
+        super().__init__(where + message + hint)
         self.path = path
         self.line = line
+        self.found = found if found in self.READERS else None
+        self.reason = message
 
 
 class NonManifoldError(DhlbError, ValueError):

@@ -7,6 +7,8 @@ labelled (ΣΩ + rotation)/2π, as the demo labels it, not nχ.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from dhlb.cli import main
@@ -66,3 +68,19 @@ def test_field_labels_the_index_sum_with_boundary_as_the_demo_does(tmp_path, cap
     code, out, err = run(capsys, "field", TORUS, "--n", "4", "--no-png", "-o", tmp_path / "t")
     assert code == 0, err
     assert "Σ index = 0 = nχ = 4·0" in out and "rotation" not in out
+
+
+@pytest.mark.parametrize("command, data, names", [
+    ("field", "octopus-low-tet.mesh", ("dhlb vortex", "dhlb conformal")),
+    ("stripes", "octopus-low-tet.mesh", ("dhlb vortex", "dhlb conformal")),
+    ("vortex", "moebius.obj", ("dhlb field", "dhlb stripes")),
+    ("conformal", "moebius.obj", ("dhlb field", "dhlb stripes")),
+])
+def test_the_wrong_kind_of_mesh_names_the_commands_that_take_it(tmp_path, capsys, command, data, names):
+    """Issue 42, point 6: at the command line a tet mesh given to `dhlb field` names commands, not read_volume."""
+    path = Path(__file__).parent / "data" / data
+    extra = ["--spacing", "6"] if command == "stripes" else []
+    code, _, err = run(capsys, command, path, *extra, "-o", tmp_path / "out")
+    assert code == 1 and all(name in err for name in names), err
+    assert "read_volume" not in err and "read_surface" not in err and "dhlb.io" not in err
+    assert data in err and err.count("\n") == 1

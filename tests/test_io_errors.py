@@ -152,10 +152,15 @@ def test_binary_ply_errors_name_the_element(tmp_path):
 
 
 def test_surface_and_volume_readers_refuse_the_other_kind(tmp_path):
-    with pytest.raises(MeshParseError, match="contains no tetrahedra"):
+    with pytest.raises(MeshParseError, match=r"contains no tetrahedra.*; read it with dhlb.io.read_surface") as info:
         read_volume(_surface_mesh(tmp_path))
-    with pytest.raises(MeshParseError, match=r"volume mesh .1140 tetrahedra.; use read_volume"):
+    assert info.value.found == "surface"
+    with pytest.raises(MeshParseError, match=r"volume mesh .1140 tetrahedra.*; read it with dhlb.io.read_vol") as info:
         read_surface(os.path.join(DATA, "octopus-low-tet.mesh"))
+    assert info.value.found == "volume" and "read_volume" not in info.value.reason
+    with pytest.raises(MeshParseError, match=r"hold surfaces.*read_surface") as info:
+        read_volume(os.path.join(DATA, "moebius.obj"))
+    assert info.value.found == "surface"
 
 
 def _surface_mesh(tmp_path) -> str:

@@ -493,6 +493,28 @@ def cli_warning(message, args=None) -> str:
     return _one_line(message)
 
 
+_COMMANDS_FOR = {"volume": "a tetrahedral mesh: dhlb vortex and dhlb conformal take it",
+                 "surface": "a triangle mesh: dhlb field and dhlb stripes take it"}
+
+
+def cli_error(exc) -> str:
+    """A library error in the words of the command line: one line, commands instead of API names.
+
+    A :class:`~dhlb.errors.MeshParseError` for a file that holds the other kind of mesh (its
+    ``found``) names the readers of the Python API; here it names the commands that take the file.
+
+    Examples
+    --------
+    >>> from dhlb.errors import MeshParseError
+    >>> print(cli_error(MeshParseError("12 tetrahedra", "t.mesh", found="volume")))
+    t.mesh: 12 tetrahedra; this is a tetrahedral mesh: dhlb vortex and dhlb conformal take it
+    """
+    if isinstance(exc, MeshParseError) and exc.found in _COMMANDS_FOR:
+        where = "" if exc.path is None else f"{exc.path}: " if exc.line is None else f"{exc.path}, line {exc.line}: "
+        return _one_line(f"{where}{exc.reason}; this is {_COMMANDS_FOR[exc.found]}")
+    return _one_line(exc)
+
+
 def run_command(args) -> int:
     """Run ``args.func(args)`` and turn exceptions into one-line messages and exit codes.
 
@@ -536,7 +558,7 @@ def run_command(args) -> int:
     except DhlbError as exc:
         if debug:
             raise
-        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
+        print(f"{prog}: error: {cli_error(exc)}", file=sys.stderr)
         return EXIT_FAILURE
     except Exception as exc:  # a bug: still one line, but say so
         if debug:

@@ -452,8 +452,8 @@ def read_with_meshio(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarr
             other.add(block.type)
     if not tri:
         found = ", ".join(sorted({b.type for b in mesh.cells})) or "none"
-        hint = " (a volume mesh: read it with dhlb.io.read_volume)" if other & {"tetra", "tetra10"} else ""
-        raise MeshParseError(f"no triangle cells (cell types: {found}){hint}", where)
+        raise MeshParseError(f"no triangle cells (cell types: {found})", where,
+                             found="volume" if other & {"tetra", "tetra10"} else None)
     surface_other = other - {"tetra", "tetra10", "hexahedron", "wedge", "pyramid"}
     if surface_other:
         raise MeshParseError(f"surface cells other than triangles ({', '.join(sorted(surface_other))}); "

@@ -361,9 +361,8 @@ def read_surface(path: str | os.PathLike[str], fmt: str | None = None) -> tuple[
     if fmt in ("mesh", "msh", "vtk"):
         V, cells = read_cells(path, fmt)
         if 3 in cells:
-            raise MeshParseError(
-                f"this is a volume mesh ({len(cells[3])} tetrahedra); use read_volume", os.fspath(path)
-            )
+            raise MeshParseError(f"a volume mesh ({len(cells[3])} tetrahedra), not a surface", os.fspath(path),
+                                 found="volume")
         if 2 not in cells:
             raise MeshParseError("the file contains no triangles", os.fspath(path))
         return V, cells[2]

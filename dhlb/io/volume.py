@@ -60,6 +60,9 @@ def read_cells(path: str | os.PathLike[str], fmt: str | None = None) -> tuple[np
         return read_gmsh(path)
     if fmt == "vtk":
         return read_vtk(path)
+    if fmt in ("obj", "off", "ply"):
+        raise MeshParseError(f"{fmt!r} files hold surfaces, not tetrahedra (volume formats: mesh, msh, vtk)",
+                             os.fspath(path), found="surface")
     raise MeshParseError(f"{fmt!r} is not a volume format (use mesh, msh, vtk)", os.fspath(path))
 
 
@@ -96,9 +99,8 @@ def read_volume(path: str | os.PathLike[str], fmt: str | None = None) -> tuple[n
     V, cells = read_cells(path, fmt)
     if 3 not in cells or len(cells[3]) == 0:
         have = ", ".join(f"{len(c)} {k}-simplices" for k, c in sorted(cells.items())) or "no cells"
-        raise MeshParseError(
-            f"the file contains no tetrahedra ({have}); use read_surface for surfaces", os.fspath(path)
-        )
+        raise MeshParseError(f"the file contains no tetrahedra ({have})", os.fspath(path),
+                             found="surface" if 2 in cells and len(cells[2]) else None)
     return V, cells[3]
 
 
