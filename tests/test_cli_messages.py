@@ -84,3 +84,13 @@ def test_the_wrong_kind_of_mesh_names_the_commands_that_take_it(tmp_path, capsys
     assert code == 1 and all(name in err for name in names), err
     assert "read_volume" not in err and "read_surface" not in err and "dhlb.io" not in err
     assert data in err and err.count("\n") == 1
+
+
+def test_the_help_of_o_says_what_each_command_writes(tmp_path, capsys):
+    """Issue 42, point 6: `view` writes nothing but its screenshot (no -o); `demo -o` is a folder, not stdout."""
+    code, out, _ = run(capsys, "view", "--help")
+    assert code == 0 and "usage: dhlb view" in out and "--output" not in out
+    code, out, _ = run(capsys, "demo", "--help")
+    assert code == 0 and "-o DIR" in out and "folder" in out and "instead of stdout" not in out
+    code, _, err = run(capsys, "view", tmp_path / "nothing", "-o", tmp_path / "x")
+    assert code == 2 and "unrecognized arguments: -o" in err

@@ -258,11 +258,17 @@ def add_repair_argument(parser) -> None:
                              "(docs/input-meshes.md)")
 
 
-def common_options() -> argparse.ArgumentParser:
-    """Parent parser with the options every subcommand accepts."""
+def common_options(output: bool | str = True) -> argparse.ArgumentParser:
+    """Parent parser with the options every subcommand accepts.
+
+    ``output``: True for ``-o FILE`` (the result to FILE instead of stdout), a string for its own
+    help, False for a command that writes nothing (then it has no ``-o``).
+    """
     parent = argparse.ArgumentParser(add_help=False)
     group = parent.add_argument_group("common options")
-    group.add_argument("-o", "--output", metavar="FILE", help="write the result to FILE instead of stdout")
+    if output:
+        group.add_argument("-o", "--output", metavar="FILE",
+                           help=output if isinstance(output, str) else "write the result to FILE instead of stdout")
     group.add_argument("--json", action="store_true", help="print machine-readable JSON instead of text")
     group.add_argument("-q", "--quiet", action="store_true", help="do not print warnings")
     group.add_argument("--debug", action="store_true", help="show full tracebacks on errors")
@@ -270,13 +276,13 @@ def common_options() -> argparse.ArgumentParser:
 
 
 def add_command(subparsers, name: str, summary: str, description: str, examples: str,
-                outputs=None) -> argparse.ArgumentParser:
+                outputs=None, output: bool | str = True) -> argparse.ArgumentParser:
     """Create the parser of a subcommand with the common options and an examples epilog.
 
     Its ``type=float`` options accept finite numbers only (NaN/inf are usage errors). With ``outputs``
     (a command that writes result files: its :class:`~dhlb.cli._outputs.OutputSpec`, which builds on
     this module, so it is not imported here) the help of ``-o`` and the epilog state the ``-o``
-    convention.
+    convention; ``output`` is passed to :func:`common_options` (False: the command has no ``-o``).
     """
     epilog = "examples:\n" + examples.rstrip() + "\n\n"
     if outputs is not None:
@@ -286,7 +292,7 @@ def add_command(subparsers, name: str, summary: str, description: str, examples:
         help=summary,
         description=description,
         epilog=epilog + EXIT_CODES_HELP,
-        parents=[common_options()],
+        parents=[common_options(output)],
         formatter_class=argparse.RawDescriptionHelpFormatter,
     ))
     if outputs is not None:

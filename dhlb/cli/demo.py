@@ -37,7 +37,9 @@ _EXAMPLES = """\
 
 def register(subparsers) -> None:
     """Add the ``demo`` parser to ``subparsers``."""
-    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
+    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES,
+                    output="the folder to write the demo's page, pictures and files into (default: dhlb-demo)")
+    next(a for a in p._actions if "--output" in a.option_strings).metavar = "DIR"
     p.set_defaults(output="dhlb-demo")
     p.add_argument("--backend", type=backend_choice,
                    default=None, metavar="NAME", help="linear-algebra backend (default: automatic)")

@@ -51,7 +51,7 @@ _EXAMPLES = """\
 
 def register(subparsers) -> None:
     """Add the ``view`` parser to ``subparsers``."""
-    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES)
+    p = add_command(subparsers, NAME, SUMMARY, _DESCRIPTION, _EXAMPLES, output=False)   # writes only --screenshot
     p.add_argument("base", metavar="OUT", help="output base (or one of its files) of dhlb field / stripes / vortex / "
                    "conformal / demo")
     p.add_argument("--screenshot", metavar="FILE.png", help="render headless to this PNG instead of a window")
