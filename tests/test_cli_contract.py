@@ -3,6 +3,8 @@ option, before any work, with nothing created; no stray files; an output never r
 
 from __future__ import annotations
 
+import importlib.util
+import json
 import os
 import subprocess
 import sys
@@ -67,6 +69,29 @@ def test_a_screenshot_leaves_no_imgui_ini(tmp_path):
     if shot.returncode != 0:
         pytest.skip(f"no headless OpenGL here: {shot.stderr.strip()[-200:]}")
     assert (tmp_path / "t.png").exists() and not (tmp_path / "imgui.ini").exists()
+
+
+def test_json_on_stdout_is_json_alone(tmp_path):
+    """Issue 42, point 5: polyscope's log lines go to stderr; `field --json` without -o prints the summary."""
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
+    run = lambda *a: subprocess.run([sys.executable, "-m", "dhlb", *a], capture_output=True, text=True,  # noqa: E731
+                                    cwd=tmp_path, env=env, timeout=300)
+    field = run("field", TORUS, "--n", "4", "--json")              # no -o: the summary alone, no files
+    assert field.returncode == 0, field.stderr
+    summary = json.loads(field.stdout)
+    assert summary["files"] == {} and summary["index_sum"] == 0 and list(tmp_path.iterdir()) == []
+    missing = run("field", str(tmp_path / "torsu.obj"), "--n", "4", "--json")   # the missing file, not the -o
+    assert missing.returncode == 2 and "no such file" in missing.stderr and "give the output" not in missing.stderr
+    nothing = run("field", TORUS, "--n", "4")                          # neither -o nor --json: said what to give
+    assert nothing.returncode == 2 and "-o OUT" in nothing.stderr and "--json" in nothing.stderr
+    if importlib.util.find_spec("polyscope") is None:
+        return
+    assert run("field", TORUS, "--n", "2", "-o", "t", "--no-png", "-q").returncode == 0
+    shot = run("view", "t", "--screenshot", "t.png", "--json")
+    if shot.returncode != 0:
+        pytest.skip(f"no headless OpenGL here: {shot.stderr.strip()[-200:]}")
+    written = json.loads(shot.stdout)["written"]                       # stdout parses: nothing else is on it
+    assert len(written) == 1 and written[0].endswith("t.png") and "[polyscope]" not in shot.stdout
 
 
 def test_view_of_a_damaged_output_is_one_line_not_an_internal_error(tmp_path, capsys):

@@ -51,7 +51,8 @@ repaired, one warning line each, and every output is given on the rows of the in
 
 Outputs (-o, see below): OUT.ply (mesh + directions as vertex properties), OUT.npz (u,
 directions, frames, face_index, singularities), OUT.json (singularities, index sum, Euler
-characteristic, eigenvalue, timings) and OUT.png (picture). --json prints the summary.
+characteristic, eigenvalue, timings) and OUT.png (picture). --json prints the summary (with no -o,
+the summary alone: no files).
 
 With --singularity (repeatable) the field has exactly the given singularities instead
 (dualised trivial connections, dhlb.fields.prescribed_field): FACE:K puts index K/n on the
@@ -243,11 +244,11 @@ def run(args) -> int:
     from dhlb.fields import FieldOptions, direction_field, prescribed_field
     from dhlb.io import read_surface
 
-    if not args.output or args.output == "-":
-        raise UsageError(f"give the output with -o OUT: {OUTPUTS.help()}")
     t0 = time.perf_counter()
     fmt = resolve_input(args.mesh, args.fmt)  # every surface read_surface reads (also via meshio); see below
     plan = output_plan(OUTPUTS, args)  # before any work: the extension, the folder, the inputs, meshio
+    if not plan and not args.json:   # nothing would be written and nothing printed that a script could read
+        raise UsageError(f"give the output with -o OUT ({OUTPUTS.help()}), or --json for the summary alone")
     align = read_alignment(args.align)
     sing = args.singularity or []
     if args.singularity and (align is not None or args.s != 0.0):
@@ -311,13 +312,17 @@ def _report(args, res, V, F, plan, t0, t1, t2) -> int:
     summary = res.to_json()
     summary["files"] = {s.lstrip("."): plan.path(s) for s in plan.suffixes}
     summary["input"] = args.mesh
-    with plan.writing() as stage:  # all files or none
-        write_field(stage(""), res, V, F, kinds=[s for s in plan.suffixes if s != ".json"])
+    if not plan:   # --json without -o: the summary alone
         t3 = time.perf_counter()
         summary["timings"] = dict(summary["timings"], io=t1 - t0, output=t3 - t2, end_to_end=t3 - t0)
-        if plan.wants(".json"):
-            with open(stage(".json"), "w", encoding="utf-8") as fh:
-                json.dump(summary, fh, indent=2)
+    else:
+        with plan.writing() as stage:  # all files or none
+            write_field(stage(""), res, V, F, kinds=[s for s in plan.suffixes if s != ".json"])
+            t3 = time.perf_counter()
+            summary["timings"] = dict(summary["timings"], io=t1 - t0, output=t3 - t2, end_to_end=t3 - t0)
+            if plan.wants(".json"):
+                with open(stage(".json"), "w", encoding="utf-8") as fh:
+                    json.dump(summary, fh, indent=2)
     if args.json:
         args.output = None  # the summary goes to stdout; -o named the output files
         write_output(args, json.dumps(summary, indent=2))

@@ -23,7 +23,9 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
 import os
+import sys
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -77,6 +79,48 @@ def _no_imgui_ini() -> None:
 
         psim.GetIO().IniFilename = _NO_INI
     except Exception:  # an older polyscope without these bindings: the file is harmless
+        pass
+
+
+@contextlib.contextmanager
+def _logs_to_stderr():
+    """Send what the C++ side prints to standard output (polyscope's ``[polyscope] EGL: …`` lines) to stderr.
+
+    Standard output carries results (``dhlb view --json`` prints one JSON line there); polyscope logs to
+    ``std::cout``.  File descriptor 1 is pointed at descriptor 2 for the duration, after both the
+    Python and the C buffers were flushed, and restored afterwards.
+    """
+    try:
+        out = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):   # no real stdout (a notebook, a captured stream): leave it
+        yield
+        return
+    sys.stdout.flush()
+    saved = os.dup(out)
+    try:
+        os.dup2(sys.stderr.fileno() if _has_fileno(sys.stderr) else os.open(os.devnull, os.O_WRONLY), out)
+        yield
+    finally:
+        _flush_c_stdio()
+        os.dup2(saved, out)
+        os.close(saved)
+
+
+def _has_fileno(stream) -> bool:
+    try:
+        stream.fileno()
+    except (AttributeError, OSError, ValueError):
+        return False
+    return True
+
+
+def _flush_c_stdio() -> None:
+    """``fflush(NULL)``: what the C library still buffers is written (to where it was meant to go)."""
+    import ctypes
+
+    try:
+        ctypes.CDLL(None).fflush(None)
+    except (OSError, AttributeError):   # no C library by that name (Windows): nothing buffered to lose
         pass
 
 
@@ -251,16 +295,18 @@ def show(result: Any, *, screenshot: str | os.PathLike[str] | None = None,
         if not os.path.isdir(folder):
             raise OutputError(out, "the folder does not exist")
     ps = _polyscope()
-    _init(ps, headless=screenshot is not None)
-    ps.remove_all_structures()
-    ps.set_window_size(w, h)
-    _register(ps, scene)
-    ps.look_at_dir(tuple(camera), tuple(target), tuple(float(x) for x in upv))
+    with _logs_to_stderr():    # stdout carries results only (dhlb view --json)
+        _init(ps, headless=screenshot is not None)
+        ps.remove_all_structures()
+        ps.set_window_size(w, h)
+        _register(ps, scene)
+        ps.look_at_dir(tuple(camera), tuple(target), tuple(float(x) for x in upv))
     if out is None:
         ps.show()
         return None
     try:
-        ps.screenshot(out, transparent_bg=False)
+        with _logs_to_stderr():
+            ps.screenshot(out, transparent_bg=False)
     except Exception as exc:
         raise OutputError(out, f"polyscope could not save the screenshot ({exc})") from None
     if not os.path.isfile(out):
