@@ -17,6 +17,7 @@ from dhlb.io import example_path, read_surface
 from dhlb.linalg import SolverOptions
 from dhlb.stripes import SectionOptions, StripeOptions, isolines, stripe_pattern
 from dhlb.stripes.energy import stripe_matrices
+from dhlb.stripes.isolines import isoline_cost
 from dhlb.stripes.revolution import stepped_tube
 from dhlb.stripes.section import MAX_UNIT_ITERATIONS, normalize_per_vertex, unit_energy
 from tests.test_stripes_texture import side_points, twin_sides
@@ -262,6 +263,26 @@ def test_isolines_refuse_a_frequency_beyond_the_memory_budget_before_allocating(
     isolines(ok.texture, max_bytes=1e5)                                  # the advertised range does fit
     with pytest.raises(InvalidParameterError, match="refine"):
         isolines(res.texture, refine=1000)
+
+
+def test_a_refusal_advises_a_frequency_the_mesh_resolves():
+    """Issue 42, point 4: the budget would allow stripes narrower than the edges; the advice is what the mesh shows."""
+    tube = stepped_tube((1.0,), stripes=4, around=16)
+    res = quiet(stripe_pattern, tube.points, tube.faces, tube.directions, frequency=40.0,
+                options=StripeOptions(section=SectionOptions(kind="eigenvector")))
+    assert np.max(np.abs(res.form.omega)) > np.pi                       # aliased: narrower than the edges
+    budget = isoline_cost(res.texture)["bytes"] / 2                     # would allow about frequency 20
+    with pytest.raises(ResourceLimitError, match=r"this mesh resolves stripes up to frequency ") as err:
+        isolines(res.texture, max_bytes=budget)
+    assert "spacing" in str(err.value)
+    resolved = float(str(err.value).split("up to frequency ")[1].split()[0])
+    assert resolved < 40.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")                                  # no aliasing warning at the advice
+        ok = stripe_pattern(tube.points, tube.faces, tube.directions, frequency=resolved,
+                            options=StripeOptions(section=SectionOptions(kind="eigenvector")))
+    assert np.max(np.abs(ok.form.omega)) <= np.pi
+    isolines(ok.texture, max_bytes=budget)
 
 
 @pytest.mark.parametrize("tol", [-1.0, float("nan"), "x"])

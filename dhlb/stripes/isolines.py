@@ -129,11 +129,23 @@ def _n_crossings(sub, levels) -> int:
 
 def _refuse(what, texture, estimate, max_bytes, scale, fixed=0.0):
     f = float(np.max(texture.form.frequency))
-    allowed = f * max(max_bytes - fixed, 0.0) / max(estimate - fixed, 1.0) if scale == "frequency" else None
-    advice = (f"allowed: frequency <= {allowed:.3g} stripes per unit length on this mesh (about: the "
-              f"crossings grow linearly with it), a coarser pattern (larger spacing), or isolines(..., "
-              f"max_bytes=) for a larger budget" if allowed is not None else
-              "allowed: a smaller refine (the zero faces' grid has 6·refine² sub-triangles each) or max_bytes=")
+    if scale != "frequency":
+        advice = "allowed: a smaller refine (the zero faces' grid has 6·refine² sub-triangles each) or max_bytes="
+    else:
+        fits = f * max(max_bytes - fixed, 0.0) / max(estimate - fixed, 1.0)   # the crossings grow linearly with f
+        widest = float(np.max(np.abs(texture.form.omega), initial=0.0))      # phase change per edge, ∝ f
+        resolved = f * np.pi / widest if widest > np.pi else np.inf            # where it is π on every edge
+        if np.isfinite(resolved):   # shown rounded down: following the advice must not alias
+            step = 10.0 ** (np.floor(np.log10(resolved)) - 2)
+            resolved = float(np.floor(resolved / step) * step)
+        if resolved < fits:   # the budget would allow stripes the mesh cannot show: advise what it can
+            advice = (f"this mesh resolves stripes up to frequency {resolved:.3g} (the largest phase change per "
+                      f"edge is now {widest:.3g} rad; at most π keeps every stripe wider than an edge): ask for at "
+                      "most that, or give a spacing (the period in mean edge lengths) of 2 or more")
+        else:
+            advice = (f"allowed: frequency <= {fits:.3g} stripes per unit length on this mesh (about: the "
+                      "crossings grow linearly with it), a coarser pattern (larger spacing), or isolines(..., "
+                      "max_bytes=) for a larger budget")
     return ResourceLimitError(what, f"{f:.6g}" if scale == "frequency" else scale, estimate, max_bytes,
                               f"the isolines of this pattern need {format_bytes(estimate)}; {advice}")
 
