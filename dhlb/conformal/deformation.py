@@ -43,6 +43,7 @@ Examples
 from __future__ import annotations
 
 import time
+import warnings
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -51,6 +52,7 @@ from dhlb._memory_errors import translate_memory_errors
 from dhlb.conformal.factors import ConformalFactor
 from dhlb.conformal.quaternion import from_c2, imag, qconj, qexp, qmul, su2_matrix
 from dhlb.errors import (
+    DhlbWarning,
     InvalidParameterError,
     NonFiniteError,
     NonManifoldError,
@@ -654,4 +656,27 @@ def conformal_deformation(
         "solver": {"backend": res.backend, "iterations": int(res.iterations), "converged": bool(res.converged),
                    "residual": float(np.max(res.residuals)), "shift": float(res.shift), "method": res.method},
     }
+    _warn_if_poor(det, distortion)
     return ConformalResult(f, phi, lam, distortion, scale_error, uv, stats, timings, mesh, bundle, g)
+
+
+POOR_DISTORTION = 100.0
+"""A largest distortion ``σ_max/σ_min`` above this is reported as a poor result (a warning), like any inverted tet.
+
+A close-to-conformal map has distortions near 1 (the ball, the hand: means 1.0–1.1, largest below 5);
+100 is far outside that and far below what a collapsed sliver gives (4.2e4 on bunny-tet.mesh).
+"""
+
+
+def _warn_if_poor(det: np.ndarray, distortion: np.ndarray) -> None:
+    """Warn (:class:`~dhlb.errors.DhlbWarning`) of inverted tetrahedra or a distortion above :data:`POOR_DISTORTION`."""
+    inverted = np.flatnonzero(det <= 0)
+    worst = float(np.max(distortion)) if distortion.size else 1.0
+    if not inverted.size and worst <= POOR_DISTORTION:
+        return
+    what = (f"{inverted.size:,} of {det.size:,} tetrahedra are inverted by the deformation (det F <= 0; first: "
+            f"tet row {int(inverted[0])})" if inverted.size else f"tet row {int(np.argmax(distortion))} is distorted")
+    warnings.warn(f"a poor deformation: {what}; the largest distortion σ_max/σ_min is {worst:.3g} (median "
+                  f"{float(np.median(distortion)):.3g}, 1 is conformal). Flat or needle-like tetrahedra (slivers, "
+                  "often on the hull) do this: remove or repair them, or ask for a gentler conformal factor u",
+                  DhlbWarning, stacklevel=3)
