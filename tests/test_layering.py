@@ -24,7 +24,7 @@ RANK = {
     "errors": 0,
     "_progress": 0.5, "_display": 0.5, "_result": 0.5, "_deprecation": 0.5, "_files": 0.5, "_coerce": 0.5,
     "_phases": 0.5,
-    "_memory_errors": 0.5, "_caches": 0.5,
+    "_memory_errors": 0.5, "_caches": 0.5, "_install": 0.5,
     "topology": 1,
     "forms": 2, "examples": 2,                    # examples: named complexes, built on topology only
     "bundles": 3,

@@ -1,8 +1,9 @@
 """Every teaching notebook in notebooks/ runs in the environment its first cell names, shows a picture (a PNG or
 an interactive 3-D view), prints no warning and writes nothing beside itself.
 
-The environment is the line ``pip install dhlb`` or ``pip install "dhlb[extra,...]"`` of the first (markdown)
-cell, plus the Jupyter kernel. The notebook runs with every other installed distribution hidden from it
+The environment is the line ``pip install .`` or ``pip install ".[extra,...]"`` (what works in a clone of the
+repository, issue 42) of the first (markdown) cell, plus the Jupyter kernel. The notebook runs with every
+other installed distribution hidden from it
 (``sys.modules[name] = None``: ``import`` raises ModuleNotFoundError and ``importlib.util.find_spec`` returns
 None, as if it were not installed) and its entry points unlisted (``importlib.metadata.entry_points(group=...)``:
 a plugin such as trio's hook for hypothesis is not loaded), so a notebook that needs an extra it does not name
@@ -28,7 +29,7 @@ nbclient = pytest.importorskip("nbclient")
 
 ROOT = Path(__file__).resolve().parent.parent
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
-ENVIRONMENT = re.compile(r"""pip install (?:dhlb|"dhlb\[([\w,-]+)\]")(?=[\s`]|$)""")
+ENVIRONMENT = re.compile(r"""pip install (?:\.|"\.\[([\w,-]+)\]")(?=[\s`]|$)""")
 KERNEL = ["ipykernel"]  # what runs the cells (with its dependencies: IPython, matplotlib-inline, ...)
 
 
@@ -37,7 +38,7 @@ def _environment(nb):
     first = nb.cells[0]
     assert first.cell_type == "markdown", "the first cell must be markdown naming the environment"
     named = ENVIRONMENT.findall(first.source)
-    assert len(named) == 1, 'the first cell must name its environment once: pip install dhlb / "dhlb[extra]"'
+    assert len(named) == 1, 'the first cell must name its environment once: pip install . / ".[extra]"'
     return [e for e in named[0].split(",") if e]
 
 

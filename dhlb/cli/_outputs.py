@@ -13,14 +13,15 @@ import importlib
 import os
 import re
 
+from dhlb._install import install_hint
 from dhlb.cli._common import UsageError, check_outputs
 
 __all__ = ["EXTRAS", "OutputPlan", "OutputSpec", "output_plan", "require_extra"]
 
 EXTRAS = {
-    "meshio": 'pip install "dhlb[meshio]" (or: pip install meshio)',
+    "meshio": install_hint("meshio", "meshio"),
     "matplotlib": "pip install matplotlib",
-    "polyscope": 'pip install "dhlb[view]" (or: pip install polyscope)',
+    "polyscope": install_hint("polyscope", "view"),
 }
 """Optional packages the commands need for some outputs, and how to install them."""
 

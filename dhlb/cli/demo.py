@@ -14,6 +14,7 @@ import sys
 import threading
 import time
 
+from dhlb._install import install_hint
 from dhlb.cli._common import UsageError, add_command, backend_choice
 
 __all__ = ["NAME", "SUMMARY", "register", "run"]
@@ -114,7 +115,7 @@ def run(args) -> int:
     intro = f"dhlb demo: {len(records)} computations in {total:.1f} s. " + (
         "Rotate any result in 3-D with the button on its picture (drag to turn, scroll to zoom, hover over a "
         "singularity for its face and index); the views need no network: plotly's script is in this folder."
-        if web else 'Interactive 3-D views need the extra dhlb[web]: pip install "dhlb[web]".')
+        if web else f"Interactive 3-D views need plotly: {install_hint('plotly', 'web')}.")
     page = write_gallery(os.path.join(out, "index.html"), "dhlb demo", pictures, table=table, intro=intro)
     views = [r["web"] for r in records if r.get("web")]
     script = os.path.join(out, "plotly.min.js")
@@ -150,6 +151,6 @@ def _format(table, total: float, page: str, web: dict) -> str:
     lines = ["  ".join(str(c).ljust(w) for c, w in zip(row, widths)).rstrip() for row in table]
     lines.insert(1, "  ".join("-" * w for w in widths))
     views = (f"{web['views']} interactive views, {web['bytes'] / 1e6:.1f} MB with plotly's script" if web["views"]
-             else 'no interactive views: pip install "dhlb[web]"')
+             else f"no interactive views: {install_hint('plotly', 'web')}")
     lines.append(f"\ntotal {total:.1f} s; {views}; folder {web['folder_bytes'] / 1e6:.1f} MB; open {page}")
     return "\n".join(lines) + "\n"

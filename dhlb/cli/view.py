@@ -18,7 +18,8 @@ NAME = "view"
 SUMMARY = "show the output of field / stripes / vortex / conformal / demo in polyscope, a PNG or a web page"
 
 _DESCRIPTION = """\
-Show in polyscope (pip install "dhlb[view]") what a dhlb command or 'dhlb demo' wrote, as
+Show in polyscope (pip install polyscope, or the extra: pip install ".[view]" in a clone of dhlb)
+what a dhlb command or 'dhlb demo' wrote, as
 result.show() shows the result in memory. OUT is an output base or one of its files:
 
   field      OUT.npz (dhlb field, dhlb demo; OUT.ply and OUT.json beside it are optional):
@@ -35,7 +36,7 @@ display needed; Debian/Ubuntu: apt-get install libegl1 libegl-mesa0). --back add
 seen from the opposite side. Without a display and without --screenshot the command says so.
 
 With --html FILE.html the command writes a page with the interactive 3-D view (rotate, zoom,
-hover over a singularity for its face and index; pip install "dhlb[web]"). The page opens from
+hover over a singularity for its face and index; pip install plotly, or the extra ".[web]"). The page opens from
 the file system without network: plotly's script is inside it (about 5 MB), or with
 --shared-script one copy of plotly.min.js beside it serves every page of the folder."""
 

@@ -41,6 +41,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from dhlb._coerce import as_points, curve_list
+from dhlb._install import install_hint
 from dhlb.errors import MeshParseError, NonFiniteError, OutputError, ShapeError
 from dhlb.mesh.arrays import check_cells
 
@@ -56,7 +57,7 @@ __all__ = [
     "read_with_meshio",
 ]
 
-MESHIO_EXTRA = 'meshio is not installed: pip install "dhlb[meshio]" (or: pip install meshio)'
+MESHIO_EXTRA = f"meshio is not installed: {install_hint('meshio', 'meshio')}"
 """The message of the ``ImportError`` raised when meshio is missing."""
 
 

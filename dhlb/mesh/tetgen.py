@@ -34,6 +34,7 @@ import warnings
 import numpy as np
 
 from dhlb._coerce import as_points, check_int
+from dhlb._install import install_hint
 from dhlb.errors import InvalidParameterError, NonManifoldError, UnreferencedVertexWarning
 from dhlb.mesh.compact import _renumber
 from dhlb.mesh.tet import TetMesh, check_tet_mesh
@@ -42,7 +43,7 @@ __all__ = ["available", "backend_version", "tetrahedralize"]
 
 _LOCK = threading.Lock()
 _BACKEND = None
-_INSTALL = "install the optional dependency with `pip install dhlb[tet]` (it provides pytetwild)"
+_INSTALL = f"install the optional dependency: {install_hint('pytetwild', 'tet')}"
 
 
 def _load_extension():

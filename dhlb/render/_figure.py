@@ -466,8 +466,7 @@ def _matplotlib():
         from matplotlib.collections import PolyCollection
         from matplotlib.figure import Figure
     except ImportError:  # pragma: no cover - exercised only without matplotlib
-        raise ImportError("dhlb.render needs matplotlib; install it with  pip install 'dhlb[viz]'  "
-                          "(or pip install matplotlib)") from None
+        raise ImportError("dhlb.render needs matplotlib, a dependency of dhlb: pip install matplotlib") from None
     return Figure, FigureCanvasAgg, PolyCollection
 
 

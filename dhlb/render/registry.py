@@ -23,6 +23,7 @@ from __future__ import annotations
 import functools
 import os
 
+from dhlb._install import install_hint
 from dhlb.conformal.result import ConformalResult
 from dhlb.errors import InvalidParameterError
 from dhlb.fields.result import DirectionField
@@ -272,7 +273,7 @@ class WebView:
         import base64
 
         png = self.result._repr_png_()
-        note = 'for an interactive view: pip install "dhlb[web]"'
+        note = f"for an interactive view: {install_hint('plotly', 'web')}"
         img = base64.b64encode(png).decode("ascii")
         return {"image/png": png, "text/html": f"<img src='data:image/png;base64,{img}'/><p><small>{note}</small></p>",
                 "text/plain": f"<picture of the result; {note}>"}

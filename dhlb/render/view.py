@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from dhlb._install import install_hint
 from dhlb.errors import InvalidParameterError, OutputError, ViewerUnavailableError
 from dhlb.render._figure import GLYPH_COLOR, STRIPE_DARK, STRIPE_LIGHT, mean_edge_length  # the one palette
 from dhlb.render.scene import Scene, index_colors, scene_of  # the one scene builder (re-exported)
@@ -47,7 +48,7 @@ __all__ = [
     "camera_for",
 ]
 
-VIEW_EXTRA = 'polyscope is not installed: pip install "dhlb[view]" (or: pip install polyscope)'
+VIEW_EXTRA = f"polyscope is not installed: {install_hint('polyscope', 'view')}"
 """The message of the ``ImportError`` raised when polyscope is missing."""
 
 
@@ -281,7 +282,7 @@ def show(result: Any, *, screenshot: str | os.PathLike[str] | None = None,
     ...     print(exc)
     ... finally:
     ...     _ = sys.modules.pop("polyscope") if saved is None else sys.modules.update(polyscope=saved)
-    polyscope is not installed: pip install "dhlb[view]" (or: pip install polyscope)
+    polyscope is not installed: pip install polyscope (or dhlb's extra: pip install ".[view]" in a clone of dhlb)
     """
     scene = scene_of(result, isolines=isolines)
     w, h = (int(x) for x in size)

@@ -43,6 +43,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from dhlb._install import install_hint
 from dhlb.errors import InvalidParameterError, OutputError
 from dhlb.render._figure import GLYPH_COLOR, STRIPE_DARK, STRIPE_LIGHT, Camera, mean_edge_length, up_vector
 from dhlb.render.scene import Scene, scene_of
@@ -53,7 +54,7 @@ if TYPE_CHECKING:
 __all__ = ["MAX_FACES", "MAX_GLYPHS", "WEB_EXTRA", "decimate", "figure", "figure_spec", "notebook_view",
            "plotlyjs_path", "stripe_surface", "to_html", "write_plotlyjs"]
 
-WEB_EXTRA = 'plotly is not installed: pip install "dhlb[web]" (or: pip install plotly)'
+WEB_EXTRA = f"plotly is not installed: {install_hint('plotly', 'web')}"
 """The message of the ``ImportError`` raised when plotly is missing."""
 MAX_FACES = 200_000
 """Meshes with more faces are decimated for the web view (the page stays light)."""

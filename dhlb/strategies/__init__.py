@@ -27,12 +27,13 @@ Examples
 >>> euler_characteristic_is_known()
 """
 
+from dhlb._install import install_hint
+
 try:
     import hypothesis  # noqa: F401
 except ImportError as exc:  # pragma: no cover - exercised with hypothesis uninstalled
     raise ImportError(
-        "dhlb.strategies needs the 'hypothesis' package: install the optional extra with "
-        "pip install 'dhlb[strategies]' (or pip install hypothesis)"
+        "dhlb.strategies needs the 'hypothesis' package: " + install_hint("hypothesis", "strategies")
     ) from exc
 
 from dhlb.strategies.bundles import cochains, connections, hermitian_line_bundles, sections, vector_bundles

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dhlb._install import install_hint
 from dhlb.errors import EmptyComplexError, InvalidSimplexError, InvalidTypeError
 from dhlb.topology.cliques import group_pairs
 
@@ -23,7 +24,7 @@ if TYPE_CHECKING:
 
 __all__ = ["NETWORKX_EXTRA", "require_networkx", "read_graph", "skeleton_graph", "dual_graph"]
 
-NETWORKX_EXTRA = 'networkx is not installed: pip install "dhlb[graph]" (or: pip install networkx)'
+NETWORKX_EXTRA = f"networkx is not installed: {install_hint('networkx', 'graph')}"
 """The message of the ``ImportError`` raised when networkx is missing."""
 
 
