@@ -1,4 +1,4 @@
-"""Check in headless Chromium that built notebook pages draw their interactive 3-D views.
+"""Check in headless Chromium, with the network off, that built pages draw their views and their mathematics.
 
 Usage::
 
@@ -8,7 +8,10 @@ Usage::
 Every ``.dhlb-web-view`` of each page must get ``data-ready="1"`` (plotly drew it), its WebGL canvas must
 have non-white pixels (the page's text and plotly's SVG layers hidden while it is captured), plotly must
 come from the page (``window.Plotly``) with no AMD loader (``window.define``) to swallow it, and the
-browser console must show no SEVERE message. Prints one line per view and exits 1 on any failure.
+browser console must show no SEVERE message. The pages of ``MATH_PAGES`` must typeset every formula
+(each ``.math`` element holds MathJax's SVG output, none shows its TeX source). Chromium resolves no
+host name (``--host-resolver-rules``): a page that needs the network fails here. Prints one line per
+page or view and exits 1 on any failure.
 
 Needs selenium, Pillow, Chromium and chromedriver (``CHROMIUM``, ``CHROMEDRIVER``: their paths, default
 ``/usr/bin/chromium``, ``/usr/bin/chromedriver``); software WebGL (SwiftShader) is enough.
@@ -21,6 +24,7 @@ import time
 from pathlib import Path
 
 PAGES = ["notebooks/06_direction_fields.html", "notebooks/08_vortex_filaments.html"]
+MATH_PAGES = ["fem.html", "theory.html", "bundles.html", "notebooks/05_line_bundle_laplacian_landau_levels.html"]
 TIMEOUT = 120.0  # seconds for the views of one page to be drawn
 
 
@@ -31,7 +35,8 @@ def _driver():
     options = webdriver.ChromeOptions()
     options.binary_location = os.environ.get("CHROMIUM", "/usr/bin/chromium")
     for arg in ("--headless=new", "--no-sandbox", "--enable-unsafe-swiftshader", "--use-angle=swiftshader",
-                "--window-size=1200,1000", "--allow-file-access-from-files"):
+                "--window-size=1200,1000", "--allow-file-access-from-files",
+                "--host-resolver-rules=MAP * ~NOTFOUND"):   # no network: what a page needs must be in the build
         options.add_argument(arg)
     options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
     return webdriver.Chrome(service=Service(os.environ.get("CHROMEDRIVER", "/usr/bin/chromedriver")),
@@ -88,6 +93,28 @@ def check_page(driver, path: Path) -> list[str]:
     return failures
 
 
+def check_math(driver, path: Path) -> list[str]:
+    """Load ``path`` and wait for MathJax; every ``.math`` element must hold its SVG output; return the failures."""
+    driver.get(path.resolve().as_uri())
+    deadline = time.monotonic() + TIMEOUT
+    state = None
+    while time.monotonic() < deadline:
+        state = driver.execute_script(
+            "var m = document.querySelectorAll('.math');"
+            "var done = document.querySelectorAll('.math mjx-container svg').length;"
+            "var raw = Array.prototype.filter.call(m, function (e) {"
+            "  return !e.querySelector('mjx-container') && /\\\\[(\\[]/.test(e.textContent); }).length;"
+            "return [m.length, done, raw, typeof window.MathJax];")
+        if state[0] and not state[2]:
+            break
+        time.sleep(0.5)
+    total, svgs, raw, mathjax = state
+    print(f"{path.name}: {total} formulas, {svgs} typeset as SVG, {raw} left as TeX (MathJax: {mathjax})")
+    if not total:
+        return [f"{path.name}: no formula on the page"]
+    return [f"{path.name}: {raw} of {total} formulas show their TeX source"] if raw or not svgs else []
+
+
 def main(argv: list[str]) -> int:
     """Check the pages; 0 when every view is drawn, 1 otherwise, 2 on a usage error."""
     if not argv or argv[0] in ("-h", "--help"):
@@ -95,13 +122,14 @@ def main(argv: list[str]) -> int:
         return 2
     build = Path(argv[0])
     pages = [build / p for p in (argv[1:] or PAGES)]
-    missing = [str(p) for p in pages if not p.is_file()]
+    math = [build / p for p in ([] if argv[1:] else MATH_PAGES)]
+    missing = [str(p) for p in pages + math if not p.is_file()]
     if missing:
         print("no such page:", *missing)
         return 2
     driver = _driver()
     try:
-        failures = [f for p in pages for f in check_page(driver, p)]
+        failures = [f for p in pages for f in check_page(driver, p)] + [f for p in math for f in check_math(driver, p)]
     finally:
         driver.quit()
     for f in failures:

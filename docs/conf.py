@@ -35,7 +35,10 @@ nb_execution_raise_on_error = True
 nb_execution_show_tb = True
 nb_ipywidgets_js = {}  # no require.js (an AMD loader would swallow plotly's script); the notebooks use no widgets
 # plotly's script, once per page before any view (copied from the installed plotly by _write_plotlyjs)
-html_static_path = ["_generated/static"]
+html_static_path = ["_generated/static", "_mathjax"]
+# the mathematics renders without a network (issue 42): MathJax 3.2.2's self-contained SVG build (every TeX
+# extension and the font's glyphs in one file, Apache-2.0, docs/_mathjax/LICENSE), not a CDN's script
+mathjax_path = "tex-svg-full.js"
 html_js_files = [(None, {"body": "window.PlotlyConfig = {MathJaxConfig: 'local'};"}), "plotly.min.js"]
 # ref.python: "more than one target found" for words of numpydoc type lines that Sphinx turns into
 # cross-references, e.g. the ``n`` of ``(n, 3) float array`` against every attribute named n
