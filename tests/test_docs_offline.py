@@ -35,3 +35,17 @@ def test_mathjax_is_a_file_of_the_build_not_a_cdn():
 def test_the_view_check_runs_with_the_network_off():
     source = (REPO / "docs" / "_check_views.py").read_text(encoding="utf-8")
     assert "--host-resolver-rules=MAP * ~NOTFOUND" in source and "def check_math" in source
+
+
+def test_the_index_takes_its_layer_table_from_the_readme():
+    """Issue 42, point 8: docs/index.md listed 6 layers without conformal; now it includes the README's table."""
+    index = (REPO / "docs" / "index.md").read_text(encoding="utf-8")
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    start, end = "Imports point down this list only.", "The rule is enforced twice"
+    assert f"```{{include}} ../README.md\n:start-after: \"{start}\"\n:end-before: \"{end}\"\n```" in index
+    assert readme.count(start) == 1 and readme.count(end) == 1
+    table = readme.split(start)[1].split(end)[0]
+    rows = [line for line in table.splitlines() if line.startswith("| ") and "---" not in line][1:]
+    assert len(rows) >= 8 and any("dhlb.conformal" in r for r in rows)
+    assert "| layer | package | what |" not in index.split("```{include}")[0]     # no second, hand-kept table
+    assert "shared/seed" not in index                                              # no path outside the repository
