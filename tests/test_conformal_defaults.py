@@ -122,6 +122,6 @@ def test_demo_conformal_step_runs_on_a_real_tet_mesh(tmp_path):
             return work()
 
     recs = _demo_steps.conformal(str(tmp_path), Progress())
-    real = [r for r in recs if r["mesh"].startswith("octopus-tet.mesh")]
+    real = [r for r in recs if r["mesh"].startswith("spot-tet.mesh")]
     assert len(real) == 1 and real[0]["ok"], recs
     assert os.path.isfile(real[0]["picture"])

@@ -238,7 +238,7 @@ def _vortex(P, T):
 
 
 def test_tet_patches_need_the_unchecked_constructor():
-    V, T = read_volume(example_path("octopus-tet.mesh"))
+    V, T = read_volume(pathlib.Path(__file__).parent / "data" / "octopus-low-tet.mesh")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         mesh = check_tet_mesh(V, T)

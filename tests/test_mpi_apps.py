@@ -126,7 +126,7 @@ def test_command_line_stripes_on_two_ranks_gives_the_default_zeros(tmp_path):
 
 def test_command_line_conformal_on_two_ranks_gives_the_default_eigenvalue():
     # conformal has no distributed driver yet: every rank solves the whole problem through the petsc backend
-    mesh = str(ROOT / "dhlb" / "data" / "octopus-tet.mesh")
+    mesh = str(ROOT / "tests" / "data" / "octopus-low-tet.mesh")
     proc, _ = mpirun(2, ["-m", "dhlb", "conformal", mesh, "--backend", "petsc", "--json"])
     assert proc.returncode == 0, proc.stderr
     got = json.loads(proc.stdout)

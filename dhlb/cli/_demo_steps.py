@@ -235,7 +235,7 @@ def conformal(out, progress, *, backend=None) -> list[dict]:
     """Close-to-conformal deformations (seed part 3, §2.4): a ball (Möbius, charges) and a real tet mesh (default).
 
     The ball is :func:`dhlb.mesh.ball_tet_mesh` under a Möbius factor and two point charges; the
-    real mesh is the bundled octopus (``octopus-tet.mesh``) under the default charge of ``dhlb conformal``.
+    real mesh is the bundled solid Spot (``spot-tet.mesh``) under the default charge of ``dhlb conformal``.
     """
     from dhlb.conformal import conformal_deformation, default_charge, mobius_factor, point_charge_factor
     from dhlb.io import example_path, read_volume
@@ -243,13 +243,13 @@ def conformal(out, progress, *, backend=None) -> list[dict]:
     from dhlb.render import boundary_distortion, render_conformal_png
 
     ball = ball_tet_mesh(6)
-    octopus = check_tet_mesh(*read_volume(example_path("octopus-tet.mesh")))
+    spot = check_tet_mesh(*read_volume(example_path("spot-tet.mesh")))
     cases = [("conformal-mobius", ball, "ball", mobius_factor((2.5, 0.0, 0.0), 1.5),
               "a Möbius factor log(R²/|x − a|²): an exactly conformal map, λ₁ ≈ 0", "Möbius"),
              ("conformal-charges", ball, "ball", point_charge_factor([(2.0, 0.0, 0.0, 0.5), (0.0, -2.0, 0.0, -0.4)]),
               "two point charges: close to conformal, λ₁ > 0", "charges"),
-             ("conformal-octopus", octopus, "octopus-tet.mesh", point_charge_factor(default_charge(octopus)),
-              "a real tet mesh (libigl's octopus), the default charge of dhlb conformal", "default charge")]
+             ("conformal-spot", spot, "spot-tet.mesh", point_charge_factor(default_charge(spot)),
+              "a real tet mesh (the solid cow Spot), the default charge of dhlb conformal", "default charge")]
     recs = []
     for name, mesh, label, u, caption, kind in cases:
         def work(name=name, mesh=mesh, u=u, caption=caption):

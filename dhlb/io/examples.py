@@ -13,8 +13,8 @@ EXAMPLES = {
     "spot.obj": "Keenan Crane's cow Spot (CC0), 2930 vertices, 5856 triangles, closed genus 0",
     "saddle.obj": "saddle z = (x² − y²)/2 over the unit disk, 631 vertices, 1176 triangles, one boundary loop",
     "double-torus.obj": "closed genus-2 surface (MIT, geometry-processing-js), 3070 vertices, 6144 triangles",
-    "octopus-tet.mesh": "libigl's low-resolution octopus, a real tet mesh: 452 vertices, 1140 tetrahedra, 36 % "
-                        "negative cotan weights",
+    "spot-tet.mesh": "the solid cow Spot (CC0), tetrahedralized by dhlb.mesh.tetrahedralize: 1980 vertices, "
+                     "6428 tetrahedra",
 }
 
 
@@ -25,7 +25,7 @@ def example_path(name: str = "torus.obj") -> str:
     ----------
     name : str
         One of :data:`EXAMPLES` (``"torus.obj"``, ``"solid-torus.mesh"``, ``"spot.obj"``, ``"saddle.obj"``,
-        ``"double-torus.obj"``, ``"octopus-tet.mesh"``).
+        ``"double-torus.obj"``, ``"spot-tet.mesh"``).
 
     Returns
     -------
