@@ -54,3 +54,19 @@ def test_distortion_colours_have_a_legend_and_ignore_one_outlier(tmp_path):
                                 camera=Camera(size=(600, 300)))
     img = np.asarray(PIL.open(path).convert("L"))
     assert (img[-int(0.09 * img.shape[0]):] < 200).sum() > 200        # the colour bar and its labels
+
+
+def test_the_conformal_colour_bar_label_is_inside_the_picture(tmp_path):
+    """Issue 42, point 9: the label under the colour bar was cut off at the bottom of every conformal PNG."""
+    from PIL import Image
+
+    from dhlb.mesh import ball_tet_mesh
+    from dhlb.render.conformal_png import render_conformal_png
+
+    mesh = ball_tet_mesh(3)
+    F = mesh.boundary_faces
+    d = np.linspace(1.0, 1.3, len(F))
+    path = render_conformal_png(tmp_path / "c.png", mesh.points, 1.1 * mesh.points, F, d, title="t")
+    img = np.asarray(Image.open(path).convert("L"), dtype=float)
+    ink = np.nonzero((img < 128).any(axis=1))[0]                   # rows with dark pixels (text, the surface)
+    assert ink.max() < 0.975 * img.shape[0], "something is drawn against the bottom edge (a clipped label)"

@@ -113,7 +113,7 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
     fig = Figure(figsize=(size[0] / dpi, size[1] / dpi), dpi=dpi, facecolor=style.background)
     FigureCanvasAgg(fig)
     for k, (V, name) in enumerate(((np.asarray(before, float), "before"), (np.asarray(after, float), "after"))):
-        ax = fig.add_axes([k / 2, 0.1, 0.5, 0.82])
+        ax = fig.add_axes([k / 2, 0.17, 0.5, 0.75])
         ax.set_axis_off()
         xy = np.c_[V @ right, V @ upv]
         depth = V[F].mean(axis=1) @ w
@@ -133,9 +133,9 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
         ax.set_title(name, fontsize=10)
     from matplotlib.cm import ScalarMappable
 
-    bar = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), cax=fig.add_axes([0.3, 0.05, 0.4, 0.025]),
+    bar = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), cax=fig.add_axes([0.3, 0.12, 0.4, 0.025]),
                        orientation="horizontal", extend="max" if d.size and float(np.nanmax(d)) > hi else "neither")
-    bar.set_label("distortion of the tet (1 = conformal)", fontsize=9)
+    bar.set_label("distortion of the tet (1 = conformal)", fontsize=9)   # bar and label above the bottom edge
     bar.ax.tick_params(labelsize=8)
     if title:
         fig.suptitle(title, fontsize=10)
