@@ -90,7 +90,7 @@ def test_every_demo_output_opens(demo_dir, tmp_path, monkeypatch):
     kinds = {type(read_result(demo_dir / f)).__name__ for f in files}
     assert {"DirectionField", "LoadedStripes", "LoadedVortex", "LoadedConformal"} <= kinds
     assert {"field-n4-s+0.npz", "vortex-linked.obj", "vortex-linked.json", "stripes.obj", "boundary-n4.npz",
-            "conformal-mobius.npz", "conformal-octopus.npz"} <= set(files)
+            "conformal-mobius.npz", "conformal-spot.npz"} <= set(files)
     shots = _has_screenshots(tmp_path)
     monkeypatch.chdir(tmp_path)
     for f in files:
