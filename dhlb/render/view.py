@@ -98,13 +98,16 @@ def _logs_to_stderr():
         return
     sys.stdout.flush()
     saved = os.dup(out)
+    target = sys.stderr.fileno() if _has_fileno(sys.stderr) else os.open(os.devnull, os.O_WRONLY)
     try:
-        os.dup2(sys.stderr.fileno() if _has_fileno(sys.stderr) else os.open(os.devnull, os.O_WRONLY), out)
+        os.dup2(target, out)
         yield
     finally:
         _flush_c_stdio()
         os.dup2(saved, out)
         os.close(saved)
+        if not _has_fileno(sys.stderr):   # the devnull descriptor opened above
+            os.close(target)
 
 
 def _has_fileno(stream) -> bool:
