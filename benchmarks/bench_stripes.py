@@ -16,8 +16,12 @@ with ``section="unit"`` (eigenvector, then the unit-modulus iteration on the sam
 divided by the time with ``section="eigenvector"``, both measured in the same run (target <= 1.5),
 with the iterations and both unit energies.
 
-Run:  python benchmarks/bench_stripes.py [backend] [--sections]      (reads ../shared/meshes;
-      --sections: only the section table)
+Scans (issue 42, ``--scans``): on the shared meshes, n = 1 and 2, spacing 4, 6 and 8, which rule ended the
+default unit section (fixed point, flat energy, step limit), after how many steps, and its unit energy against
+the one ``energy_tol=0`` reaches.
+
+Run:  python benchmarks/bench_stripes.py [backend] [--sections | --scans]      (reads ../shared/meshes;
+      --sections: only the section table; --scans: only the scans table)
 """
 from __future__ import annotations
 
@@ -167,9 +171,57 @@ def sections(backend=None, name="stanford-bunny.obj", spacing=8.0):
     return rows
 
 
+SCANS = ["kitten.obj", "fertility.off", "3holes.off", "double-torus.obj", "spot.obj", "bunny-watertight.off",
+         "stanford-bunny.obj"]
+
+
+def scans(backend=None, spacings=(4.0, 6.0, 8.0)):
+    """Issue 42: how the default unit section ends on the shared meshes, and what iterating on would give.
+
+    For every mesh, n = 1 and 2 and each spacing: the default (``stopped``: converged / stalled / limit, its
+    steps and time) and ``energy_tol=0`` (the step rule alone, up to the default limit): its steps, and the
+    ratio of the default's unit energy to the one reached there.
+    """
+    warnings.simplefilter("ignore")
+    rows = []
+    for name in SCANS:
+        path = os.path.join(MESHES, name)
+        if not os.path.exists(path):
+            print(f"skipping {name}: not found in {MESHES}")
+            continue
+        V, F = read_surface(path)
+        for n in (1, 2):
+            fld = direction_field(V, F, n=n, solver=backend)
+            for spacing in spacings:
+                t0 = time.perf_counter()
+                res = stripe_pattern(fld, spacing=spacing, solver=backend)
+                t = time.perf_counter() - t0
+                on = stripe_pattern(fld, spacing=spacing, solver=backend,
+                                    options=StripeOptions(section=SectionOptions(energy_tol=0.0)))
+                it, full = res.iteration, on.iteration
+                rows.append((name, n, spacing, it.stopped, it.iterations, t, full.stopped, full.iterations,
+                             it.unit_energy / full.unit_energy, it.unit_energy / it.start_energy))
+    load = os.getloadavg()
+    print(f"scans: the default unit section (energy_tol 1e-3) and energy_tol=0; load average {load[0]:.2f} "
+          f"{load[1]:.2f} {load[2]:.2f}")
+    fmt = "{:<22} {:>2} {:>7} {:>10} {:>5} {:>7} | {:>10} {:>5} {:>11} {:>9}"
+    print(fmt.format("mesh", "n", "spacing", "stopped", "steps", "time s", "tol 0", "steps", "E / E_tol0",
+                     "E / E_eig"))
+    for r in rows:
+        print(fmt.format(r[0], r[1], f"{r[2]:g}", r[3], r[4], f"{r[5]:.2f}", r[6], r[7], f"{r[8]:.4f}",
+                         f"{r[9]:.3f}"))
+    ends = {r[3] for r in rows}
+    print(f"default ended by: {sorted(ends)}; steps {min(r[4] for r in rows)}-{max(r[4] for r in rows)}; "
+          f"E / E_tol0 {min(r[8] for r in rows):.4f}-{max(r[8] for r in rows):.4f}")
+    return rows
+
+
 if __name__ == "__main__":
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     be = args[0] if args else None
-    if "--sections" not in sys.argv:
-        main(be)
-    sections(be)
+    if "--scans" in sys.argv:
+        scans(be)
+    else:
+        if "--sections" not in sys.argv:
+            main(be)
+        sections(be)

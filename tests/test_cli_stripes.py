@@ -151,3 +151,21 @@ def test_parameters_that_scale_the_work_are_refused_before_it_starts(tmp_path, c
     assert "needs about" in err or "argument --size" in err
     assert time.perf_counter() - t0 < 5 and resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - rss0 < 200_000
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_summary_says_why_the_unit_section_stopped(tmp_path, capsys):
+    """Issue 42 point 3: ``dhlb stripes kitten.obj --spacing 6`` used to end in "step limit, not converged:
+    raise --iterations"; now it stops on the flat unit energy and says so, and --energy-tol 0 converges."""
+    from pathlib import Path
+
+    kitten = str(Path(__file__).parent / "data" / "kitten.obj")
+    base = ["--spacing", "6", "--no-png", "--no-isolines", "-o", str(tmp_path / "k.obj")]
+    assert run([kitten, *base]) == 0
+    out = capsys.readouterr().out
+    assert "(stopped: the unit energy changed by less than --energy-tol over the last 5 steps" in out
+    assert "step limit" not in out
+    assert run([kitten, *base[:-2], "-o", str(tmp_path / "k2.obj"), "--energy-tol", "0", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["iteration"]["stopped"] == "converged" and data["iteration"]["converged"]
+    assert run([kitten, *base, "--energy-tol", "-1"]) == 2
+    assert "--energy-tol" in capsys.readouterr().err

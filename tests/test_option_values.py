@@ -78,6 +78,8 @@ BAD = [
     (SectionOptions, {}, "seed", True, InvalidParameterError, ["SectionOptions.seed", "integer or a numpy Generator"]),
     (SectionOptions, {}, "unit_tol", 0.0, InvalidParameterError, ["SectionOptions.unit_tol must be a positive number"]),
     (SectionOptions, {}, "unit_tol", math.inf, InvalidParameterError, ["SectionOptions.unit_tol", "finite"]),
+    (SectionOptions, {}, "energy_tol", -1e-3, InvalidParameterError, ["SectionOptions.energy_tol", ">= 0"]),
+    (SectionOptions, {}, "energy_tol", math.nan, InvalidParameterError, ["SectionOptions.energy_tol", "finite"]),
     (SectionOptions, {}, "unit_tol", True, InvalidParameterError, ["SectionOptions.unit_tol"]),
     (SectionOptions, {}, "unit_tol", "1e-3", InvalidParameterError, ["SectionOptions.unit_tol"]),
     # SolverOptions
@@ -200,6 +202,7 @@ def test_a_name_is_one_of_the_known_names(cls, name, known, value):
 # (class, field, valid predicate on a finite float, integer-only)
 NUMBERS = [(SolverOptions, "tol", lambda x: 0 < x < 1, False),
            (SectionOptions, "unit_tol", lambda x: x > 0, False),
+           (SectionOptions, "energy_tol", lambda x: x >= 0, False),
            (StripeOptions, "branch_weight", lambda x: x >= 0, False),
            (SolverOptions, "maxiter", lambda x: x >= 1, True),
            (SolverOptions, "block_size", lambda x: x >= 1, True),
@@ -238,7 +241,7 @@ class _Backend:
     lambda: StripeOptions(lumped=None, branch_weight=np.float64(0.5), energy="fem", method="extrinsic"),
     lambda: StripeOptions(lumped=np.bool_(True), branch_weight=2, section=SectionOptions(kind="power")),
     lambda: SectionOptions(kind="unit", iterations=np.int64(0), seed=np.random.default_rng(1),
-                           unit_tol=np.float32(0.5)),
+                           unit_tol=np.float32(0.5), energy_tol=0),
     lambda: SectionOptions(kind="power", iterations=1, seed=2**70),
     lambda: SolverOptions(backend="auto", tol=0.5, maxiter=np.int32(1), block_size=1, factor_shift="floor",
                           seed=np.uint8(3)),
@@ -258,7 +261,8 @@ def test_defaults_are_unchanged():
     assert repr(SolverOptions()) == ("SolverOptions(backend=None, tol=None, maxiter=1000, block_size=None, "
                                      "factor_shift='auto', seed=0)")
     assert repr(VortexOptions()) == "VortexOptions(order=4, placement='balanced', orientation='fix')"
-    assert repr(SectionOptions()) == "SectionOptions(kind='unit', iterations=None, seed=None, unit_tol=0.001)"
+    assert repr(SectionOptions()) == ("SectionOptions(kind='unit', iterations=None, seed=None, unit_tol=0.001, "
+                                        "energy_tol=0.001)")
     assert StripeOptions().section == SectionOptions() and StripeOptions().lumped is None
 
 

@@ -86,10 +86,13 @@ def register(subparsers) -> None:
                    help="unit (default): unit-modulus section after the eigenvector, keeps the spacing; "
                         "eigenvector: the relaxed eigenvector; power: the seed's Algorithm 9")
     p.add_argument("--iterations", type=int_in_range(0, MAX_ITERATIONS), default=None, metavar="K",
-                   help="unit: maximum number of steps (default 30); power: number of steps (default 20)")
+                   help="unit: maximum number of steps (default 200); power: number of steps (default 20)")
+    p.add_argument("--energy-tol", type=finite_float(0), default=None, metavar="E",
+                   help="unit: also stop when the unit energy changed by less than E (relative) over the last "
+                        "5 steps (default 1e-3; 0: iterate to the fixed point)")
     p.add_argument("--seed", type=int_in_range(0, 2**63 - 1), default=None, help="random start of --section power")
     p.add_argument("--backend", type=backend_choice,
-                   default=None, metavar="B", help="factorization backend (default superlu)")
+                   default=None, metavar="B", help="factorization backend (default: by size and memory)")
     p.add_argument("--orthogonal", action="store_true", help="also the pattern of the field turned by 90 degrees")
     p.add_argument("--format", dest="fmt", metavar="FMT", help="mesh format if the extension does not say it")
     add_repair_argument(p)
@@ -225,6 +228,12 @@ def _outputs(res, plan, stage, args) -> dict:
     return written
 
 
+_STOPPED = {"converged": " (converged: the iterate stopped moving)",
+            "stalled": " (stopped: the unit energy changed by less than --energy-tol over the last 5 steps, while "
+                       "dislocations may still creep; --energy-tol 0 iterates to the fixed point)",
+            "limit": " (step limit, not converged: raise --iterations)"}
+
+
 def _check_args(args) -> None:
     """The checks that involve two options (each value alone is checked by its argparse type)."""
     if args.iterations == 0 and args.section == "power":
@@ -256,7 +265,8 @@ def _run(args) -> int:
     V, F = read_surface(args.file, fmt)
     _check_density(args, V, F, n, plan)
     directions = _directions(args, V, F, n)
-    section = SectionOptions(kind=args.section, iterations=args.iterations, seed=args.seed)
+    section = SectionOptions(kind=args.section, iterations=args.iterations, seed=args.seed,
+                             **({} if args.energy_tol is None else {"energy_tol": args.energy_tol}))
     options = StripeOptions(energy=args.energy, orthogonal=args.orthogonal, progress=not (args.quiet or args.json),
                             section=section, repair=args.repair)
     res = stripe_pattern(V, F, directions, args.frequency, spacing=args.spacing, n=n, options=options,
@@ -277,7 +287,7 @@ def _run(args) -> int:
         if it:
             steps = f" after {it['iterations']} steps"
             if it["kind"] == "unit":
-                steps += " (converged)" if it["converged"] else " (step limit, not converged: raise --iterations)"
+                steps += _STOPPED[it["stopped"]]
         print(f"section {summary['section']}{steps}: unit energy {summary['unit_energy']:.6g}")
         print(f"zeros: {len(summary['zero_faces'])} faces, branch faces: {len(summary['branch_faces'])}")
         print(f"time: setup {t['setup']:.3f} s, solve {t['solve']:.3f} s, texture {t['texture']:.3f} s")

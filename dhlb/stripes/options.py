@@ -21,7 +21,7 @@ from dhlb._deprecation import check_choice, check_flag, check_integer, check_num
 from dhlb.errors import InvalidParameterError
 from dhlb.stripes.energy import ENERGIES
 
-__all__ = ["SECTIONS", "UNIT_RTOL", "SectionOptions", "StripeOptions"]
+__all__ = ["ENERGY_RTOL", "SECTIONS", "UNIT_RTOL", "SectionOptions", "StripeOptions"]
 
 SECTIONS = ("unit", "eigenvector", "power")
 """The kinds of section ψ a stripe pattern can use (:class:`SectionOptions`)."""
@@ -34,6 +34,9 @@ MAX_ITERATIONS = 100_000
 UNIT_RTOL = 1e-3
 """Default step tolerance of ``section="unit"``: stop when the iterate moved by less than this (relative,
 norm of diag(M): the RMS phase change in radians) in a step, and less than in the step before."""
+ENERGY_RTOL = 1e-3
+"""Default flat-energy tolerance of ``section="unit"``: stop when the unit energy changed by less than this
+(relative) over the last steps (:data:`dhlb.stripes.section.STALL_STEPS`)."""
 
 
 @dataclass(frozen=True)
@@ -53,7 +56,7 @@ class SectionOptions:
         * ``"power"``: the seed's Algorithm 9, ``iterations`` inverse power steps (default 20) from a
           uniformly random start (``seed``), for reproducing published figures.
     iterations : int, optional
-        ``"unit"``: the maximum number of steps (default 30; 0 = the normalized eigenvector);
+        ``"unit"``: the maximum number of steps (default 200; 0 = the normalized eigenvector);
         ``"power"``: the number of steps (default 20; at least 1). At most 100000 (one back-solve each).
         An integer (not a bool).
     seed : int >= 0 or numpy Generator, optional
@@ -62,13 +65,20 @@ class SectionOptions:
         which refuses negative ones.
     unit_tol : float > 0
         ``"unit"`` stops when the iterate moved by less than this in one step (relative, in the norm of
-        ``diag(M)``: the RMS phase change in radians) and less than in the step before. Finite.
+        ``diag(M)``: the RMS phase change in radians) and less than in the step before: a fixed point,
+        ``converged``. Finite.
+    energy_tol : float >= 0
+        ``"unit"`` also stops, after at least 10 steps, when the unit energy stayed within this (relative)
+        over the last 5 steps: ``stopped == "stalled"``. On scanned meshes the dislocations keep creeping
+        for hundreds of steps at a nearly constant energy (issue 42); 0 iterates on to the fixed point or
+        ``iterations``. Default ``1e-3``. Finite.
 
     Raises
     ------
     InvalidParameterError
         ``kind`` not one of :data:`SECTIONS`, ``iterations`` not an integer in range, ``unit_tol`` not a
-        finite positive number, ``seed`` neither an integer >= 0 nor a Generator. Checked at construction,
+        finite positive number, ``energy_tol`` not a finite number >= 0, ``seed`` neither an integer >= 0
+        nor a Generator. Checked at construction,
         and again by :meth:`replace`.
 
     Examples
@@ -83,6 +93,7 @@ class SectionOptions:
     iterations: int | None = None
     seed: Any = None
     unit_tol: float = UNIT_RTOL
+    energy_tol: float = ENERGY_RTOL
 
     _EXAMPLE = "kind='eigenvector'"   # the example of a right call (dhlb._deprecation.check_option_group)
 
@@ -96,6 +107,7 @@ class SectionOptions:
                 raise InvalidParameterError(f"SectionOptions.iterations must be between {low} and {MAX_ITERATIONS} "
                                             f"(one back-solve each) for kind={self.kind!r}, got {iterations!r}")
         check_number(self.unit_tol, "SectionOptions.unit_tol", "a positive number (finite)", lambda x: x > 0)
+        check_number(self.energy_tol, "SectionOptions.energy_tol", "a finite number >= 0 (0: off)", lambda x: x >= 0)
         seed = self.seed
         if seed is not None and not isinstance(seed, np.random.Generator):
             if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, numbers.Integral):

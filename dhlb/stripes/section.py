@@ -28,7 +28,17 @@ count everywhere). The iteration stops when the **iterate** stops moving and kee
 RMS phase change in radians), with ``‖x_t − x_{t−1}‖ < ‖x_{t−1} − x_{t−2}‖`` (a saddle being left
 moves faster and faster; an attracting fixed point slower and slower) and at least
 :data:`MIN_UNIT_STEPS` steps (the first one mostly undoes the start's perturbation). ``converged``
-means exactly that; at :data:`MAX_UNIT_ITERATIONS` steps it is False.
+means exactly that.
+
+On scanned meshes that point is far: the dislocations keep creeping for hundreds of steps while the unit
+energy barely changes (issue 42, measured with ``benchmarks/bench_stripes.py --scans``: the fixed point
+after up to 180 steps on kitten, fertility and the bunnies, at a unit energy 3.9 % lower to 3.7 % higher
+than the flat stretch before it, once 10 % lower: docs/stripes.md). So the iteration also stops,
+``stopped == "stalled"``, when the unit energies of the last :data:`STALL_STEPS` + 1 iterates lie within
+``energy_tol`` (relative, default 1e-3) of each other, after at least :data:`MIN_STALL_STEPS` steps: the
+energy is flat, not merely its minimum (a rising energy is motion). That is not a fixed point
+(``converged`` False) and says so; ``energy_tol=0`` iterates on to the fixed point or
+:data:`MAX_UNIT_ITERATIONS` steps (``stopped == "limit"``).
 
 **What it returns.** When it converged, the fixed point, if its unit energy is at most the start's;
 otherwise (not converged, or a fixed point worse than the start) the iterate of lowest unit energy
@@ -81,12 +91,17 @@ if TYPE_CHECKING:
 
 __all__ = ["UNIT_RTOL", "SectionIteration", "normalize_per_vertex", "power_section", "unit_energy", "unit_section"]
 
-MAX_UNIT_ITERATIONS = 30
+MAX_UNIT_ITERATIONS = 200
 """Default maximum of unit-modulus steps (each one back-solve with the eigensolver's factorization).
 
-Tubes converge in 4–20 steps; on scanned meshes the dislocations keep gliding for hundreds of steps
-while the unit energy falls by about 2 % more (stanford-bunny, steps 10 → 80), so the default stops
-there (``converged`` False) at about half the eigensolver's time: ``benchmarks/bench_stripes.py``."""
+A safety net: tubes reach their fixed point in 4–20 steps; on the shared meshes the default ends at a fixed
+point or on the flat unit energy (:data:`STALL_STEPS`) in 6–107 (issue 42: ``benchmarks/bench_stripes.py
+--scans``)."""
+STALL_STEPS = 5
+"""Window of the second stopping rule: the unit energy of the last ``STALL_STEPS + 1`` iterates lies within
+``energy_tol`` (relative) of the newest one."""
+MIN_STALL_STEPS = 10
+"""Steps always taken before the flat-energy rule is tested (leaving a saddle starts slowly)."""
 MIN_UNIT_STEPS = 3
 """Steps always taken before the stopping rule is tested (the first one mostly undoes the start's perturbation)."""
 UNIT_KICK = 0.3
@@ -116,6 +131,11 @@ class SectionIteration:
         ``"unit"``: the iterate stopped moving (the rule in the module docstring); ``"power"``: True.
     increases : int
         Steps in which the unit energy went up (the guard kept the better iterate).
+    stopped : {"converged", "stalled", "limit", "count"}
+        Why the iteration ended: ``"converged"``, the iterate stopped moving (a fixed point);
+        ``"stalled"``, the unit energy stayed within ``energy_tol`` over the last :data:`STALL_STEPS`
+        steps (not a fixed point: the dislocations creep on); ``"limit"``, the maximum number of steps;
+        ``"count"``: ``"power"`` ran its number of steps.
 
     Examples
     --------
@@ -134,6 +154,7 @@ class SectionIteration:
     best_iteration: int = 0
     converged: bool = True
     increases: int = 0
+    stopped: str = "converged"
 
     @property
     def unit_energy(self) -> float:
@@ -156,7 +177,7 @@ class SectionIteration:
         """
         return {"kind": self.kind, "iterations": int(self.iterations), "unit_energy": self.unit_energy,
                 "unit_energy_start": self.start_energy, "best_iteration": int(self.best_iteration),
-                "converged": bool(self.converged), "increases": int(self.increases),
+                "converged": bool(self.converged), "stopped": self.stopped, "increases": int(self.increases),
                 "energies": [float(e) for e in self.energies]}
 
 
@@ -243,7 +264,9 @@ def unit_section(
         ``iterations``: the maximum number of steps (each one back-solve; default
         :data:`MAX_UNIT_ITERATIONS`); ``unit_tol``: stop when the step ``‖x_t − x_{t−1}‖`` (norm of
         ``diag(M)``) is at most ``unit_tol · ‖x_t‖`` and smaller than the step before, after at least
-        :data:`MIN_UNIT_STEPS` steps (or when ρ reaches the rounding level); ``seed``: of the
+        :data:`MIN_UNIT_STEPS` steps (or when ρ reaches the rounding level); ``energy_tol``: stop, after at
+        least :data:`MIN_STALL_STEPS` steps, when the unit energies of the last :data:`STALL_STEPS` + 1
+        iterates lie within ``energy_tol`` (relative) of each other (0: never); ``seed``: of the
         perturbation (default 0: deterministic).
         ``kind`` is not used.
     **deprecated
@@ -281,7 +304,7 @@ def unit_section(
     (options,) = fold_deprecated_kwargs("unit_section", deprecated, (
         "options", options, SectionOptions(), {"maxiter": "iterations", "rtol": "unit_tol", "seed": "seed"}))
     maxiter = MAX_UNIT_ITERATIONS if options.iterations is None else int(options.iterations)
-    rtol, seed = options.unit_tol, 0 if options.seed is None else options.seed
+    rtol, etol, seed = options.unit_tol, options.energy_tol, 0 if options.seed is None else options.seed
     x0 = np.asarray(x0)
     if not np.all(np.isfinite(x0)):
         raise NonFiniteError("the start vector x0 contains NaN or inf")
@@ -301,7 +324,7 @@ def unit_section(
         z = z * np.exp(1j * kick * rng.uniform(-1.0, 1.0, z.size))
         x = z if complex_form else np.column_stack([z.real, z.imag]).ravel()
     norm = float(np.sqrt(np.sum(mass * np.abs(x) ** 2)))        # the step is measured in the norm of diag(M)
-    converged, increases, t, step = False, 0, 0, np.inf
+    stopped, increases, t, step = "limit", 0, 0, np.inf
     for t in range(1, maxiter + 1):
         y = M @ solve(M @ x)
         new_x = normalize_per_vertex(y, complex_form, fallback=x)
@@ -316,13 +339,18 @@ def unit_section(
         # converged: the iterate itself stopped moving (not the energy, which is flat on a plateau)
         # and the steps contract (a fixed point that attracts, not a saddle being left)
         if (t >= MIN_UNIT_STEPS and step <= rtol and step < last) or abs(new) <= atol:
-            converged = True
+            stopped = "converged"
             break
-    else:
-        converged = maxiter == 0
-    if converged and t and energies[t] <= energies[0]:
+        # stalled: the unit energy is flat over the last steps (dislocations creeping on a scan, module docstring)
+        if etol and t >= MIN_STALL_STEPS and np.ptp(energies[-STALL_STEPS - 1:]) <= etol * abs(new):
+            stopped = "stalled"
+            break
+    if maxiter == 0:
+        stopped = "converged"
+    if stopped == "converged" and t and energies[t] <= energies[0]:
         best, best_x = t, x     # the fixed point itself, not a snapshot of the path to it (module docstring)
-    return SectionIteration(best_x, "unit", t if maxiter else 0, energies, best, converged, increases)
+    return SectionIteration(best_x, "unit", t if maxiter else 0, energies, best, stopped == "converged", increases,
+                            stopped)
 
 
 def power_section(A, M, solve: Callable, iterations: int = POWER_ITERATIONS, *, seed=None,
@@ -365,4 +393,4 @@ def power_section(A, M, solve: Callable, iterations: int = POWER_ITERATIONS, *, 
         x = solve(M @ x)
         x = x / np.sqrt(np.real(np.vdot(x, M @ x)))
         energies.append(unit_energy(A, M, normalize_per_vertex(x, complex_form)))
-    return SectionIteration(x, "power", iterations, energies, iterations, True, 0)
+    return SectionIteration(x, "power", iterations, energies, iterations, True, 0, "count")
