@@ -108,7 +108,7 @@ def test_two_ranks_bunny_landau_and_mismatched_input():
     proc, _ = mpirun(2, [str(ROOT / "tests" / "mpi" / "run_checks.py")], timeout=600)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     lines = [ln for ln in proc.stdout.splitlines() if ln.startswith("[2 ranks]")]
-    assert len(lines) == 3 and all(": ok " in ln for ln in lines), proc.stdout
+    assert len(lines) == 5 and all(": ok " in ln for ln in lines), proc.stdout
 
 
 @needs_mpirun

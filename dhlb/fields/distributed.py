@@ -48,6 +48,7 @@ from dhlb.fields.energy import check_s, energy_matrices
 from dhlb.fields.options import FieldOptions
 from dhlb.fields.result import DirectionField
 from dhlb.linalg import SolverOptions, default_tol, solver_options
+from dhlb.linalg._checks import phase_factors
 from dhlb.mesh.tangent import TangentBundle
 
 __all__ = ["distributed_direction_field"]
@@ -137,6 +138,13 @@ def distributed_direction_field(V, F=None, n: int = 1, s: float = 0.0, *, option
     del Ab, Mb
     meter.mark("solve")
     u_own = np.asarray(eig.vectors[:, 0], np.complex128)
+    # the phase of one process (dhlb.linalg.eigen: the largest-modulus entry, first in the vertex numbering,
+    # real positive), so that the directions are those of direction_field, not turned by a global angle
+    u_all = gather_owned(loc, u_own, comm)
+    turn = comm.bcast(phase_factors(u_all[:, None])[0] if comm.rank == 0 else None, root=0)
+    u_own = u_own * turn
+    if u_all is not None:
+        u_all = u_all * turn
     u_loc = scatter_values(u_own, loc.start, loc.stop, N, part.vertices)
     fi = field_indices(tb, u_loc, faces=part.owned_cells)
     dirs = direction_vectors(tb, u_loc)[part.owned]
@@ -147,7 +155,6 @@ def distributed_direction_field(V, F=None, n: int = 1, s: float = 0.0, *, option
     mine = np.zeros(loc.mesh.n_faces, bool)
     mine[sing.faces] = True   # the owned singular faces (only owned faces have a nonzero index), increasing
     meter.mark("indices")
-    u_all = gather_owned(loc, u_own, comm)
     d_all = gather_owned(loc, dirs, comm)
     fr_all = gather_owned(loc, tb.frames[part.owned], comm)
     ids, vals = gather_cells(loc, mine, np.column_stack([sing.index, sing.barycentric, sing.points]), comm)

@@ -45,7 +45,8 @@ from dhlb.fields.guidance import Guidance, boundary_guidance, curvature_guidance
 from dhlb.fields.options import FieldOptions
 from dhlb.fields.result import DirectionField
 from dhlb.linalg import SolverOptions, smallest_eigenpairs, solve, solver_options
-from dhlb.linalg.backends import get_backend
+from dhlb.linalg.backends import distributes, get_backend
+from dhlb.mesh.surface import SurfaceMesh
 from dhlb.mesh.tangent import TangentBundle
 
 __all__ = ["direction_field", "guidance_for"]
@@ -184,6 +185,37 @@ def _field_estimate(V, F=None, n=None, *args, **kwargs):
     return need, f"a field of {faces:,} faces ({FIELD_BYTES_PER_FACE / 1000:g} kB a face)"
 
 
+_REPLICATED = object()   # _under_mpi's answer when the call has no distributed form
+
+
+def _under_mpi(V, F, n, s, align, lam, options, solver):
+    """``direction_field`` with ``solver="petsc"`` under ``mpirun -n P`` (P > 1): the distributed form if there is one.
+
+    The smoothest field goes to :func:`~dhlb.fields.distributed.distributed_direction_field` (collective) and
+    rank 0 sends the field to the other ranks. An aligned field has no distributed form: rank 0 warns that every rank
+    assembles the whole problem (PETSc distributes the factorization only) and :data:`_REPLICATED` is returned.
+    """
+    from dhlb.fields.distributed import distributed_direction_field
+    from dhlb.linalg.backends_petsc import comm_rank_size
+    from dhlb.linalg.distributed import world
+
+    if align is not None or lam != 0.0:
+        if comm_rank_size()[0] == 0:
+            warnings.warn("direction_field with align or lam is not distributed under mpirun: every rank assembles "
+                          "the whole problem and the petsc backend distributes only its factorization (the smoothest "
+                          "field, align=None, is distributed)", DhlbWarning, stacklevel=3)
+        return _REPLICATED
+    if isinstance(V, TangentBundle):
+        n = V.n if n is None else n
+        V = V.mesh
+    if isinstance(V, SurfaceMesh):
+        V, F = V.points, V.faces
+    comm = world()
+    res = distributed_direction_field(V, F, n=1 if n is None else n, s=s, solver=solver,
+                                      options=options.replace(progress=False), comm=comm)
+    return comm.bcast(res, root=0)   # the same script as on one process: every rank gets the field
+
+
 @translate_memory_errors("direction_field", _field_estimate)
 def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None, lam: float = 0.0, *,
                     options: FieldOptions | None = None, solver: SolverOptions | str | None = None,
@@ -222,6 +254,12 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
     Returns
     -------
     DirectionField
+        Under ``mpirun -n P`` (P > 1) with ``solver="petsc"`` the smoothest field is computed by all ranks
+        together (:func:`~dhlb.fields.distributed.distributed_direction_field`: no rank holds the global
+        matrix; every rank must make the call, rank 0 with the mesh) and every rank gets it, so that a
+        script written for one process runs unchanged (to keep it on rank 0 alone, call
+        ``distributed_direction_field``). An aligned field is not distributed (every rank assembles it; a
+        warning says so).
 
     Raises
     ------
@@ -265,6 +303,10 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
                                                                             "progress")),
         ("solver", solver, SolverOptions(), ("backend", "tol")))
     solver = solver_options(solver)
+    if distributes(solver.backend):
+        out = _under_mpi(V, F, n, s, align, lam, options, solver)
+        if out is not _REPLICATED:
+            return out
     lumped, reorient, components, progress = options.lumped, options.reorient, options.components, options.progress
     backend = solver.backend
 

@@ -64,13 +64,19 @@ def norm1(S: sp.csr_matrix) -> float:
     return float(abs(S).sum(axis=0).max())
 
 
+def phase_factors(U: np.ndarray) -> np.ndarray:
+    """The unit factor per column that makes its largest-modulus entry (the first of equal ones) real positive."""
+    j = np.argmax(np.abs(U), axis=0)
+    piv = U[j, np.arange(U.shape[1])]
+    mod = np.abs(piv)
+    return np.where(mod > 0, mod / np.where(mod > 0, piv, 1), 1)
+
+
 def fix_phase(U: np.ndarray) -> np.ndarray:
     """Make the largest-modulus entry of each column real positive (deterministic output)."""
     if U.size == 0:
         return U
-    j = np.argmax(np.abs(U), axis=0)
-    piv = U[j, np.arange(U.shape[1])]
-    return U * (np.abs(piv) / piv)[None, :]
+    return U * phase_factors(U)[None, :]
 
 
 def eta(R, lam, U, normA, normM) -> np.ndarray:

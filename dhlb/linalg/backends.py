@@ -60,7 +60,7 @@ from dhlb.linalg.memory import InsufficientMemoryError, available_bytes, check_f
 from dhlb.linalg.ordering import nested_dissection
 
 __all__ = ["BLAS_THREADS", "SuperLUBackend", "available_backends", "blas_guard", "cache_info", "clear_cache",
-           "get_backend", "pattern_dimension", "register_backend", "select_backend"]
+           "distributes", "get_backend", "pattern_dimension", "register_backend", "select_backend"]
 
 BLAS_THREADS = 1
 """Number of BLAS threads allowed inside factorizations and solves (``None``: leave them alone).
@@ -320,6 +320,35 @@ def available_backends() -> list[str]:
     True
     """
     return [n for n, (_, req) in _REGISTRY.items() if all(_importable(r) for r in req)]
+
+
+def distributes(backend) -> bool:
+    """Whether a call with this ``backend`` should run distributed: ``"petsc"`` under ``mpirun`` with several ranks.
+
+    The applications that have a distributed form (:func:`dhlb.fields.direction_field` for the smoothest
+    field, :func:`dhlb.vortex.vortex_filaments`) hand such a call to it; on one rank, or with another
+    backend, nothing changes.
+
+    Parameters
+    ----------
+    backend : str, backend object or None
+        ``SolverOptions.backend``.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> distributes(None), distributes("superlu")
+    (False, False)
+    """
+    name = backend if isinstance(backend, str) else getattr(backend, "name", None)
+    if name != "petsc":
+        return False
+    from dhlb.linalg.backends_petsc import comm_rank_size, petsc_available  # loads PETSc only when named
+
+    return petsc_available() and comm_rank_size()[1] > 1
 
 
 def get_backend(backend=None, *, n: int = 0, nnz: int = 0, eigen: bool = False, shifted: bool = False,

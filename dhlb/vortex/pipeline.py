@@ -62,6 +62,7 @@ from dhlb.errors import (
     UnresolvedFluxWarning,
 )
 from dhlb.linalg import SolverOptions, solver_options
+from dhlb.linalg.backends import distributes
 from dhlb.mesh.tet import TetMesh, check_tet_mesh
 from dhlb.vortex.filaments import extract_filaments
 from dhlb.vortex.linking import gauss_linking_integral
@@ -226,6 +227,11 @@ def vortex_filaments(
     Returns
     -------
     VortexResult
+        Under ``mpirun -n P`` (P > 1) with ``solver="petsc"``, the filaments are computed by all ranks
+        together (:func:`~dhlb.vortex.distributed.distributed_vortex_filaments`: no rank holds the global
+        matrix; every rank must make the call, rank 0 with the mesh) and every rank gets the result (its
+        ``bundle``, ``filament_set`` and ``matrices`` None); to keep it on rank 0 alone, call
+        ``distributed_vortex_filaments``.
 
     Raises
     ------
@@ -276,6 +282,13 @@ def vortex_filaments(
         "vortex_filaments", deprecated, ("options", options, VortexOptions(), ("order", "placement", "orientation")),
         ("solver", solver, SolverOptions(), ("backend", "tol")))
     solver = solver_options(solver)
+    if distributes(solver.backend):   # petsc under mpirun -n P > 1: all ranks together, no global matrix
+        from dhlb.linalg.distributed import world
+        from dhlb.vortex.distributed import distributed_vortex_filaments
+
+        comm = world()
+        res = distributed_vortex_filaments(V, T, velocity, hbar, options=options, solver=solver, comm=comm)
+        return comm.bcast(res, root=0)   # the same script as on one process: every rank gets the result
     solver = solver if solver.tol is not None else solver.replace(tol=DEFAULT_TOL)
     order, placement, orientation, backend = options.order, options.placement, options.orientation, solver.backend
     h = _check_hbar(hbar)

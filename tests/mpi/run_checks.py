@@ -33,14 +33,54 @@ RANK, SIZE = COMM.rank, COMM.size
 
 
 def check_bunny_field():
+    """``direction_field(solver="petsc")`` under mpirun is the distributed field (issue 42, point 10): all ranks
+    compute it together and every rank gets it; before, every rank assembled and held the whole problem."""
     V, F = read_surface(ROOT / "tests" / "data" / "bunny-7k.obj")
+    got = direction_field(V, F, n=4, solver=SolverOptions(backend="petsc"))   # on every rank, as on one process
     ref = direction_field(V, F, n=4)
-    got = direction_field(V, F, n=4, solver=SolverOptions(backend="petsc"))
     rel = abs(got.eigenvalue / ref.eigenvalue - 1)
     assert rel <= 1e-9, f"eigenvalue {got.eigenvalue!r} vs {ref.eigenvalue!r}: relative {rel:.2e} > 1e-9"
     a, b = ref.singularities, got.singularities
     assert np.array_equal(a.faces, b.faces) and np.array_equal(a.index, b.index), "singularities differ"
-    return f"eigenvalue rel. diff {rel:.1e}, {len(b.faces)} singularities identical"
+    if SIZE > 1:
+        par = got.solver.get("parallel") or {}
+        assert par.get("ranks") == SIZE, f"not distributed: solver {got.solver}"
+        assert max(par["local_vertices"]) < ref.mesh.n_vertices, "a rank held the whole mesh"
+    return f"eigenvalue rel. diff {rel:.1e}, {len(b.faces)} singularities identical, distributed over {SIZE} ranks"
+
+
+def check_aligned_field_is_replicated_and_says_so():
+    """An aligned field has no distributed form: it runs on every rank, and rank 0 warns that it is not distributed."""
+    import warnings
+
+    from dhlb.errors import DhlbWarning
+
+    V, F = read_surface(ROOT / "tests" / "data" / "bunny-7k.obj")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        got = direction_field(V, F, n=4, align="curvature", solver=SolverOptions(backend="petsc"))
+    said = [str(w.message) for w in caught
+            if issubclass(w.category, DhlbWarning) and "not distributed" in str(w.message)]
+    assert len(said) == (1 if RANK == 0 and SIZE > 1 else 0), said
+    ref = direction_field(V, F, n=4, align="curvature")
+    assert np.array_equal(got.singularities.faces, ref.singularities.faces), "aligned singularities differ"
+    return f"{len(got.singularities.faces)} singularities on every rank; rank 0 said: {said[0][:60] if said else ''}..."
+
+
+def check_vortex_filaments_distribute():
+    """``vortex_filaments(solver="petsc")`` under mpirun is the distributed pipeline (every rank gets the result)."""
+    from dhlb.cli.vortex import demo_velocity
+    from dhlb.mesh import box_tet_mesh
+    from dhlb.vortex import vortex_filaments
+
+    mesh = box_tet_mesh(12, lower=-1.0, upper=1.0)
+    field, _ = demo_velocity("linked-rings", mesh.points)
+    res = vortex_filaments(mesh, None, field, 1.0, solver="petsc")   # on every rank, as on one process
+    assert len(res.filaments) == 2 and res.linking_numbers.tolist() == [[0, 1], [1, 0]], res.linking_numbers
+    if SIZE > 1:
+        solver = res.statistics["solver"]
+        assert (solver.get("parallel") or {}).get("ranks") == SIZE, f"not distributed: {solver}"
+    return f"2 linked filaments, distributed over {SIZE} ranks"
 
 
 def check_landau_3torus():
@@ -97,7 +137,8 @@ def main():
     if "--bad-input" in sys.argv:
         return bad_input()
     failed = 0
-    for check in (check_bunny_field, check_landau_3torus, check_mismatched_input_raises_everywhere):
+    for check in (check_bunny_field, check_aligned_field_is_replicated_and_says_so, check_vortex_filaments_distribute,
+                  check_landau_3torus, check_mismatched_input_raises_everywhere):
         t = time.perf_counter()
         try:
             msg, ok = check(), True
