@@ -34,6 +34,11 @@ def test_demo_runs_all_steps_and_passes_its_checks(demo, capsys):
             assert s["details"]["index_sum"] == s["details"]["n"] * 2
     linked = next(s for s in summary["steps"] if s["step"] == "vortex linked-rings")
     assert abs(linked["details"]["linking_numbers"][0][1]) == 1
+    # what a reader sees (issue 42, point 9): "1 filament", not "1 filaments"; "s = 0", not "s = +0"
+    ring = next(s for s in summary["steps"] if s["step"] == "vortex ring")
+    assert ring["result"].startswith("1 filament (")
+    for s in summary["steps"]:
+        assert "+0" not in s["step"] + s["caption"] and not re.search(r"\b1 (filaments|singularities)\b", s["result"])
 
     page = (demo / "index.html").read_text(encoding="utf-8")
     sources = re.findall(r'<img src="([^"]+)"', page)

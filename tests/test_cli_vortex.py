@@ -173,3 +173,15 @@ def test_progress_on_stderr_and_quiet_silences_it(tmp_path):
     assert "vortex filaments" in loud.stderr
     quiet = subprocess.run([*cmd, "-q"], capture_output=True, text=True, check=True)
     assert "vortex filaments" not in quiet.stderr
+
+
+def test_png_title_counts_one_filament_in_the_singular(tmp_path, capsys, monkeypatch):
+    """Issue 42, point 9: the ring's picture said "1 filaments"."""
+    import dhlb.render.filaments_png as fp
+
+    titles = []
+    real = fp.render_filaments_png
+    monkeypatch.setattr(fp, "render_filaments_png", lambda *a, **k: titles.append(k.get("title")) or real(*a, **k))
+    code, _, err = dhlb_vortex(["--box", "8", "-o", str(tmp_path / "ring.png")], capsys)
+    assert code == 0, err
+    assert len(titles) == 1 and titles[0].endswith(": 1 filament"), titles

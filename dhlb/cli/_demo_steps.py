@@ -16,10 +16,16 @@ from dhlb._files import atomic_write
 from dhlb.io.results import FIELD_NPZ_NOTE as NPZ_NOTE
 from dhlb.io.results import write_field_npz
 from dhlb.render import CONFORMAL_CAMERA, FILAMENT_CAMERA, Camera
+from dhlb.render._figure import plural
 
 __all__ = ["fields", "aligned", "boundary", "stripes", "vortex", "write_field_npz", "NPZ_NOTE"]
 
 _SPOT_VIEW = Camera(view=(1.0, 0.6, 0.4), up=(0.0, 1.0, 0.0), size=(600, 600))
+
+
+def _signed(s: float) -> str:
+    """``s`` of the energy E_s for a caption: ``0``, ``+1``, ``-1`` (no ``+0``)."""
+    return "0" if s == 0 else f"{s:+g}"
 
 
 def _back_path(png: str) -> str:
@@ -100,9 +106,10 @@ def _field_record(step, res, png, caption, seconds, mesh_name) -> dict:
     ok = ok and (not closed or res.index_sum == expected)
     check = (f"Σ index = {res.index_sum} = nχ = {res.n}·{res.euler_characteristic}" if closed else
              f"Σ index = {res.index_sum} = (ΣΩ + rotation)/2π = {res.poincare_hopf:.6f}")
-    step = f"{step} n={res.n} s={res.s:+.0f}"
+    step = f"{step} n={res.n} s={_signed(res.s)}"
     return {"step": step, "mesh": f"{mesh_name} ({res.mesh.n_vertices} v, {res.mesh.n_faces} f)",
-            "result": f"{len(res.singularities.faces)} singularities", "check": check, "ok": bool(ok),
+            "result": plural(len(res.singularities.faces), "singularity", "singularities"), "check": check,
+            "ok": bool(ok),
             "seconds": seconds, "picture": png, "caption": caption,
             "details": {k: v for k, v in res.to_json().items() if k != "singularities"}}
 
@@ -134,7 +141,7 @@ def fields(out, progress, *, backend=None) -> list[dict]:
     for n in (1, 2, 4):
         for s in (-1.0, 0.0, 1.0):
             recs.append(_field(out, progress, f"field-n{n}-s{s:+.0f}", V, F, "spot",
-                               f"smoothest {n}-direction field, s = {s:+.0f}", _SPOT_VIEW, n=n, s=s,
+                               f"smoothest {n}-direction field, s = {_signed(s)}", _SPOT_VIEW, n=n, s=s,
                                solver=backend))
     return recs
 
@@ -219,8 +226,7 @@ def vortex(out, progress, *, backend=None) -> list[dict]:
         L = np.asarray(res.linking_numbers)
         ok = len(closed) == n_expected and (link_expected is None or (L.shape == (2, 2) and abs(int(L[0, 1])) == 1))
         check = f"{n_expected} closed" + ("" if link_expected is None else ", |linking number| = 1")
-        k = len(res.filaments)
-        result = f"{k} filament{'s' if k != 1 else ''} ({len(closed)} closed)"
+        result = f"{plural(len(res.filaments), 'filament')} ({len(closed)} closed)"
         if L.shape == (2, 2):
             result += f", linking {int(L[0, 1])}"
         recs.append({"step": "vortex " + kind, "mesh": f"cube ({len(mesh.points)} v, {len(mesh.tets)} tets)",

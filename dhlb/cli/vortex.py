@@ -198,9 +198,10 @@ def _outputs(plan, result, meta, velocity=None) -> None:
             with open(stage(".json"), "w", encoding="utf-8") as fh:
                 json.dump({**meta, **result.to_json()}, fh, indent=1)
         if plan.wants(".png"):
+            from dhlb.render._figure import plural
             from dhlb.render.filaments_png import render_filaments_png
 
-            title = f"{meta['velocity']}, ħ = {meta['hbar']:g}: {len(result.filaments)} filaments"
+            title = f"{meta['velocity']}, ħ = {meta['hbar']:g}: {plural(len(result.filaments), 'filament')}"
             mesh = result.mesh
             render_filaments_png(stage(".png"), result.filaments, mesh.points, mesh.boundary_faces, title=title)
 

@@ -24,7 +24,8 @@ import numpy as np
 
 from dhlb.errors import InvalidParameterError
 
-__all__ = ["Camera", "ConformalStyle", "FieldStyle", "FilamentStyle", "StripeStyle", "finish_figure", "up_vector"]
+__all__ = ["Camera", "ConformalStyle", "FieldStyle", "FilamentStyle", "StripeStyle", "finish_figure", "plural",
+           "spread_sample", "thin_out", "up_vector"]
 
 _CAMERA = ("view", "up", "size", "dpi")   # the keywords of dhlb 0.1 that moved into Camera
 
@@ -281,7 +282,8 @@ class FieldStyle(_Replace):
     Parameters
     ----------
     glyph_length : float, optional
-        Length of a glyph in world units (default: 0.45 × mean edge length).
+        Length of a glyph in world units (default: 0.45 × mean edge length, or × the spacing of the glyphs
+        when a fine mesh carries them on a subset of its vertices, :func:`dhlb.render.png.glyph_sites`).
     glyph_width : float
         Line width of the glyphs in points.
     glyph_color, face_color, background : matplotlib colours
@@ -289,7 +291,8 @@ class FieldStyle(_Replace):
     ambient : float in [0, 1]
         The light every face gets whatever its orientation (Lambert shading for the rest).
     max_glyphs : int
-        At most this many vertices get glyphs (an evenly spread subset if there are more).
+        At most this many vertices get glyphs (an evenly spread subset if there are more, or if their
+        vertices are closer than :data:`dhlb.render.png.GLYPH_SPACING` on the picture).
     dot_radius : float, optional
         Radius of a singularity dot (default: the larger of 0.35 × mean edge length and 0.6 % of the picture).
 
@@ -489,8 +492,179 @@ def _unit(x):
     return x / np.where(n > 0, n, 1.0)
 
 
+TITLE_SIZE = 10
+"""Font size of the title of a picture, in points."""
+
+
+def plural(count: int, noun: str, nouns: str | None = None) -> str:
+    """``count`` and ``noun``, in the plural unless the count is one: ``"1 filament"``, ``"2 filaments"``.
+
+    Parameters
+    ----------
+    count : int
+    noun : str
+        The singular.
+    nouns : str, optional
+        The plural (default: ``noun + "s"``).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> plural(1, "filament"), plural(0, "filament"), plural(2, "branch face"), plural(3, "vertex", "vertices")
+    ('1 filament', '0 filaments', '2 branch faces', '3 vertices')
+    """
+    return f"{count} {noun if count == 1 else (nouns or noun + 's')}"
+
+
+def spread_sample(points, spacing: float) -> np.ndarray:
+    """An evenly spread subset of ``points``: no two closer than ``spacing``, none left far from a chosen one.
+
+    A Poisson-disk sample on a grid of cells of side ``spacing``: in each cell the point nearest its
+    centre is a candidate, and a candidate is kept unless a kept candidate of a neighbouring cell is
+    closer than ``spacing`` (the cells are visited in 8 interleaved groups, so that the candidates of
+    one group cannot conflict with each other). Every point lies within ``(1 + √3) spacing`` of a
+    kept one.
+
+    Parameters
+    ----------
+    points : (k, d) float array
+        d = 2 or 3.
+    spacing : float
+        The least distance between two chosen points (> 0).
+
+    Returns
+    -------
+    (m,) int array
+        Sorted rows of ``points``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> g = np.stack(np.meshgrid(np.arange(100.0), np.arange(100.0)), -1).reshape(-1, 2)   # 10 000 points
+    >>> keep = spread_sample(g, 10.0)
+    >>> 80 <= len(keep) <= 130
+    True
+    >>> from scipy.spatial.distance import pdist
+    >>> bool(pdist(g[keep]).min() >= 10.0)
+    True
+    """
+    P = np.asarray(points, dtype=np.float64)
+    P = P.reshape(len(P), -1)
+    if len(P) == 0 or not spacing > 0:
+        return np.arange(len(P))
+    d = P.shape[1]
+    lo = P.min(axis=0)
+    g = np.floor((P - lo) / spacing).astype(np.int64) + 1            # cells, with a free layer around them
+    dims = g.max(axis=0) + 2
+    strides = np.r_[np.cumprod(dims[::-1])[::-1][1:], 1]              # row-major cell keys
+    key = g @ strides
+    off_centre = np.linalg.norm(P - (lo + (g - 0.5) * spacing), axis=1)
+    order = np.lexsort((off_centre, key))
+    first = np.r_[True, key[order][1:] != key[order][:-1]]
+    cand = order[first]                                              # one per cell, sorted by cell key
+    ckey, cg = key[cand], g[cand]
+    kept = np.zeros(len(cand), bool)
+    offsets = np.array(np.meshgrid(*[[-1, 0, 1]] * d, indexing="ij")).reshape(d, -1).T
+    offsets = offsets[np.any(offsets != 0, axis=1)] @ strides
+    group = (cg % 2) @ (2 ** np.arange(d))
+    for k in range(2 ** d):                                          # cells of one group are >= 2 cells apart
+        rows = np.nonzero(group == k)[0]
+        ok = np.ones(len(rows), bool)
+        for off in offsets:
+            at = np.searchsorted(ckey, ckey[rows] + off)
+            at = np.minimum(at, len(ckey) - 1)
+            hit = (ckey[at] == ckey[rows] + off) & kept[at]
+            near = np.linalg.norm(P[cand[at[hit]]] - P[cand[rows[hit]]], axis=1) < spacing
+            ok[np.nonzero(hit)[0][near]] = False
+        kept[rows[ok]] = True
+    return np.sort(cand[kept])
+
+
+def thin_out(points, candidates, spacing: float, budget: int) -> tuple[np.ndarray, float]:
+    """Evenly spread ``candidates`` (rows of ``points``) at least ``spacing`` apart, exactly ``budget`` if more remain.
+
+    :func:`spread_sample` with ``spacing``; when more than ``budget`` sites remain, the spacing is
+    widened (by bisection) to the widest that keeps at least ``budget``, and the sites with the
+    nearest neighbours are dropped down to ``budget``: the glyph sites of the pictures and views on
+    meshes too fine to carry a glyph at every vertex.
+
+    Parameters
+    ----------
+    points : (N, d) float array
+    candidates : (k,) int array
+        Rows of ``points``.
+    spacing : float
+        The least distance between two sites (> 0).
+    budget : int
+
+    Returns
+    -------
+    sites : (m,) int array
+        Rows of ``points``, ``m <= budget``.
+    spacing : float
+        The least distance between two sites (``spacing`` or wider).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> X = np.random.default_rng(1).random((5000, 2))
+    >>> sites, gap = thin_out(X, np.arange(5000), 0.01, 300)
+    >>> len(sites), gap > 0.01
+    (300, True)
+    """
+    candidates = np.asarray(candidates, dtype=np.int64)
+    P = np.asarray(points, dtype=np.float64)[candidates]
+    keep = spread_sample(P, spacing)
+    if keep.size <= budget:
+        return candidates[keep], float(spacing)
+    lo, hi = float(spacing), float(spacing) * np.sqrt(keep.size / budget)
+    while spread_sample(P, hi).size > budget:
+        hi *= 1.5
+    for _ in range(12):                                  # the widest spacing that keeps >= budget sites
+        mid = np.sqrt(lo * hi)
+        trial = spread_sample(P, mid)
+        if trial.size >= budget:
+            lo, keep = mid, trial
+        else:
+            hi = mid
+        if keep.size == budget:
+            break
+    if keep.size > budget:                               # drop the most crowded sites
+        from scipy.spatial import cKDTree
+
+        gap = cKDTree(P[keep]).query(P[keep], k=2)[0][:, 1]
+        keep = np.sort(keep[np.argsort(-gap, kind="stable")[:budget]])
+    return candidates[keep], float(lo)
+
+
+def _title_band(fig, title: str | None, dpi: int):
+    """Write ``title`` at the top of ``fig`` (wrapped to its width); the share of the height it takes (0 without).
+
+    The pictures draw below it, so that the title never covers what they show.
+    """
+    if not title:
+        return 0.0
+    import textwrap
+
+    W, H = fig.get_size_inches() * dpi
+    pad = 0.6 * TITLE_SIZE * dpi / 72.0                                # pixels above, below and left of it
+    text = fig.text(pad / W, 1 - pad / H, title, va="top", ha="left", fontsize=TITLE_SIZE)
+    renderer = fig.canvas.get_renderer()
+    width = text.get_window_extent(renderer).width
+    if width > W - 2 * pad:                                            # too long for one line: wrap it
+        chars = max(8, int(len(title) * (W - 2 * pad) / width))
+        text.set_text("\n".join(textwrap.wrap(title, chars, break_long_words=True)))
+    return min((text.get_window_extent(renderer).height + 2 * pad) / H, 0.5)
+
+
 def finish_figure(fig, ax, path, xy, aspect, title, dpi, background) -> str:
-    """Frame the projected points ``xy`` with a small margin, add the title, write the PNG.
+    """Frame the projected points ``xy`` with a small margin below the title, write the PNG.
+
+    The title (if any) takes a band at the top of the picture (:func:`_title_band`) and the points
+    are framed in the rest, so that the title never overlaps the drawing.
 
     Parameters
     ----------
@@ -510,12 +684,16 @@ def finish_figure(fig, ax, path, xy, aspect, title, dpi, background) -> str:
     str
         The path written.
     """
+    band = _title_band(fig, title, dpi)
+    if band:
+        ax.set_position((0, 0, 1, 1 - band))
+        aspect = aspect / (1 - band)
     lo, hi = xy.min(axis=0), xy.max(axis=0)
-    mid, half = (lo + hi) / 2, 0.53 * max((hi - lo).max(), 1e-12)
-    ax.set_xlim(mid[0] - half * max(aspect, 1), mid[0] + half * max(aspect, 1))
-    ax.set_ylim(mid[1] - half / min(aspect, 1), mid[1] + half / min(aspect, 1))
-    if title:
-        ax.text(0.02, 0.98, title, transform=ax.transAxes, va="top", ha="left", fontsize=10)
+    mid = (lo + hi) / 2
+    hx, hy = 0.53 * np.maximum(hi - lo, 1e-12)                        # a 6 % margin
+    hx, hy = max(hx, hy * aspect), max(hy, hx / aspect)                # one scale on both axes
+    ax.set_xlim(mid[0] - hx, mid[0] + hx)
+    ax.set_ylim(mid[1] - hy, mid[1] + hy)
     return write_png(fig, path, dpi, background)
 
 

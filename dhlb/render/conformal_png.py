@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhlb._deprecation import fold_deprecated_kwargs
-from dhlb.render._figure import _CAMERA, Camera, ConformalStyle, _matplotlib, write_png
+from dhlb.render._figure import _CAMERA, Camera, ConformalStyle, _matplotlib, _title_band, write_png
 
 if TYPE_CHECKING:
     import os
@@ -41,7 +41,7 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
     triangles above it have the top colour (the bar's arrow says so).
 
     The deformed mesh is shown after the rigid motion that best aligns it with the input (the map is
-    defined up to one).
+    defined up to one); each panel is scaled to fit its mesh.
 
     Parameters
     ----------
@@ -59,7 +59,7 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
     style : ConformalStyle, optional
         Colormap and background (:class:`~dhlb.render.ConformalStyle`).
     title : str, optional
-        Written above the panels.
+        Written above the panels (wrapped to the picture's width).
     **deprecated
         The keywords ``view``, ``up``, ``size``, ``dpi`` (→ ``camera``) of dhlb 0.1, with a
         :class:`DeprecationWarning`.
@@ -112,8 +112,11 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
     cmap = colormaps[style.colormap]
     fig = Figure(figsize=(size[0] / dpi, size[1] / dpi), dpi=dpi, facecolor=style.background)
     FigureCanvasAgg(fig)
-    for k, (V, name) in enumerate(((np.asarray(before, float), "before"), (np.asarray(after, float), "after"))):
-        ax = fig.add_axes([k / 2, 0.17, 0.5, 0.75])
+    band = _title_band(fig, title, dpi)                  # the title above the panels, never over them
+    top = max(1 - band - 1.6 * 10 * dpi / 72 / size[1], 0.3)   # room for the panels' own titles
+    aspect = 0.5 * size[0] / ((top - 0.17) * size[1])    # of one panel
+    for k, (V, name) in enumerate(((B, "before"), (np.asarray(after, float), "after"))):
+        ax = fig.add_axes([k / 2, 0.17, 0.5, top - 0.17])
         ax.set_axis_off()
         xy = np.c_[V @ right, V @ upv]
         depth = V[F].mean(axis=1) @ w
@@ -125,11 +128,12 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
         colors = cmap(norm(d[order]))
         colors[:, :3] *= shade[:, None]
         ax.add_collection(PolyCollection(xy[F[order]], facecolors=colors, edgecolors="none"))
-        lo, hi_ = xy.min(0), xy.max(0)
-        mid, half = (lo + hi_) / 2, 0.55 * max((hi_ - lo).max(), 1e-12)
-        ax.set_xlim(mid[0] - half, mid[0] + half)
-        ax.set_ylim(mid[1] - half, mid[1] + half)
-        ax.set_aspect("equal")
+        drawn = xy[np.unique(F)] if F.size else xy
+        lo, hi_ = drawn.min(0), drawn.max(0)
+        mid = (lo + hi_) / 2
+        hy = 0.55 * max((hi_[0] - lo[0]) / aspect, hi_[1] - lo[1], 1e-12)   # the mesh fills its panel
+        ax.set_xlim(mid[0] - hy * aspect, mid[0] + hy * aspect)
+        ax.set_ylim(mid[1] - hy, mid[1] + hy)
         ax.set_title(name, fontsize=10)
     from matplotlib.cm import ScalarMappable
 
@@ -137,8 +141,6 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
                        orientation="horizontal", extend="max" if d.size and float(np.nanmax(d)) > hi else "neither")
     bar.set_label("distortion of the tet (1 = conformal)", fontsize=9)   # bar and label above the bottom edge
     bar.ax.tick_params(labelsize=8)
-    if title:
-        fig.suptitle(title, fontsize=10)
     return write_png(fig, path, dpi, style.background)
 
 

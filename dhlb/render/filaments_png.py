@@ -90,6 +90,23 @@ def feature_edges(V: ArrayLike, F: ArrayLike, angle: float = 30.0) -> np.ndarray
     return np.concatenate([inner[bent], border])
 
 
+def _along(xy, closed: bool, reach: float) -> list:
+    """For each segment of the projected polyline ``xy``, the other segments less than ``reach`` away along it."""
+    length = np.linalg.norm(np.diff(xy, axis=0), axis=1)
+    m = len(length)
+    end = np.cumsum(length)
+    start = end - length
+    total = end[-1] if m else 0.0
+    out = []
+    for i in range(m):
+        gap = np.maximum(start - end[i], start[i] - end)          # along the polyline, 0 for neighbours
+        if closed:
+            gap = np.minimum(gap, np.minimum(total - (end[i] - start), total - (end - start[i])))   # around
+        j = np.nonzero(gap < reach)[0]
+        out.append(j[j != i])
+    return out
+
+
 def _outline_edges(V, F, w):
     """Contour and feature edges of the triangle surface (V, F) seen along ``w``: (edges (e, 2), front (e,) bool)."""
     fn = _unit(np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]))
@@ -205,15 +222,20 @@ def render_filaments_png(
             if np.any(sel):
                 ax.add_collection(LineCollection(xy[edges[sel]], colors=outline_color, linewidths=0.8,
                                                  linestyles=style, zorder=1), autolim=False)
-    segs, depth, cols = [], [], []
+    ext = np.maximum(np.ptp(xy_all[0], axis=0), 1e-300)
+    pixels = min(W / (1.06 * ext[0]), H / (1.06 * ext[1]))     # per world unit, about as finish_figure frames
+    reach = 1.5 * ((line_width + 2.0) / 2 * dpi / 72.0 + 1.0) / pixels   # of a halo's round cap, with room
+    segs, depth, cols, near = [], [], [], []
     for k, (X, closed) in enumerate(curves):
         if X.shape[0] < 2:
             continue
         Y = np.concatenate([X, X[:1]]) if closed else X
         xy, d = proj(Y)
+        base = sum(len(x) for x in segs)
         segs.append(np.stack([xy[:-1], xy[1:]], axis=1))
         depth.append(0.5 * (d[:-1] + d[1:]))
         cols.append(np.tile(to_rgba(_COLORS[k % len(_COLORS)]), (xy.shape[0] - 1, 1)))
+        near += [base + j for j in _along(xy, closed, reach)]
         mid = (Y.shape[0] - 1) // 2
         ax.annotate("", xy=xy[mid + 1], xytext=xy[mid], zorder=4,
                     arrowprops={"arrowstyle": "-|>", "color": _COLORS[k % len(_COLORS)], "lw": 0,
@@ -221,14 +243,14 @@ def render_filaments_png(
     if segs:
         S, D, C = np.concatenate(segs), np.concatenate(depth), np.concatenate(cols)
         order = np.argsort(D, kind="stable")
-        S, C = S[order], C[order]
-        halo = np.tile(to_rgba(background), (S.shape[0], 1))
-        inter = np.empty((2 * S.shape[0], 2, 2))
-        inter[0::2], inter[1::2] = S, S
-        icol = np.empty((2 * S.shape[0], 4))
-        icol[0::2], icol[1::2] = halo, C
-        widths = np.empty(2 * S.shape[0])
-        widths[0::2], widths[1::2] = line_width + 2.0, line_width
-        ax.add_collection(LineCollection(inter, colors=icol, linewidths=widths, capstyle="butt", joinstyle="round",
+        # back to front, each segment: its halo, then in colour the segments of its own filament that the
+        # halo's cap reaches (along the filament) and itself last, with round caps: a halo covers what the
+        # segment passes in front of, never its own filament's joints (no white notch across the line)
+        rows = np.concatenate([np.r_[i, near[i], i] for i in order.tolist()])
+        halo = np.concatenate([np.r_[True, np.zeros(len(near[i]) + 1, bool)] for i in order.tolist()])
+        inter, icol = S[rows], C[rows]
+        icol[halo] = to_rgba(background)
+        widths = np.where(halo, line_width + 2.0, float(line_width))
+        ax.add_collection(LineCollection(inter, colors=icol, linewidths=widths, capstyle="round", joinstyle="round",
                                          zorder=3), autolim=False)
     return finish_figure(fig, ax, path, np.concatenate(xy_all), W / H, title, dpi, background)

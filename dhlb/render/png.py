@@ -3,7 +3,8 @@
 The mesh is drawn with an orthographic camera looking from ``view`` toward the mesh centre,
 Lambert-shaded with a light near the camera. Faces pointing away from the camera are culled
 on closed meshes (on meshes with boundary both sides are shown). Faces, direction glyphs (short
-segments from each vertex along each of its n directions, with an arrowhead when n = 1) and
+segments from each vertex along each of its n directions, with an arrowhead when n = 1; on a mesh
+finer than the picture, from an evenly spread subset of the vertices, :func:`glyph_sites`) and
 singularities (dots: red for positive index, blue for negative) are depth-sorted together and
 drawn back to front in one
 ``PolyCollection`` (painter's algorithm), so glyphs and dots on the far side are hidden.
@@ -19,14 +20,32 @@ import numpy as np
 from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import NonFiniteError, ShapeError
 from dhlb.mesh.arrays import mesh_arrays
-from dhlb.render._figure import _CAMERA, NEGATIVE, POSITIVE, Camera, FieldStyle, _matplotlib, _unit, finish_figure
+from dhlb.render._figure import (
+    _CAMERA,
+    NEGATIVE,
+    POSITIVE,
+    Camera,
+    FieldStyle,
+    _matplotlib,
+    _unit,
+    finish_figure,
+    thin_out,
+)
 
 if TYPE_CHECKING:
     from typing import Any
 
     from numpy.typing import ArrayLike
 
-__all__ = ["render_field_png"]
+__all__ = ["GLYPH_SPACING", "glyph_sites", "render_field_png"]
+
+GLYPH_SPACING = 7.2
+"""The least distance between two direction glyphs on a picture, in points (10 pixels at 100 dpi).
+
+On a mesh whose vertices are closer than that on the picture (a fine scan), the glyphs are drawn on
+an evenly spread subset of the vertices, :func:`glyph_sites`: one glyph per vertex would merge into a
+grey moiré.
+"""
 
 _FIELD_STYLE = ("glyph_length", "glyph_width", "glyph_color", "face_color", "ambient", "max_glyphs", "dot_radius",
                 "background")
@@ -55,6 +74,55 @@ def _check(V, F, directions, singularities):
             raise NonFiniteError("a singularity position is not finite")
         S = (pts, idx)
     return P, T, D, S
+
+
+def glyph_sites(points, candidates, mean_edge: float, xy, size, dpi: int,
+                max_glyphs: int) -> tuple[np.ndarray, float]:
+    """The vertices that carry a glyph on a picture, and the spacing of the glyphs in world units.
+
+    Every candidate when their mean edge length is at least :data:`GLYPH_SPACING` on the picture and
+    they are at most ``max_glyphs``; else an evenly spread subset (:func:`dhlb.render._figure.thin_out`)
+    with no two closer than that spacing in space, widened until at most ``max_glyphs`` remain.
+
+    Parameters
+    ----------
+    points : (N, 3) float array
+        The vertices.
+    candidates : (k,) int array
+        Rows of ``points`` that may carry a glyph (seen, with a direction).
+    mean_edge : float
+        The mean edge length of the mesh.
+    xy : (N, 2) float array
+        The vertices projected on the picture plane (world units), to find the scale of the picture.
+    size : (int, int)
+        The picture's width and height in pixels.
+    dpi : int
+    max_glyphs : int
+
+    Returns
+    -------
+    sites : (m,) int array
+        Rows of ``points``, ``m <= max_glyphs``.
+    spacing : float
+        ``mean_edge``, or the least distance between two sites when they were thinned out (the
+        glyphs are 0.45 of it long).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> g = np.stack(np.meshgrid(np.linspace(0, 1, 200), np.linspace(0, 1, 200)), -1).reshape(-1, 2)
+    >>> P = np.c_[g, np.zeros(len(g))]                      # 40 000 vertices 0.005 apart
+    >>> sites, spacing = glyph_sites(P, np.arange(len(P)), 0.005, g, (400, 400), 100, 40000)
+    >>> len(sites) < 2000, round(spacing, 4)                 # 10 pixels: 1/38 of the picture's width
+    (True, 0.0265)
+    """
+    candidates = np.asarray(candidates, dtype=np.int64)
+    ext = np.maximum(np.ptp(np.asarray(xy, dtype=np.float64), axis=0), 1e-300)
+    pixels = min(size[0] / (1.06 * ext[0]), size[1] / (1.06 * ext[1]))   # per world unit, as finish_figure frames
+    gap = GLYPH_SPACING * dpi / 72.0 / pixels
+    if mean_edge >= gap and candidates.size <= max_glyphs:
+        return candidates, float(mean_edge)
+    return thin_out(points, candidates, max(gap, float(mean_edge)), max_glyphs)
 
 
 def render_field_png(
@@ -138,22 +206,21 @@ def render_field_png(
     keep = facing > 0 if closed else np.ones(len(T), bool)
     shade = np.where(facing < 0, -shade, shade) if not closed else shade
     lam = ambient + (1 - ambient) * np.clip(shade, 0, 1)
-    fcol = np.clip(np.asarray(face_color, float)[None, :3] * lam[:, None], 0, 1)
+    from matplotlib.colors import to_rgb, to_rgba
+
+    fcol = np.clip(np.asarray(to_rgb(face_color))[None, :] * lam[:, None], 0, 1)   # any matplotlib colour
     mean_edge = float(np.mean(np.linalg.norm(P[edges[:, 0]] - P[edges[:, 1]], axis=1)))
-    from matplotlib.colors import to_rgba
     # every item is a triangle (glyphs: degenerate (a, b, b); dots: fans of 10 triangles), so that
     # matplotlib takes the fast (k, 3, 2) array path; all items are depth-sorted together
     tris, zs = [xy[T[keep]]], [depth[T[keep]].mean(axis=1)]
     face_rgba = np.column_stack([fcol[keep], np.ones(keep.sum())])
     colors, edgecols = [face_rgba], [face_rgba]
     if D is not None:
-        ell = 0.45 * mean_edge if glyph_length is None else float(glyph_length)
         vn = np.zeros_like(P)
         np.add.at(vn, T.ravel(), np.repeat(fn, 3, axis=0))
         has = np.any(D != 0, axis=(1, 2)) & ((vn @ w > 0) if closed else True)
-        verts = np.nonzero(has)[0]
-        if verts.size > max_glyphs:
-            verts = verts[np.linspace(0, verts.size - 1, max_glyphs).astype(np.int64)]
+        verts, spacing = glyph_sites(P, np.nonzero(has)[0], mean_edge, xy, size, dpi, max_glyphs)
+        ell = 0.45 * spacing if glyph_length is None else float(glyph_length)
         vv, kk = np.nonzero(np.any(D[verts] != 0, axis=2))
         vv = verts[vv]
         tip = Q[vv] + ell * D[vv, kk]

@@ -86,11 +86,12 @@ def _(result, path, size=(320, 320)) -> str:
     import dataclasses
 
     from dhlb.render import FILAMENT_CAMERA, render_filaments_png
+    from dhlb.render._figure import plural
 
     mesh = result.mesh  # None: curves read back without their domain
     return render_filaments_png(path, result.filaments, None if mesh is None else mesh.points,
                                 None if mesh is None else mesh.boundary_faces,
-                                title=f"{len(result.filaments)} filament(s)",
+                                title=plural(len(result.filaments), "filament"),
                                 camera=dataclasses.replace(FILAMENT_CAMERA, size=size))
 
 

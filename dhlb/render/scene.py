@@ -44,6 +44,7 @@ from dhlb.render._figure import (
     OUTLINE_COLOR,
     POSITIVE,
     Camera,
+    plural,
 )
 from dhlb.render.filaments_png import feature_edges
 
@@ -52,7 +53,8 @@ if TYPE_CHECKING:
 
     from numpy.typing import ArrayLike
 
-__all__ = ["Scene", "SceneCurves", "SceneMesh", "ScenePoints", "index_colors", "index_label", "scene_of"]
+__all__ = ["Scene", "SceneCurves", "SceneMesh", "ScenePoints", "bounding_sphere", "index_colors", "index_label",
+           "scene_of"]
 
 
 def index_label(k: int, n: int) -> str:
@@ -106,6 +108,8 @@ class ScenePoints:
     colors: np.ndarray
     radius: float
     labels: list | None = None
+    normals: np.ndarray | None = None
+    two_sided: bool = False
 
 
 @dataclass
@@ -118,6 +122,7 @@ class SceneCurves:
     color: tuple
     radius: float
     label: str | None = None
+    normals: np.ndarray | None = None
 
 
 @dataclass
@@ -196,22 +201,29 @@ class Scene:
         return mesh
 
     def add_points(self, name: str, P: ArrayLike, colors: ArrayLike, *, radius: float = 0.01,
-                   labels: Sequence[str] | None = None) -> None:
+                   labels: Sequence[str] | None = None, normals: ArrayLike | None = None,
+                   two_sided: bool = False) -> None:
         """Add points ``(k, 3)`` with one RGB colour each (or one for all); radius relative to the scene.
 
         ``labels`` (one string per point) is what the web view shows when the pointer is over a point.
+        ``normals`` ``(k, 3)``: the normal of the surface the points lie on, along which the web view
+        lifts their markers off it (on both sides with ``two_sided``, for a surface with boundary).
         """
         X = np.asarray(P, dtype=np.float64).reshape(-1, 3)
         C = np.broadcast_to(np.asarray(colors, dtype=np.float64), (len(X), 3)).copy()
         if labels is not None and len(labels) != len(X):
             raise ShapeError(f"points {name!r}: {len(X)} points but {len(labels)} labels")
-        self.points.append(ScenePoints(name, X, C, float(radius), None if labels is None else list(labels)))
+        N = None if normals is None else _unit_rows(normals, len(X), f"points {name!r}")
+        self.points.append(ScenePoints(name, X, C, float(radius), None if labels is None else list(labels), N,
+                                       bool(two_sided)))
 
     def add_curves(self, name: str, curves: Sequence[Any], *, color: Sequence[float] = GLYPH_COLOR,
-                   radius: float = 0.004, label: str | None = None) -> None:
+                   radius: float = 0.004, label: str | None = None, normals: Sequence[Any] | None = None) -> None:
         """Add polylines: Filaments (``.points``, ``.closed``), ``(points, closed)`` pairs or (m, 3) arrays.
 
         ``label`` is what the web view shows when the pointer is over the curves (nothing by default).
+        ``normals`` (one ``(m, 3)`` array per curve): the normal of the surface the curves lie on, along
+        which the web view lifts them off it.
         """
         nodes, edges, base = [], [], 0
         for c in curves:
@@ -230,7 +242,11 @@ class Scene:
             base += m
         N = np.concatenate(nodes) if nodes else np.zeros((0, 3))
         E = np.concatenate(edges).astype(np.int64) if edges else np.zeros((0, 2), np.int64)
-        self.curves.append(SceneCurves(name, N, E, tuple(color), float(radius), label))
+        up = None
+        if normals is not None:
+            parts = [np.asarray(n, float).reshape(-1, 3) for n in normals]
+            up = _unit_rows(np.concatenate(parts or [np.zeros((0, 3))]), len(N), f"curves {name!r}")
+        self.curves.append(SceneCurves(name, N, E, tuple(color), float(radius), label, up))
 
     def drawn_points(self) -> np.ndarray:
         """Every point drawn, ``(k, 3)``: the vertices the faces use, the points, the curves' nodes."""
@@ -242,6 +258,19 @@ class Scene:
         """``(lower, upper)`` corners of the bounding box of everything drawn (:meth:`drawn_points`)."""
         X = self.drawn_points()
         return X.min(axis=0), X.max(axis=0)
+
+
+def _unit_rows(normals, k: int, what: str) -> np.ndarray:
+    N = np.asarray(normals, dtype=np.float64).reshape(-1, 3)
+    if len(N) != k:
+        raise ShapeError(f"{what}: {k} points but {len(N)} normals")
+    length = np.linalg.norm(N, axis=1, keepdims=True)
+    return np.nan_to_num(N / np.where(length > 0, length, 1.0))
+
+
+def _face_normals(mesh, faces) -> np.ndarray:
+    P, T = mesh.points, mesh.faces[np.asarray(faces, dtype=np.int64).reshape(-1)]
+    return np.cross(P[T[:, 1]] - P[T[:, 0]], P[T[:, 2]] - P[T[:, 0]])
 
 
 def index_colors(index: ArrayLike) -> np.ndarray:
@@ -269,7 +298,8 @@ def _field_scene(res) -> Scene:
     if len(sing.faces):
         s.add_points("singularities", sing.points, index_colors(sing.index), radius=0.012,
                      labels=[f"face {f}, index {index_label(k, res.n)}"
-                             for f, k in zip(np.asarray(sing.input_faces).tolist(), np.asarray(sing.index).tolist())])
+                             for f, k in zip(np.asarray(sing.input_faces).tolist(), np.asarray(sing.index).tolist())],
+                     normals=_face_normals(mesh, sing.faces), two_sided=not mesh.is_closed)
     return s
 
 
@@ -278,7 +308,8 @@ def _stripes_scene(res, isolines: bool = True) -> Scene:
 
     tex = res.texture
     mesh = res.mesh
-    s = Scene(title=f"stripes n = {res.n}: {tex.zero_faces.size} zeros, {tex.branch_faces.size} branch faces")
+    s = Scene(title=f"stripes n = {res.n}: {plural(tex.zero_faces.size, 'zero')}, "
+                    f"{plural(tex.branch_faces.size, 'branch face')}")
     # The per-corner α is defined per face up to α → α + 2π and, for line fields (n = 2), α → −α (the
     # sheet of the double cover): draw the distance of u = α/2π to the nearest integer, which both leave
     # alone; checker cells of 1/4 then show the bands cos α > 0 and cos α < 0, the stripes.
@@ -287,19 +318,23 @@ def _stripes_scene(res, isolines: bool = True) -> Scene:
                scalars={"zero index": tex.zero_index}).texture = tex
     if isolines:
         iso = trace(tex)
-        s.add_curves("isolines", [iso.points[p] for p in iso.polylines], color=(0.05, 0.05, 0.08), radius=0.0015)
+        up = _face_normals(tex.mesh, iso.faces)
+        s.add_curves("isolines", [iso.points[p] for p in iso.polylines], color=(0.05, 0.05, 0.08), radius=0.0015,
+                     normals=[up[p] for p in iso.polylines])
     if tex.zero_faces.size:
         k = tex.zero_index[tex.zero_faces]
         s.add_points("zeros", tex.zero_points, index_colors(k), radius=0.01,
-                     labels=[f"zero in face {f}, index {i:+d}" for f, i in zip(tex.zero_faces.tolist(), k.tolist())])
+                     labels=[f"zero in face {f}, index {i:+d}" for f, i in zip(tex.zero_faces.tolist(), k.tolist())],
+                     normals=_face_normals(tex.mesh, tex.zero_faces), two_sided=not tex.mesh.is_closed)
     if tex.branch_faces.size:
         s.add_points("branch points", tex.branch_points, BRANCH, radius=0.01,
-                     labels=[f"branch point in face {f}" for f in tex.branch_faces.tolist()])
+                     labels=[f"branch point in face {f}" for f in tex.branch_faces.tolist()],
+                     normals=_face_normals(tex.mesh, tex.branch_faces), two_sided=not tex.mesh.is_closed)
     return s
 
 
 def _vortex_scene(res) -> Scene:
-    s = Scene(title=f"{len(res.filaments)} filaments")
+    s = Scene(title=plural(len(res.filaments), "filament"))
     mesh = res.mesh
     if mesh is not None:  # a result read back from curves alone has no domain
         s.add_mesh("domain", mesh.points, mesh.boundary_faces, color=(*FACE_COLOR, 0.25))
@@ -327,15 +362,43 @@ def _conformal_scene(res) -> Scene:
         return s
     before = np.asarray(res.mesh.points, dtype=np.float64)
     after = rigid_fit(res.points, before)
-    # side by side as in the PNG picture: the input on the left, the deformation on the right
+    # side by side as in the PNG picture: the input on the left, the deformation on the right, their bounding
+    # spheres apart (with a gap of a fifth of the larger), so that they cannot overlap however the view turns
     fitted = Camera().fitted(before)
     s.view = fitted.view
     right = fitted.frame()[0]
-    width = float(np.ptp(before @ right)) or 1.0
+    (cb, rb), (ca, ra) = (bounding_sphere(X[np.unique(F)]) for X in (before, after))
+    gap = 0.2 * max(rb, ra, 1e-12)
+    mid = 0.5 * (cb + ca)
     s.title += ": the input (left), deformed (right)"
-    for name, X in (("before", before - 0.6 * width * right), ("deformed", after + 0.6 * width * right)):
-        s.add_mesh(name, X, F, scalars={"distortion": dF}).show_scalar("distortion", **shown)
+    for name, X, c, at in (("before", before, cb, -(rb + 0.5 * gap)), ("deformed", after, ca, ra + 0.5 * gap)):
+        s.add_mesh(name, X - c + mid + at * right, F, scalars={"distortion": dF}).show_scalar("distortion", **shown)
     return s
+
+
+def bounding_sphere(points: ArrayLike) -> tuple[np.ndarray, float]:
+    """A sphere holding every point: the centre of their bounding box and the largest distance from it.
+
+    Parameters
+    ----------
+    points : (k, 3) float array
+
+    Returns
+    -------
+    centre : (3,) float array
+    radius : float
+
+    Examples
+    --------
+    >>> c, r = bounding_sphere([[0, 0, 0], [2, 0, 0], [1, 1, 0]])
+    >>> c.tolist(), r
+    ([1.0, 0.5, 0.0], 1.118033988749895)
+    """
+    X = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    if not len(X):
+        return np.zeros(3), 0.0
+    c = 0.5 * (X.min(axis=0) + X.max(axis=0))
+    return c, float(np.linalg.norm(X - c, axis=1).max())
 
 
 def scene_of(result: Any, *, isolines: bool = True) -> Scene:

@@ -157,7 +157,9 @@ def render_stripes_png(
     ff = np.repeat(faces, nt)
     g = fn(texture.evaluate(ff, np.tile(cen, (nf, 1))))
     g = np.nan_to_num(0.5 * (1 + g), nan=0.5)
-    c0, c1 = np.asarray(dark, float)[:3], np.asarray(light, float)[:3]
+    from matplotlib.colors import to_rgb
+
+    c0, c1 = np.asarray(to_rgb(dark)), np.asarray(to_rgb(light))     # any matplotlib colour
     col = c0[None, :] + g[:, None] * (c1 - c0)[None, :]
     col = np.clip(col * lam[ff][:, None], 0, 1)
     X = np.einsum("tc,fcd->ftd", nodes, P[F[faces]] - c)  # (nf, K, 3)

@@ -32,7 +32,7 @@ import numpy as np
 
 from dhlb._install import install_hint
 from dhlb.errors import InvalidParameterError, OutputError, ViewerUnavailableError
-from dhlb.render._figure import GLYPH_COLOR, STRIPE_DARK, STRIPE_LIGHT, mean_edge_length  # the one palette
+from dhlb.render._figure import GLYPH_COLOR, STRIPE_DARK, STRIPE_LIGHT, mean_edge_length, thin_out  # the one palette
 from dhlb.render.scene import Scene, index_colors, scene_of  # the one scene builder (re-exported)
 
 if TYPE_CHECKING:
@@ -48,6 +48,8 @@ __all__ = [
     "camera_for",
 ]
 
+MAX_GLYPHS = 3000
+"""At most this many vertices carry direction glyphs in the viewer (an evenly spread subset of a finer mesh)."""
 VIEW_EXTRA = f"polyscope is not installed: {install_hint('polyscope', 'view')}"
 """The message of the ``ImportError`` raised when polyscope is missing."""
 
@@ -80,6 +82,17 @@ def _no_imgui_ini() -> None:
 
         psim.GetIO().IniFilename = _NO_INI
     except Exception:  # an older polyscope without these bindings: the file is harmless
+        pass
+
+
+def _no_prefs_file(ps) -> None:
+    """Keep polyscope from reading and writing ``.polyscope.ini`` (its window size and place) in the working folder.
+
+    Called before ``polyscope.init``, which reads the file, and whose shutdown writes it.
+    """
+    try:
+        ps.set_use_prefs_file(False)
+    except AttributeError:  # an older polyscope without the option
         pass
 
 
@@ -141,6 +154,7 @@ def _init(ps, headless: bool) -> None:
                                      "'dhlb view OUT --screenshot view.png' (needs EGL: apt-get install libegl1 "
                                      "libegl-mesa0 libgl1-mesa-dri)")
     try:
+        _no_prefs_file(ps)
         if headless:
             ps.set_allow_headless_backends(True)
             ps.init("openGL3_egl")
@@ -218,10 +232,16 @@ def _register(ps, scene: Scene) -> None:
         sm = ps.register_surface_mesh(m.name, m.points, m.faces, color=m.color, smooth_shade=True)
         if m.transparency < 1.0:
             sm.set_transparency(m.transparency)
-        e = mean_edge_length(m.points, m.faces)
+        e, scale = mean_edge_length(m.points, m.faces), np.ones(len(m.points))
+        sites = np.nonzero(np.any([np.any(v != 0, axis=1) for v in m.vectors.values()], axis=0))[0] \
+            if m.vectors else np.zeros(0, np.int64)
+        if sites.size > MAX_GLYPHS:   # a fine mesh: glyphs on an evenly spread subset, as far apart (no moiré)
+            kept, e = thin_out(m.points, sites, 0.5 * e, MAX_GLYPHS)
+            scale = np.zeros(len(m.points))
+            scale[kept] = 1.0
         for k, v in m.vectors.items():  # glyphs of 0.45 mean edge lengths, as in the PNG pictures
-            sm.add_vector_quantity(k, 0.45 * e * v, defined_on="vertices", enabled=True, vectortype="ambient",
-                                   radius=0.0012, color=GLYPH_COLOR)
+            sm.add_vector_quantity(k, 0.45 * e * scale[:, None] * v, defined_on="vertices", enabled=True,
+                                   vectortype="ambient", radius=0.0012, color=GLYPH_COLOR)
         for k, v in m.scalars.items():
             rng = {} if m.scalar_range is None or k != m.shown_scalar else {"vminmax": m.scalar_range}
             sm.add_scalar_quantity(k, v, defined_on="vertices" if len(v) == len(m.points) else "faces",

@@ -45,21 +45,29 @@ import numpy as np
 
 from dhlb._install import install_hint
 from dhlb.errors import InvalidParameterError, OutputError
-from dhlb.render._figure import GLYPH_COLOR, STRIPE_DARK, STRIPE_LIGHT, Camera, mean_edge_length, up_vector
+from dhlb.render._figure import (
+    GLYPH_COLOR,
+    STRIPE_DARK,
+    STRIPE_LIGHT,
+    Camera,
+    mean_edge_length,
+    thin_out,
+    up_vector,
+)
 from dhlb.render.scene import Scene, scene_of
 
 if TYPE_CHECKING:
     from dhlb.render.scene import SceneCurves, SceneMesh, ScenePoints
 
 __all__ = ["MAX_FACES", "MAX_GLYPHS", "WEB_EXTRA", "decimate", "figure", "figure_spec", "notebook_view",
-           "plotlyjs_path", "stripe_surface", "to_html", "write_plotlyjs"]
+           "plotlyjs_path", "smooth_stripe_surface", "stripe_surface", "to_html", "write_plotlyjs"]
 
 WEB_EXTRA = f"plotly is not installed: {install_hint('plotly', 'web')}"
 """The message of the ``ImportError`` raised when plotly is missing."""
 MAX_FACES = 200_000
 """Meshes with more faces are decimated for the web view (the page stays light)."""
 MAX_GLYPHS = 3000
-"""At most this many vertices carry direction glyphs."""
+"""At most this many vertices carry direction glyphs (an evenly spread subset of a finer mesh, glyphs as far apart)."""
 STRIPE_TRIANGLES = 60_000
 """Budget of sub-triangles of the refined copy that carries a stripe texture."""
 PLOTLYJS = "plotly.min.js"
@@ -69,6 +77,10 @@ ZOOM = 1.8
 """plotly's orthographic zoom (the aspect ratio of a cube around the scene's bounding sphere) that frames it."""
 FILL = 0.8
 """The share of the picture's height that the first view fills (the rest: margin, title)."""
+SMALL_VIEW = 480
+"""Pixels: the height of the view the markers are lifted for (a card of the demo page is about 470 high)."""
+MARKER_LIFT = 0.6
+"""Markers on a surface are lifted off it by this many marker radii (in a view :data:`SMALL_VIEW` high)."""
 
 
 # ---------------------------------------------------------------------------- pieces of geometry
@@ -191,6 +203,148 @@ def stripe_surface(texture, max_triangles: int = STRIPE_TRIANGLES, samples: floa
     return tuple(np.concatenate([q[i] for q in parts]) for i in range(5))
 
 
+PHONG = 0.75
+"""The shape factor of the Phong tessellation that curves the refined copy of a stripe texture's mesh."""
+
+
+def _phong(X, N, b):
+    """Phong tessellation (Boubekeur & Alexa 2008): the point of barycentric ``b`` on the curved triangle X, N.
+
+    ``X``, ``N``: (k, 3, 3) corners and their unit vertex normals; ``b``: (k, 3). The flat point is
+    pulled toward its projections on the three corners' tangent planes (weights ``b``, factor :data:`PHONG`).
+    """
+    q = np.einsum("kc,kcd->kd", b, X)
+    off = np.einsum("kcd,kcd->kc", q[:, None, :] - X, N)
+    return q - PHONG * np.einsum("kc,kc,kcd->kd", b, off, N)
+
+
+def smooth_stripe_surface(mesh, faces, alpha, face, bary) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Positions and welded triangles for the refined copy of :func:`stripe_surface`, so that it shades smoothly.
+
+    The copy is refined on flat faces and not welded, so a browser computing vertex normals from its
+    triangles would shade each face of the mesh flat: every face of the input shows. Here each node
+    is moved onto the Phong tessellation of the mesh (:func:`_phong`, with the mesh's vertex normals;
+    a node on an edge of the mesh onto the polyline of the coarser of the edge's two faces, so that
+    neither side opens a crack), and the triangles are re-pointed at one node per position and
+    value of ``cos α`` (nodes across a branch cut stay apart). The arrays of nodes keep their length
+    and order (``alpha`` still applies to them).
+
+    Parameters
+    ----------
+    mesh : SurfaceMesh
+        ``texture.mesh``.
+    faces : (T, 3) int array
+        The triangles of :func:`stripe_surface`.
+    alpha, face, bary : (K,), (K,), (K, 3) arrays
+        α, the face and the barycentric coordinates of each node (:func:`stripe_surface`).
+
+    Returns
+    -------
+    points : (K, 3) float array
+    faces : (T, 3) int array
+        Rows of ``points``: nodes at the same place with the same ``cos α`` are one.
+    rise : (K,) float array
+        How far each node stands above its flat face (along the face's normal; negative: below).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhlb.mesh import validate_surface
+    >>> from dhlb.stripes import stripe_form, texture_coordinates
+    >>> V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.0]])
+    >>> form = stripe_form(validate_surface(V, [[0, 1, 2], [1, 3, 2]]), np.tile([1.0, 0, 0], (4, 1)),
+    ...                    frequency=2, warn_aliasing=False)
+    >>> tex = texture_coordinates(form, np.exp(4j * np.pi * V[:, 0]))
+    >>> X, T, alpha, face, bary = stripe_surface(tex)
+    >>> Y, W, rise = smooth_stripe_surface(tex.mesh, T, alpha, face, bary)
+    >>> len(np.unique(W)) < len(np.unique(T)), float(np.abs(rise).max())   # welded; a flat mesh stays flat
+    (True, 0.0)
+    """
+    P, F = np.asarray(mesh.points, dtype=np.float64), np.asarray(mesh.faces, dtype=np.int64)
+    N = _vertex_normals(P, F)
+    corners = F[face]
+    b = np.asarray(bary, dtype=np.float64)
+    X = _phong(P[corners], N[corners], b)
+    zero = b <= 1e-12
+    nz = zero.sum(axis=1)
+    at = np.nonzero(nz == 2)[0]                                     # corners of the mesh: its vertices
+    X[at] = P[corners[at, np.argmax(b[at], axis=1)]]
+    on = np.nonzero(nz == 1)[0]                                     # on an edge of the mesh
+    if on.size:
+        z = np.argmax(zero[on], axis=1)
+        i, j = (z + 1) % 3, (z + 2) % 3
+        va, vb = corners[on, i], corners[on, j]
+        ta = b[on, j] / (b[on, i] + b[on, j])                        # from va toward vb
+        swap = va > vb
+        lo, hi = np.where(swap, vb, va), np.where(swap, va, vb)
+        one = np.int64(1) << 30
+        tq = np.rint(np.where(swap, 1 - ta, ta) * one).astype(np.int64)   # from lo toward hi
+        edges, eid = np.unique(np.stack([lo, hi], axis=1), axis=0, return_inverse=True)
+        eid = eid.reshape(-1)
+        # each edge's coarser side: of the faces at it, the one with the fewest nodes inside it (perhaps none);
+        # its nodes and both ends are the polyline both sides follow
+        rows = np.unique(np.stack([eid, face[on], tq], axis=1), axis=0)
+        pair, count = np.unique(rows[:, :2], axis=0, return_counts=True)
+        nv, nf = len(P), len(F)
+        side = np.sort(F[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)          # every face's edges
+        side_key, side_face = side[:, 0] * nv + side[:, 1], np.repeat(np.arange(nf), 3)
+        near = np.isin(side_key, edges[:, 0] * nv + edges[:, 1])
+        adj = np.stack([np.searchsorted(edges[:, 0] * nv + edges[:, 1], side_key[near]), side_face[near]], 1)
+        found = np.searchsorted(pair[:, 0] * nf + pair[:, 1], adj[:, 0] * nf + adj[:, 1])
+        found = np.minimum(found, len(pair) - 1)
+        hit = pair[found, 0] * nf + pair[found, 1] == adj[:, 0] * nf + adj[:, 1]
+        n_inside = np.where(hit, count[found], 0)
+        best = np.lexsort((n_inside, adj[:, 0]))
+        first = best[np.r_[True, adj[best][1:, 0] != adj[best][:-1, 0]]]
+        chosen = adj[first]                                         # (edge, face) of the coarser side
+        keep = np.isin(rows[:, 0] * nf + rows[:, 1], chosen[:, 0] * nf + chosen[:, 1])
+        ids = np.arange(len(edges))
+        cnode = np.concatenate([rows[keep][:, [0, 2]], np.stack([ids, np.zeros_like(ids)], 1),
+                                np.stack([ids, np.full_like(ids, one)], 1)])
+        cnode = np.unique(cnode, axis=0)                            # sorted by edge, then t
+        t = cnode[:, 1] / one
+        e = edges[cnode[:, 0]]
+        w = np.stack([1 - t, t], axis=1)
+        at_nodes = _phong(P[e][:, [0, 1, 1]], N[e][:, [0, 1, 1]], np.c_[w, np.zeros(len(t))])
+        ckey = cnode[:, 0] * (one + 1) + cnode[:, 1]
+        key = eid * (one + 1) + tq
+        left = np.searchsorted(ckey, key, side="right") - 1
+        right = np.minimum(left + 1, len(ckey) - 1)
+        span = np.maximum(cnode[right, 1] - cnode[left, 1], 1)
+        u = ((tq - cnode[left, 1]) / span)[:, None]
+        X[on] = (1 - u) * at_nodes[left] + u * at_nodes[right]
+    flat = np.einsum("kc,kcd->kd", b, P[corners])
+    fn = np.cross(P[F[:, 1]] - P[F[:, 0]], P[F[:, 2]] - P[F[:, 0]])
+    fn /= np.maximum(np.linalg.norm(fn, axis=1, keepdims=True), 1e-300)
+    rise = np.einsum("kd,kd->k", X - flat, fn[face])
+    scale = max(float(np.ptp(P, axis=0).max()), 1e-300) / 2.0 ** 30
+    key = np.column_stack([np.rint(X / scale), np.rint(np.cos(alpha) * 2.0 ** 20)]).astype(np.int64)
+    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    return X, first[inverse.reshape(-1)][np.asarray(faces, dtype=np.int64)], rise
+
+
+class _Rise:
+    """How far the drawn surfaces stand above the mesh near given points (0 where a mesh is drawn flat)."""
+
+    def __init__(self):
+        self.nodes, self.rise = [], []
+
+    def add(self, flat, rise) -> None:
+        self.nodes.append(np.asarray(flat, dtype=np.float64))
+        self.rise.append(np.asarray(rise, dtype=np.float64))
+
+    def at(self, X) -> np.ndarray:
+        """The largest rise of the 8 nearest nodes of a curved copy (0 if none rises), per row of X."""
+        X = np.asarray(X, dtype=np.float64).reshape(-1, 3)
+        if not self.nodes or not len(X):
+            return np.zeros(len(X))
+        from scipy.spatial import cKDTree
+
+        nodes, rise = np.concatenate(self.nodes), np.concatenate(self.rise)
+        _, near = cKDTree(nodes).query(X, k=min(8, len(nodes)))
+        return np.maximum(rise[np.asarray(near).reshape(len(X), -1)].max(axis=1), 0.0)
+
+
 def _vertex_normals(P, T):
     n = np.cross(P[T[:, 1]] - P[T[:, 0]], P[T[:, 2]] - P[T[:, 0]])
     vn = np.zeros_like(P)
@@ -226,6 +380,7 @@ def _xyz(X) -> dict:
 
 
 _LIGHTING = {"ambient": 0.45, "diffuse": 0.7, "specular": 0.05, "roughness": 0.9, "fresnel": 0.05}
+_UNLIT = {"ambient": 0.8, "diffuse": 0.0, "specular": 0.0, "roughness": 1.0, "fresnel": 0.0}
 _STRIPES = {"cmin": -1.0, "cmax": 1.0, "colorscale": [[0.0, _rgb(STRIPE_DARK)], [1.0, _rgb(STRIPE_LIGHT)]],
             "showscale": False}
 
@@ -235,10 +390,14 @@ def _mesh3d(name: str, X, S, **style) -> dict:
             "k": S[:, 2].astype(np.int32), "lighting": _LIGHTING, "hoverinfo": "skip", **style}
 
 
-def _mesh_traces(m: SceneMesh, max_faces: int, max_glyphs: int, colorbar: bool, notes: list) -> list:
+def _mesh_traces(m: SceneMesh, max_faces: int, max_glyphs: int, colorbar: bool, notes: list,
+                 rises: _Rise | None = None) -> list:
     P, T = m.points, m.faces
     if m.texture is not None and len(T) <= max_faces:
-        X, S, alpha, _, _ = stripe_surface(m.texture)
+        flat, S, alpha, face, bary = stripe_surface(m.texture)
+        X, S, rise = smooth_stripe_surface(m.texture.mesh, S, alpha, face, bary)
+        if rises is not None:
+            rises.add(flat, rise)
         return [_mesh3d(m.name, X, S, intensity=np.nan_to_num(np.cos(alpha)).astype(np.float32), **_STRIPES)]
     Q, F, kept = decimate(P, T, max_faces)
     if len(F) < len(T):
@@ -256,8 +415,12 @@ def _mesh_traces(m: SceneMesh, max_faces: int, max_glyphs: int, colorbar: bool, 
         notes.append("stripes drawn per vertex (branch cuts blurred)")
         return [_mesh3d(m.name, Q, F, intensity=np.nan_to_num(at_kept_vertices(mean)).astype(np.float32),
                         **_STRIPES)]
-    # a translucent domain is flat-shaded: blended normals draw saw-teeth along a box's edges
+    # a translucent domain is unlit, one colour on every face: the browser blends overlapping translucent
+    # triangles in the order of their rows, and blending two differently lit faces gives another colour in
+    # each order, so a box showed saw-teeth along its edges where its top is seen over its back
     trace = _mesh3d(m.name, Q, F, opacity=float(m.transparency), flatshading=m.transparency < 1.0)
+    if m.transparency < 1.0:
+        trace["lighting"] = _UNLIT
     if m.shown_scalar is None:
         trace["color"] = _rgb(m.color)
     else:
@@ -278,9 +441,10 @@ def _glyphs(m: SceneMesh, max_glyphs: int) -> dict:
     D = np.stack(list(m.vectors.values()), axis=1)                # (N, n, 3)
     n = D.shape[1]
     verts = np.nonzero(np.any(D != 0, axis=(1, 2)))[0]
-    if verts.size > max_glyphs:
-        verts = verts[np.linspace(0, verts.size - 1, max_glyphs).astype(np.int64)]
-    ell = 0.45 * mean_edge_length(P, T)
+    spacing = mean_edge_length(P, T)
+    if verts.size > max_glyphs:                                   # an evenly spread subset, glyphs as far apart
+        verts, spacing = thin_out(P, verts, 0.5 * spacing, max_glyphs)
+    ell = 0.45 * spacing
     normal = _vertex_normals(P, T)[verts]
     base = P[verts] + 0.08 * ell * normal                         # just above the surface
     gap = np.full((len(verts), 1, 3), np.nan)
@@ -302,23 +466,46 @@ def _glyphs(m: SceneMesh, max_glyphs: int) -> dict:
             "line": {"color": _rgb(GLYPH_COLOR), "width": 1}, "hoverinfo": "skip"}
 
 
-def _points_trace(p: ScenePoints) -> dict:
-    t = {"type": "scatter3d", "mode": "markers", "name": p.name, **_xyz(p.points),
-         "marker": {"size": float(np.clip(p.radius * 700, 4, 12)), "color": [_rgb(c) for c in p.colors],
-                    "line": {"width": 0}}}
-    if p.labels is not None:
-        t.update(hovertext=list(p.labels), hoverinfo="text")
+def _marker_size(p: ScenePoints) -> float:
+    """The diameter of the markers of ``p`` in pixels."""
+    return float(np.clip(p.radius * 700, 4, 12))
+
+
+def _points_trace(p: ScenePoints, pixel: float = 0.0, rises: _Rise | None = None) -> dict:
+    """The markers of ``p``; points on a surface (``p.normals``) are lifted off it.
+
+    The lift is how far the drawn surface stands above the mesh there (``rises``) plus
+    :data:`MARKER_LIFT` marker radii (``pixel``: world units per pixel in the first view
+    :data:`SMALL_VIEW` pixels high), so that no marker is half buried in the surface; on both sides
+    of a surface with boundary.
+    """
+    X, colors, labels = p.points, [_rgb(c) for c in p.colors], p.labels
+    if p.normals is not None:
+        h = (0.0 if rises is None else rises.at(X)) + MARKER_LIFT * 0.5 * _marker_size(p) * pixel
+        X = X + h[:, None] * p.normals
+        if p.two_sided:
+            X = np.vstack([X, p.points - h[:, None] * p.normals])
+            colors = colors + colors
+            labels = None if labels is None else list(labels) + list(labels)
+    t = {"type": "scatter3d", "mode": "markers", "name": p.name, **_xyz(X),
+         "marker": {"size": _marker_size(p), "color": colors, "line": {"width": 0}}}
+    if labels is not None:
+        t.update(hovertext=list(labels), hoverinfo="text")
     else:
         t["hoverinfo"] = "skip"
     return t
 
 
-def _curves_trace(c: SceneCurves) -> dict:
+def _curves_trace(c: SceneCurves, pixel: float = 0.0, rises: _Rise | None = None) -> dict:
+    """The lines of ``c``; curves on a surface (``c.normals``) are lifted off it: the surface's rise and a pixel."""
     E = c.edges
+    nodes = c.nodes
+    if c.normals is not None:
+        nodes = nodes + ((0.0 if rises is None else rises.at(nodes)) + pixel)[:, None] * c.normals
     if len(E):   # chain consecutive edges (a, b), (b, c), ... into polylines
         breaks = np.nonzero(E[1:, 0] != E[:-1, 1])[0] + 1
         starts, ends = np.r_[0, breaks], np.r_[breaks, len(E)]
-        pieces = [c.nodes[np.r_[E[s:e, 0], E[e - 1, 1]]] for s, e in zip(starts.tolist(), ends.tolist())]
+        pieces = [nodes[np.r_[E[s:e, 0], E[e - 1, 1]]] for s, e in zip(starts.tolist(), ends.tolist())]
     else:
         pieces = []
     t = {"type": "scatter3d", "mode": "lines", "name": c.name, **_xyz(_gaps(pieces)),
@@ -329,12 +516,13 @@ def _curves_trace(c: SceneCurves) -> dict:
 
 
 # ---------------------------------------------------------------------------- the figure
-def _camera(scene: Scene, camera: Camera | None) -> tuple[dict, dict, float]:
-    """The plotly scene camera, axis ranges and zoom for ``camera`` (fitted as in the PNG pictures when not given).
+def _camera(scene: Scene, camera: Camera | None) -> tuple[dict, dict, float, float]:
+    """The plotly scene camera, axis ranges, zoom and pixel size for ``camera`` (fitted as in the PNG pictures).
 
     The axes span the bounding sphere (radius ``r``) whatever the turn; the zoom frames what the
     first view shows, as the PNG does: :data:`ZOOM` (the sphere) times ``r`` over the larger
     half-extent of the drawn points on the screen (at most 1.6 times closer), times :data:`FILL`.
+    The pixel size is the world length of a pixel in the first view :data:`SMALL_VIEW` pixels high.
     """
     X = scene.drawn_points()
     lo, hi = X.min(axis=0), X.max(axis=0)
@@ -350,8 +538,9 @@ def _camera(scene: Scene, camera: Camera | None) -> tuple[dict, dict, float]:
     right, screen_up, _ = cam.frame()
     half = max(float(np.abs((X - c) @ right).max()), float(np.abs((X - c) @ screen_up).max()), 1e-12)
     zoom = ZOOM * min(r / half, 1.6) * FILL
+    pixel = max(half, r / 1.6) / (FILL * SMALL_VIEW / 2)
     return ({"eye": dict(zip("xyz", eye.tolist())), "up": dict(zip("xyz", up.tolist())),
-             "center": {"x": 0.0, "y": 0.0, "z": 0.0}, "projection": {"type": "orthographic"}}, axes, zoom)
+             "center": {"x": 0.0, "y": 0.0, "z": 0.0}, "projection": {"type": "orthographic"}}, axes, zoom, pixel)
 
 
 def figure_spec(result: Any, *, camera: Camera | None = None, isolines: bool = True, title: str | None = None,
@@ -382,12 +571,13 @@ def figure_spec(result: Any, *, camera: Camera | None = None, isolines: bool = T
     scene = scene_of(result, isolines=isolines)
     notes: list[str] = []
     data = []
+    rises = _Rise()
     bars = [i for i, m in enumerate(scene.meshes) if m.shown_scalar is not None]
     for i, m in enumerate(scene.meshes):
-        data += _mesh_traces(m, int(max_faces), int(max_glyphs), bool(bars) and i == bars[-1], notes)
-    data += [_curves_trace(c) for c in scene.curves if len(c.edges)]
-    data += [_points_trace(p) for p in scene.points if len(p.points)]
-    cam, axes, zoom = _camera(scene, camera)
+        data += _mesh_traces(m, int(max_faces), int(max_glyphs), bool(bars) and i == bars[-1], notes, rises)
+    cam, axes, zoom, pixel = _camera(scene, camera)
+    data += [_curves_trace(c, pixel, rises) for c in scene.curves if len(c.edges)]
+    data += [_points_trace(p, pixel, rises) for p in scene.points if len(p.points)]
     plain = scene.title if title is None else title
     text = html.escape(plain) + (f"<br><sub>{html.escape('; '.join(notes))}</sub>" if notes else "")
     layout = {"title": {"text": text, "x": 0.02, "y": 0.98, "font": {"size": 14}},
