@@ -13,7 +13,7 @@ Each time is the best of ``REPEAT`` runs.
 
 Sections (issue 18): on stanford-bunny, n = 1 and n = 2 (cotan), the time of ``stripe_pattern``
 with ``section="unit"`` (eigenvector, then the unit-modulus iteration on the same factorization)
-divided by the time with ``section="eigenvector"``, both measured in the same run (target <= 1.5),
+divided by the time with ``section="eigenvector"``, timed in turns (the median of the pairs' ratios; target <= 1.5),
 with the iterations and both unit energies.
 
 Scans (issue 42, ``--scans``): on the shared meshes, n = 1 and 2, spacing 4, 6 and 8, which rule ended the
@@ -152,15 +152,19 @@ def sections(backend=None, name="stanford-bunny.obj", spacing=8.0):
     rows = []
     for n in (1, 2):
         fld = direction_field(V, F, n=n, solver=backend)
-        eig, t_eig = best(lambda: stripe_pattern(V, F, fld, spacing=spacing, n=n, solver=backend,
-                                                 options=StripeOptions(section=SectionOptions(kind="eigenvector"))))
-        unit, t_unit = best(lambda: stripe_pattern(V, F, fld, spacing=spacing, n=n, solver=backend,
-                                                   options=StripeOptions(section=SectionOptions(kind="unit"))))
-        rows.append((name, eig.mesh.n_faces, n, t_eig, t_unit, t_unit / t_eig, unit.iteration.iterations,
+
+        def pattern(kind):
+            return lambda: stripe_pattern(V, F, fld, spacing=spacing, n=n, solver=backend,
+                                          options=StripeOptions(section=SectionOptions(kind=kind)))
+
+        eig = pattern("eigenvector")()
+        unit, t_unit, t_eig, ratio = paired(pattern("unit"), pattern("eigenvector"))   # in turns, as L_ref
+        rows.append((name, eig.mesh.n_faces, n, t_eig, t_unit, ratio, unit.iteration.iterations,
                      eig.unit_energy, unit.unit_energy, unit.unit_energy / eig.unit_energy, unit.eigenvalue,
                      unit.solver["backend"]))
     load = os.getloadavg()
-    print(f"sections on {name}, spacing {spacing}, best of {REPEAT}; load average {load[0]:.2f} {load[1]:.2f} "
+    print(f"sections on {name}, spacing {spacing}, best of {REPEAT}, ratio the median of {REPEAT} pairs timed in "
+          f"turns; load average {load[0]:.2f} {load[1]:.2f} "
           f"{load[2]:.2f}; backend chosen: {rows[0][-1] if rows else select_backend(1, 1)}")
     fmt = "{:<18} {:>6} {:>2} {:>9} {:>8} {:>6} {:>6} {:>12} {:>12} {:>6} {:>10}"
     print(fmt.format("mesh", "faces", "n", "eigvec s", "unit s", "ratio", "iters", "E_unit eig", "E_unit unit",
