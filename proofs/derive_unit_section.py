@@ -30,6 +30,7 @@ import scipy.sparse as sps
 import sympy as sp
 from _common import check
 
+from dhlb.stripes import SectionOptions
 from dhlb.stripes.section import unit_section
 
 print("1. generalized power method: g(y) >= g(x) + 2 Re((Cx)^H (y - x)), and the step maximizes the linear part")
@@ -113,7 +114,8 @@ for seed in range(40):
     assert np.all(rhos >= sigma + np.real(np.sum(Md)) / gs - 1e-9 * np.abs(rhos)), seed
     increase_seen += int(np.any(np.diff(rhos) > 1e-9 * np.abs(rhos[1:])))
     lu = sps.linalg.splu((A - sigma * M).tocsc())
-    it = unit_section(A, M, lu.solve, x0, maxiter=60, rtol=1e-300, kick=0.0)
+    it = unit_section(A, M, lu.solve, x0, kick=0.0,   # 60 steps: neither stopping rule (fixed point, flat energy)
+                      options=SectionOptions(iterations=60, unit_tol=1e-300, energy_tol=0.0))
     assert np.allclose(it.energies, rhos, rtol=1e-7, atol=1e-10), seed
     assert it.unit_energy == min(it.energies) <= it.energies[0] and np.isclose(it.unit_energy, rhos.min()), seed
 check(True, "g(x_t) non-decreasing on 40 random connection Laplacians (n = 8..39), 60 steps each")
