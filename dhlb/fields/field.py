@@ -185,15 +185,12 @@ def _field_estimate(V, F=None, n=None, *args, **kwargs):
     return need, f"a field of {faces:,} faces ({FIELD_BYTES_PER_FACE / 1000:g} kB a face)"
 
 
-_REPLICATED = object()   # _under_mpi's answer when the call has no distributed form
-
-
 def _under_mpi(V, F, n, s, align, lam, options, solver):
     """``direction_field`` with ``solver="petsc"`` under ``mpirun -n P`` (P > 1): the distributed form if there is one.
 
     The smoothest field goes to :func:`~dhlb.fields.distributed.distributed_direction_field` (collective) and
     rank 0 sends the field to the other ranks. An aligned field has no distributed form: rank 0 warns that every rank
-    assembles the whole problem (PETSc distributes the factorization only) and :data:`_REPLICATED` is returned.
+    assembles the whole problem (PETSc distributes the factorization only) and None is returned.
     """
     from dhlb.fields.distributed import distributed_direction_field
     from dhlb.linalg.backends_petsc import comm_rank_size
@@ -204,7 +201,7 @@ def _under_mpi(V, F, n, s, align, lam, options, solver):
             warnings.warn("direction_field with align or lam is not distributed under mpirun: every rank assembles "
                           "the whole problem and the petsc backend distributes only its factorization (the smoothest "
                           "field, align=None, is distributed)", DhlbWarning, stacklevel=3)
-        return _REPLICATED
+        return None
     if isinstance(V, TangentBundle):
         n = V.n if n is None else n
         V = V.mesh
@@ -305,7 +302,7 @@ def direction_field(V, F=None, n: int | None = None, s: float = 0.0, align=None,
     solver = solver_options(solver)
     if distributes(solver.backend):
         out = _under_mpi(V, F, n, s, align, lam, options, solver)
-        if out is not _REPLICATED:
+        if out is not None:
             return out
     lumped, reorient, components, progress = options.lumped, options.reorient, options.components, options.progress
     backend = solver.backend

@@ -24,8 +24,8 @@ import numpy as np
 
 from dhlb.errors import InvalidParameterError
 
-__all__ = ["Camera", "ConformalStyle", "FieldStyle", "FilamentStyle", "StripeStyle", "finish_figure", "plural",
-           "spread_sample", "thin_out", "up_vector"]
+__all__ = ["Camera", "ConformalStyle", "FieldStyle", "FilamentStyle", "StripeStyle", "finish_figure", "pixels_per_unit",
+           "plural", "spread_sample", "thin_out", "up_vector"]
 
 _CAMERA = ("view", "up", "size", "dpi")   # the keywords of dhlb 0.1 that moved into Camera
 
@@ -492,6 +492,19 @@ def _unit(x):
     return x / np.where(n > 0, n, 1.0)
 
 
+def face_normals(P, T) -> np.ndarray:
+    """``(p1 − p0) × (p2 − p0)`` per triangle of ``T`` (rows of ``P``): the normal of length twice the area.
+
+    The one face-normal kernel of the pictures and views (:func:`_unit` of it for unit normals).
+
+    Examples
+    --------
+    >>> face_normals(np.array([[0.0, 0, 0], [2, 0, 0], [0, 1, 0]]), np.array([[0, 1, 2]])).tolist()
+    [[0.0, 0.0, 2.0]]
+    """
+    return np.cross(P[T[:, 1]] - P[T[:, 0]], P[T[:, 2]] - P[T[:, 0]])
+
+
 TITLE_SIZE = 10
 """Font size of the title of a picture, in points."""
 
@@ -660,6 +673,33 @@ def _title_band(fig, title: str | None, dpi: int):
     return min((text.get_window_extent(renderer).height + 2 * pad) / H, 0.5)
 
 
+FRAME_MARGIN = 0.53
+"""Half-width of the frame of :func:`finish_figure` as a fraction of the drawing's extent (a 6 % margin)."""
+
+
+def pixels_per_unit(xy, size) -> float:
+    """Pixels per world unit of the framing of :func:`finish_figure` (without a title band) of the points ``xy``.
+
+    Parameters
+    ----------
+    xy : (k, 2) float array
+        The projected points.
+    size : (int, int)
+        The picture's width and height in pixels.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> round(pixels_per_unit([[0, 0], [1, 0.5]], (106, 106)), 6)     # the wider extent decides
+    100.0
+    """
+    ext = np.maximum(np.ptp(np.asarray(xy, dtype=np.float64), axis=0), 1e-300)
+    return float(min(size[0] / (2 * FRAME_MARGIN * ext[0]), size[1] / (2 * FRAME_MARGIN * ext[1])))
+
+
 def finish_figure(fig, ax, path, xy, aspect, title, dpi, background) -> str:
     """Frame the projected points ``xy`` with a small margin below the title, write the PNG.
 
@@ -690,7 +730,7 @@ def finish_figure(fig, ax, path, xy, aspect, title, dpi, background) -> str:
         aspect = aspect / (1 - band)
     lo, hi = xy.min(axis=0), xy.max(axis=0)
     mid = (lo + hi) / 2
-    hx, hy = 0.53 * np.maximum(hi - lo, 1e-12)                        # a 6 % margin
+    hx, hy = FRAME_MARGIN * np.maximum(hi - lo, 1e-12)                # a 6 % margin
     hx, hy = max(hx, hy * aspect), max(hy, hx / aspect)                # one scale on both axes
     ax.set_xlim(mid[0] - hx, mid[0] + hx)
     ax.set_ylim(mid[1] - hy, mid[1] + hy)

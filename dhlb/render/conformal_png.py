@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhlb._deprecation import fold_deprecated_kwargs
-from dhlb.render._figure import _CAMERA, Camera, ConformalStyle, _matplotlib, _title_band, write_png
+from dhlb.render._figure import _CAMERA, Camera, ConformalStyle, _matplotlib, _title_band, face_normals, write_png
 
 if TYPE_CHECKING:
     import os
@@ -120,7 +120,7 @@ def render_conformal_png(path: str | os.PathLike[str], before: ArrayLike, after:
         ax.set_axis_off()
         xy = np.c_[V @ right, V @ upv]
         depth = V[F].mean(axis=1) @ w
-        n = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+        n = face_normals(V, F)
         front = n @ w > 0
         order = np.argsort(depth)
         order = order[front[order]]

@@ -19,7 +19,17 @@ from dhlb._coerce import curve_list
 from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb.errors import ShapeError
 from dhlb.mesh.arrays import mesh_arrays
-from dhlb.render._figure import _CAMERA, FILAMENT_COLORS, Camera, FilamentStyle, _matplotlib, _unit, finish_figure
+from dhlb.render._figure import (
+    _CAMERA,
+    FILAMENT_COLORS,
+    Camera,
+    FilamentStyle,
+    _matplotlib,
+    _unit,
+    face_normals,
+    finish_figure,
+    pixels_per_unit,
+)
 
 if TYPE_CHECKING:
     import os
@@ -84,7 +94,7 @@ def feature_edges(V: ArrayLike, F: ArrayLike, angle: float = 30.0) -> np.ndarray
     True
     """
     P, T = np.asarray(V, dtype=np.float64), np.asarray(F, dtype=np.int64)
-    fn = _unit(np.cross(P[T[:, 1]] - P[T[:, 0]], P[T[:, 2]] - P[T[:, 0]]))
+    fn = _unit(face_normals(P, T))
     inner, a, b, border = _edge_faces(T)
     bent = np.einsum("ij,ij->i", fn[a], fn[b]) < np.cos(np.radians(angle))
     return np.concatenate([inner[bent], border])
@@ -109,7 +119,7 @@ def _along(xy, closed: bool, reach: float) -> list:
 
 def _outline_edges(V, F, w):
     """Contour and feature edges of the triangle surface (V, F) seen along ``w``: (edges (e, 2), front (e,) bool)."""
-    fn = _unit(np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]))
+    fn = _unit(face_normals(V, F))
     inner, a, b, border = _edge_faces(F)
     contour = np.sign(fn[a] @ w) != np.sign(fn[b] @ w)
     feature = np.einsum("ij,ij->i", fn[a], fn[b]) < np.cos(np.radians(30))
@@ -222,8 +232,7 @@ def render_filaments_png(
             if np.any(sel):
                 ax.add_collection(LineCollection(xy[edges[sel]], colors=outline_color, linewidths=0.8,
                                                  linestyles=style, zorder=1), autolim=False)
-    ext = np.maximum(np.ptp(xy_all[0], axis=0), 1e-300)
-    pixels = min(W / (1.06 * ext[0]), H / (1.06 * ext[1]))     # per world unit, about as finish_figure frames
+    pixels = pixels_per_unit(xy_all[0], size)
     reach = 1.5 * ((line_width + 2.0) / 2 * dpi / 72.0 + 1.0) / pixels   # of a halo's round cap, with room
     segs, depth, cols, near = [], [], [], []
     for k, (X, closed) in enumerate(curves):

@@ -28,7 +28,9 @@ from dhlb.render._figure import (
     FieldStyle,
     _matplotlib,
     _unit,
+    face_normals,
     finish_figure,
+    pixels_per_unit,
     thin_out,
 )
 
@@ -117,9 +119,7 @@ def glyph_sites(points, candidates, mean_edge: float, xy, size, dpi: int,
     (True, 0.0265)
     """
     candidates = np.asarray(candidates, dtype=np.int64)
-    ext = np.maximum(np.ptp(np.asarray(xy, dtype=np.float64), axis=0), 1e-300)
-    pixels = min(size[0] / (1.06 * ext[0]), size[1] / (1.06 * ext[1]))   # per world unit, as finish_figure frames
-    gap = GLYPH_SPACING * dpi / 72.0 / pixels
+    gap = GLYPH_SPACING * dpi / 72.0 / pixels_per_unit(xy, size)
     if mean_edge >= gap and candidates.size <= max_glyphs:
         return candidates, float(mean_edge)
     return thin_out(points, candidates, max(gap, float(mean_edge)), max_glyphs)
@@ -196,7 +196,7 @@ def render_field_png(
     c = P.mean(axis=0)
     Q = P - c
     xy, depth = np.stack([Q @ right, Q @ upv], axis=1), Q @ w
-    fn = _unit(np.cross(P[T[:, 1]] - P[T[:, 0]], P[T[:, 2]] - P[T[:, 0]]))
+    fn = _unit(face_normals(P, T))
     edges = np.sort(np.concatenate([T[:, [0, 1]], T[:, [1, 2]], T[:, [2, 0]]]), axis=1)
     _, counts = np.unique(edges, axis=0, return_counts=True)
     closed = bool(np.all(counts == 2))

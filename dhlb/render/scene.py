@@ -44,6 +44,7 @@ from dhlb.render._figure import (
     OUTLINE_COLOR,
     POSITIVE,
     Camera,
+    face_normals,
     plural,
 )
 from dhlb.render.filaments_png import feature_edges
@@ -269,8 +270,7 @@ def _unit_rows(normals, k: int, what: str) -> np.ndarray:
 
 
 def _face_normals(mesh, faces) -> np.ndarray:
-    P, T = mesh.points, mesh.faces[np.asarray(faces, dtype=np.int64).reshape(-1)]
-    return np.cross(P[T[:, 1]] - P[T[:, 0]], P[T[:, 2]] - P[T[:, 0]])
+    return face_normals(mesh.points, mesh.faces[np.asarray(faces, dtype=np.int64).reshape(-1)])
 
 
 def index_colors(index: ArrayLike) -> np.ndarray:

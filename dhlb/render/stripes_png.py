@@ -26,6 +26,7 @@ from dhlb.render._figure import (
     StripeStyle,
     _matplotlib,
     _unit,
+    face_normals,
     finish_figure,
 )
 
@@ -143,7 +144,7 @@ def render_stripes_png(
     P, F = mesh.points, mesh.faces
     right, upv, w = camera.fitted(P).frame()
     c = P.mean(axis=0)
-    fn_ = _unit(np.cross(P[F[:, 1]] - P[F[:, 0]], P[F[:, 2]] - P[F[:, 0]]))
+    fn_ = _unit(face_normals(P, F))
     facing = fn_ @ w
     light_dir = _unit(w + 0.35 * upv + 0.15 * right)
     shade = fn_ @ light_dir

@@ -50,6 +50,8 @@ from dhlb.render._figure import (
     STRIPE_DARK,
     STRIPE_LIGHT,
     Camera,
+    _unit,
+    face_normals,
     mean_edge_length,
     thin_out,
     up_vector,
@@ -314,8 +316,7 @@ def smooth_stripe_surface(mesh, faces, alpha, face, bary) -> tuple[np.ndarray, n
         u = ((tq - cnode[left, 1]) / span)[:, None]
         X[on] = (1 - u) * at_nodes[left] + u * at_nodes[right]
     flat = np.einsum("kc,kcd->kd", b, P[corners])
-    fn = np.cross(P[F[:, 1]] - P[F[:, 0]], P[F[:, 2]] - P[F[:, 0]])
-    fn /= np.maximum(np.linalg.norm(fn, axis=1, keepdims=True), 1e-300)
+    fn = _unit(face_normals(P, F))
     rise = np.einsum("kd,kd->k", X - flat, fn[face])
     scale = max(float(np.ptp(P, axis=0).max()), 1e-300) / 2.0 ** 30
     key = np.column_stack([np.rint(X / scale), np.rint(np.cos(alpha) * 2.0 ** 20)]).astype(np.int64)
@@ -346,7 +347,7 @@ class _Rise:
 
 
 def _vertex_normals(P, T):
-    n = np.cross(P[T[:, 1]] - P[T[:, 0]], P[T[:, 2]] - P[T[:, 0]])
+    n = face_normals(P, T)
     vn = np.zeros_like(P)
     for c in range(3):
         np.add.at(vn, T[:, c], n)
