@@ -43,10 +43,10 @@ import numpy as np
 from dhlb._phases import PhaseMeter, trim_heap
 from dhlb.errors import ShapeError, UnresolvedFluxWarning
 from dhlb.linalg import SolverOptions, solver_options
-from dhlb.vortex.options import VortexOptions
-from dhlb.vortex.pipeline import DEFAULT_TOL, _per_vertex_velocity, filament_linking_numbers
+from dhlb.vortex.linking import filament_linking_numbers
+from dhlb.vortex.options import DEFAULT_TOL, VortexOptions
 from dhlb.vortex.result import VortexResult
-from dhlb.vortex.velocity import _check_hbar, velocity_bundle
+from dhlb.vortex.velocity import _check_hbar, _per_vertex_velocity, velocity_bundle
 
 __all__ = ["distributed_vortex_filaments"]
 
@@ -70,7 +70,7 @@ def distributed_vortex_filaments(V, T, velocity, hbar: float, *, options: Vortex
     options : VortexOptions, optional
         As :func:`~dhlb.vortex.vortex_filaments`.
     solver : SolverOptions or str, optional
-        Only ``tol`` is used (default :data:`~dhlb.vortex.pipeline.DEFAULT_TOL`).
+        Only ``tol`` is used (default :data:`~dhlb.vortex.options.DEFAULT_TOL`).
     comm : mpi4py.MPI.Comm, optional
         Default ``MPI_COMM_WORLD``.
 

@@ -27,20 +27,23 @@ Examples
 
 from __future__ import annotations
 
+import warnings
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dhlb._coerce import as_points, as_polyline
-from dhlb.errors import CurveIntersectionError, InvalidParameterError
+from dhlb.errors import CurveIntersectionError, DhlbWarning, InvalidParameterError
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
     from numpy.typing import ArrayLike
 
-__all__ = ["gauss_linking_integral", "linking_number", "linking_matrix", "hausdorff_distance",
-           "polyline_distance"]
+    from dhlb.vortex.filaments import Filament
+
+__all__ = ["filament_linking_numbers", "gauss_linking_integral", "linking_number", "linking_matrix",
+           "hausdorff_distance", "polyline_distance"]
 
 _CHUNK = 1 << 19
 
@@ -290,3 +293,56 @@ def hausdorff_distance(
     dab = polyline_distance(_samples(A, ca, spacing), B, closed=cb).max()
     dba = polyline_distance(_samples(B, cb, spacing), A, closed=ca).max()
     return float(max(dab, dba))
+
+
+_LINK_ATOL = 1e-6  # a Gauss integral farther than this from an integer means touching curves
+
+
+def filament_linking_numbers(
+    filaments: Sequence[Filament], *, atol: float = _LINK_ATOL
+) -> tuple[np.ndarray, np.ndarray, float]:
+    """Gauss linking numbers among the closed filaments.
+
+    A defect above ``atol`` (two filaments touching inside an ambiguous tetrahedron) is reported
+    as a :class:`~dhlb.errors.DhlbWarning` naming the pair; the integral is rounded anyway.
+
+    Parameters
+    ----------
+    filaments : sequence of Filament
+        The filaments (open ones and those of fewer than 3 points are skipped).
+    atol : float, optional
+        The largest distance of a Gauss integral from an integer that passes without a warning.
+
+    Returns
+    -------
+    L : (k, k) int64 array
+        The symmetric matrix of linking numbers of the ``k`` closed filaments (zero diagonal).
+    index : (k,) int64 array
+        Their positions in ``filaments``.
+    defect : float
+        The largest distance of a Gauss integral from its integer.
+
+    Examples
+    --------
+    >>> from dhlb.vortex import Filament, hopf_link
+    >>> a, b = hopf_link(n=32)
+    >>> L, idx, defect = filament_linking_numbers([Filament(a, True, None), Filament(b, True, None)])
+    >>> L.tolist(), idx.tolist(), defect < 1e-9
+    ([[0, 1], [1, 0]], [0, 1], True)
+    """
+    idx = np.array([i for i, f in enumerate(filaments) if f.closed and len(f) >= 3], dtype=np.int64)
+    k = idx.size
+    L = np.zeros((k, k), np.int64)
+    defect = 0.0
+    for a in range(k):
+        for b in range(a + 1, k):
+            g = gauss_linking_integral(filaments[idx[a]].points, filaments[idx[b]].points)
+            n = int(np.round(g))
+            d = abs(g - n)
+            if d > atol:
+                warnings.warn(f"filaments #{idx[a]} and #{idx[b]} touch or cross (Gauss integral {g:.6g} is not an "
+                              f"integer); their linking number {n} is a guess: refine the mesh", DhlbWarning,
+                              stacklevel=3)
+            defect = max(defect, d)
+            L[a, b] = L[b, a] = n
+    return L, idx, float(defect)

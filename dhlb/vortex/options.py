@@ -16,7 +16,10 @@ from typing import Any
 from dhlb._deprecation import check_choice, check_integer
 from dhlb.vortex.velocity import DEFAULT_ORDER, MAX_ORDER
 
-__all__ = ["VortexOptions"]
+__all__ = ["DEFAULT_TOL", "VortexOptions"]
+
+DEFAULT_TOL = 1e-9
+"""Default backward-error tolerance of the eigen solve (see :func:`dhlb.fem.smallest_eigenpairs`)."""
 
 PLACEMENTS = ("balanced", "vertex")
 """The values of :attr:`VortexOptions.placement` (:func:`~dhlb.vortex.face_zeros`)."""

@@ -56,8 +56,6 @@ import numpy as np
 from dhlb._deprecation import fold_deprecated_kwargs
 from dhlb._memory_errors import translate_memory_errors
 from dhlb.errors import (
-    DhlbWarning,
-    NonFiniteError,
     ShapeError,
     UnresolvedFluxWarning,
 )
@@ -65,99 +63,19 @@ from dhlb.linalg import SolverOptions, solver_options
 from dhlb.linalg.backends import distributes
 from dhlb.mesh.tet import TetMesh, check_tet_mesh
 from dhlb.vortex.filaments import extract_filaments
-from dhlb.vortex.linking import gauss_linking_integral
-from dhlb.vortex.options import VortexOptions
-from dhlb.vortex.velocity import _check_hbar, velocity_bundle
+from dhlb.vortex.linking import filament_linking_numbers
+from dhlb.vortex.options import DEFAULT_TOL, VortexOptions
+from dhlb.vortex.velocity import _check_hbar, _per_vertex_velocity, velocity_bundle
 
 if TYPE_CHECKING:
-    from collections.abc import Callable, Sequence
+    from collections.abc import Callable
     from typing import Any
 
     from numpy.typing import ArrayLike
 
-    from dhlb.vortex.filaments import Filament
 from dhlb.vortex.result import VortexResult
 
 __all__ = ["VortexResult", "filament_linking_numbers", "vortex_filaments"]
-
-DEFAULT_TOL = 1e-9
-"""Default backward-error tolerance of the eigen solve (see :func:`dhlb.fem.smallest_eigenpairs`)."""
-
-_LINK_ATOL = 1e-6  # a Gauss integral farther than this from an integer means touching curves
-
-
-def filament_linking_numbers(
-    filaments: Sequence[Filament], *, atol: float = _LINK_ATOL
-) -> tuple[np.ndarray, np.ndarray, float]:
-    """Gauss linking numbers among the closed filaments.
-
-    A defect above ``atol`` (two filaments touching inside an ambiguous tetrahedron) is reported
-    as a :class:`~dhlb.errors.DhlbWarning` naming the pair; the integral is rounded anyway.
-
-    Parameters
-    ----------
-    filaments : sequence of Filament
-        The filaments (open ones and those of fewer than 3 points are skipped).
-    atol : float, optional
-        The largest distance of a Gauss integral from an integer that passes without a warning.
-
-    Returns
-    -------
-    L : (k, k) int64 array
-        The symmetric matrix of linking numbers of the ``k`` closed filaments (zero diagonal).
-    index : (k,) int64 array
-        Their positions in ``filaments``.
-    defect : float
-        The largest distance of a Gauss integral from its integer.
-
-    Examples
-    --------
-    >>> from dhlb.vortex import Filament, hopf_link
-    >>> a, b = hopf_link(n=32)
-    >>> L, idx, defect = filament_linking_numbers([Filament(a, True, None), Filament(b, True, None)])
-    >>> L.tolist(), idx.tolist(), defect < 1e-9
-    ([[0, 1], [1, 0]], [0, 1], True)
-    """
-    idx = np.array([i for i, f in enumerate(filaments) if f.closed and len(f) >= 3], dtype=np.int64)
-    k = idx.size
-    L = np.zeros((k, k), np.int64)
-    defect = 0.0
-    for a in range(k):
-        for b in range(a + 1, k):
-            g = gauss_linking_integral(filaments[idx[a]].points, filaments[idx[b]].points)
-            n = int(np.round(g))
-            d = abs(g - n)
-            if d > atol:
-                warnings.warn(f"filaments #{idx[a]} and #{idx[b]} touch or cross (Gauss integral {g:.6g} is not an "
-                              f"integer); their linking number {n} is a guess: refine the mesh", DhlbWarning,
-                              stacklevel=3)
-            defect = max(defect, d)
-            L[a, b] = L[b, a] = n
-    return L, idx, float(defect)
-
-
-def _per_vertex_velocity(velocity, n_rows: int, rows: np.ndarray) -> np.ndarray:
-    """Check a per-vertex velocity array against the input rows and restrict it to the mesh's vertices ``rows``."""
-    try:
-        arr = np.asarray(velocity)
-    except ValueError:
-        raise ShapeError("velocity must be a callable v(x) or an (N, 3) array of numbers, got a ragged "
-                         f"{type(velocity).__name__}") from None
-    if arr.dtype == object or not (np.issubdtype(arr.dtype, np.floating) or np.issubdtype(arr.dtype, np.integer)):
-        raise ShapeError(f"velocity must be a callable v(x) or a real (N, 3) array, got {type(velocity).__name__} "
-                         f"of dtype {arr.dtype}")
-    if arr.shape != (n_rows, 3):
-        raise ShapeError(f"a per-vertex velocity needs one 3-vector per row of V, shape ({n_rows}, 3); got "
-                         f"{arr.shape}")
-    arr = arr.astype(np.float64)[rows]  # rows of V used by the mesh (unreferenced ones are ignored)
-    bad = ~np.isfinite(arr).all(axis=1)
-    if np.any(bad):
-        i = int(np.argmax(bad))
-        more = f"; {int(bad.sum())} vertices are affected" if bad.sum() > 1 else ""
-        raise NonFiniteError(f"the velocity at vertex {int(rows[i])} (row {int(rows[i])} of V) is not finite: "
-                             f"{arr[i].tolist()}{more}")
-    return arr
-
 
 def _warn_flux(X, points, Om) -> int:
     big = np.abs(Om) > np.pi

@@ -249,3 +249,26 @@ def velocity_bundle(
     f = X.faces(2)
     curvature = w[f[:, 2]] - w[f[:, 1]] + w[f[:, 0]]  # (dω)_ijk = ω_jk − ω_ik + ω_ij
     return HermitianLineBundle(X, np.exp(1j * w), curvature)
+
+
+def _per_vertex_velocity(velocity, n_rows: int, rows: np.ndarray) -> np.ndarray:
+    """Check a per-vertex velocity array against the input rows and restrict it to the mesh's vertices ``rows``."""
+    try:
+        arr = np.asarray(velocity)
+    except ValueError:
+        raise ShapeError("velocity must be a callable v(x) or an (N, 3) array of numbers, got a ragged "
+                         f"{type(velocity).__name__}") from None
+    if arr.dtype == object or not (np.issubdtype(arr.dtype, np.floating) or np.issubdtype(arr.dtype, np.integer)):
+        raise ShapeError(f"velocity must be a callable v(x) or a real (N, 3) array, got {type(velocity).__name__} "
+                         f"of dtype {arr.dtype}")
+    if arr.shape != (n_rows, 3):
+        raise ShapeError(f"a per-vertex velocity needs one 3-vector per row of V, shape ({n_rows}, 3); got "
+                         f"{arr.shape}")
+    arr = arr.astype(np.float64)[rows]  # rows of V used by the mesh (unreferenced ones are ignored)
+    bad = ~np.isfinite(arr).all(axis=1)
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        more = f"; {int(bad.sum())} vertices are affected" if bad.sum() > 1 else ""
+        raise NonFiniteError(f"the velocity at vertex {int(rows[i])} (row {int(rows[i])} of V) is not finite: "
+                             f"{arr[i].tolist()}{more}")
+    return arr
